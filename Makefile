@@ -1,0 +1,30 @@
+# The README's two commands. Both install what is missing (deploy/install-deps.sh is fast when nothing is),
+# configure and build in build/, then act.
+BUILD ?= build
+JOBS ?= 2
+CMAKE_FLAGS ?=
+RUN_ARGS ?= run --sim
+
+.PHONY: run test build deps clean bench
+
+deps:
+	@bash deploy/install-deps.sh
+
+$(BUILD)/build.ninja:
+	@cmake -S . -B $(BUILD) -G Ninja $(CMAKE_FLAGS)
+
+build: deps $(BUILD)/build.ninja
+	@cmake --build $(BUILD) -j $(JOBS)
+
+# The virtual car on a shared track with the full stack and the dashboard.
+run: build
+	@$(BUILD)/daemon/fsd $(RUN_ARGS)
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+
+bench: build
+	@for b in $(BUILD)/bench/*; do [ -x "$$b" ] && "$$b"; done
+
+clean:
+	@rm -rf $(BUILD)

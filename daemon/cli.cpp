@@ -1,0 +1,37 @@
+#include "daemon/cli.hpp"
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "common/config.hpp"
+#include "common/track.hpp"
+#include "daemon/commands.hpp"
+
+namespace fsd {
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"fsd: autonomy daemon of a Formula Student Driverless car (see README.md)"};
+  app.require_subcommand(1);
+  int exit_code = kExitOk;
+  add_version_command(app, exit_code);
+  add_config_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);  // prints help or the usage error
+    return rc == 0 ? kExitOk : kExitBadInput;
+  } catch (const ConfigError& e) {
+    std::cerr << "fsd: configuration error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const TrackError& e) {
+    std::cerr << "fsd: track error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "fsd: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return exit_code;
+}
+
+}  // namespace fsd

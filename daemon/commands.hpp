@@ -1,0 +1,12 @@
+#pragma once
+// One function per `fsd` subcommand; each adds itself to the app and, when chosen, runs and stores its exit code.
+namespace CLI {
+class App;
+}
+
+namespace fsd {
+
+void add_version_command(CLI::App& app, int& exit_code);
+void add_config_command(CLI::App& app, int& exit_code);
+
+}  // namespace fsd

@@ -1,0 +1,39 @@
+#include "daemon/settings.hpp"
+
+namespace fsd {
+
+const ConfigSection<DaemonSettings>& daemon_section() {
+  static const auto s = ConfigSection<DaemonSettings>("daemon").string(
+      "log_level", &DaemonSettings::log_level, {"trace", "debug", "info", "warn", "error", "critical", "off"},
+      "Log level of every component (stderr).");
+  return s;
+}
+
+const ConfigSection<RunSettings>& run_section() {
+  static const auto s =
+      ConfigSection<RunSettings>("run")
+          .string("track", &RunSettings::track, {}, "Track file (EUFS/FSDS CSV) for the virtual car, relative to the working directory.")
+          .string("mission", &RunSettings::mission,
+                  {"trackdrive", "autocross", "acceleration", "skidpad", "inspection", "ebs_test"},
+                  "Mission selected at start.")
+          .integer("laps", &RunSettings::laps, 1, 100, "laps", "Laps of trackdrive (FSAC 2017: 2, FSG: 10).")
+          .integer("seed", &RunSettings::seed, 0, 1000000000, "", "Seed of every random process of the virtual car.")
+          .string("colours", &RunSettings::colours, {"fsg", "fsac"},
+                  "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
+          .string("perception_source", &RunSettings::perception_source, {"truth"},
+                  "Where cone detections come from: truth = the virtual car's cones within sensor range.")
+          .string("localization_source", &RunSettings::localization_source, {"truth"},
+                  "Where the pose comes from: truth = the virtual car's true pose.")
+          .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
+                  "Headless runs give up after this much simulated time.");
+  return s;
+}
+
+std::shared_ptr<const ConfigSchema> config_schema() {
+  auto schema = std::make_shared<ConfigSchema>();
+  daemon_section().describe(*schema);
+  run_section().describe(*schema);
+  return schema;
+}
+
+}  // namespace fsd

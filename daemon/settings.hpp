@@ -1,0 +1,33 @@
+#pragma once
+// Settings of the daemon itself (the wiring), declared as configuration sections.
+#include <memory>
+#include <string>
+
+#include "common/config.hpp"
+
+namespace fsd {
+
+struct DaemonSettings {
+  std::string log_level = "info";
+};
+
+struct RunSettings {
+  std::string track = "../shared/tracks/epfl_track_1.csv";
+  std::string mission = "trackdrive";
+  int laps = 2;
+  int seed = 1;
+  std::string colours = "fsg";
+  // Until perception and localization land, the loop runs on the virtual car's ground truth; "truth" stays
+  // available afterwards for control work.
+  std::string perception_source = "truth";
+  std::string localization_source = "truth";
+  double max_sim_time = 600.0;
+};
+
+const ConfigSection<DaemonSettings>& daemon_section();
+const ConfigSection<RunSettings>& run_section();
+
+// The schema of the whole configuration file: every library's sections.
+std::shared_ptr<const ConfigSchema> config_schema();
+
+}  // namespace fsd

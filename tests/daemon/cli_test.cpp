@@ -1,0 +1,72 @@
+// The fsd command line as a user runs it: the real binary, its output and exit status.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "daemon/settings.hpp"
+
+namespace fsd {
+namespace {
+
+struct Result {
+  int status;
+  std::string out;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int rc = pclose(p);
+  return {WEXITSTATUS(rc), out};
+}
+
+TEST(Cli, HelpAndVersion) {
+  const auto help = run("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("version"), std::string::npos);
+  const auto v = run("version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_EQ(v.out, std::string("fsd ") + FSD_VERSION + "\n");
+}
+
+TEST(Cli, BadUsageExitsTwo) {
+  EXPECT_EQ(run("").status, 2);
+  EXPECT_EQ(run("no-such-command").status, 2);
+  EXPECT_EQ(run("version --bogus").status, 2);
+}
+
+TEST(Cli, CommittedDefaultConfigEqualsTheSchemaDefaults) {
+  std::ifstream f("deploy/config/default.json");
+  ASSERT_TRUE(f) << "deploy/config/default.json missing";
+  const auto file = nlohmann::json::parse(f);
+  EXPECT_EQ(file, config_schema()->defaults()) << "regenerate with: fsd config defaults > deploy/config/default.json";
+  EXPECT_EQ(run("config check deploy/config/default.json").status, 0);
+}
+
+TEST(Cli, ConfigurationDocsListEveryKey) {
+  std::ifstream f("docs/configuration.md");
+  ASSERT_TRUE(f);
+  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(doc.find(config_schema()->markdown()), std::string::npos)
+      << "regenerate the table with: fsd config doc";
+}
+
+TEST(Cli, ConfigCheckNamesTheBadKey) {
+  const std::string path = ::testing::TempDir() + "bad_config.json";
+  std::ofstream(path) << R"({"run": {"laps": 0}})";
+  const auto r = run("config check " + path);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("key 'run.laps': value 0 out of range [1, 100]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(path), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fsd
