@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs a built fsd on the car's computer: binary, dashboard, config, service unit, udev rules.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[[ -x build/daemon/fsd ]] || { echo "build first: make build" >&2; exit 2; }
+install -D -m 0755 build/daemon/fsd /usr/local/bin/fsd
+if [[ -d web/dashboard/dist ]]; then
+  mkdir -p /usr/local/share/fsd && cp -r web/dashboard/dist /usr/local/share/fsd/dashboard
+fi
+install -d /etc/fsd
+[[ -f /etc/fsd/config.json ]] || install -m 0644 deploy/config/default.json /etc/fsd/config.json
+fsd config check /etc/fsd/config.json
+id fsd >/dev/null 2>&1 || useradd --system --no-create-home --groups dialout fsd
+install -m 0644 deploy/fsd.service /etc/systemd/system/fsd.service
+install -m 0644 deploy/99-fsd.rules /etc/udev/rules.d/99-fsd.rules
+systemctl daemon-reload || true
+echo "installed; start with: systemctl enable --now fsd"

@@ -1,0 +1,118 @@
+#include "drivers/sim/reference_line.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fsd::sim {
+
+namespace {
+
+// Orders cones into a boundary polyline: start at the cone nearest the start pose (ahead or beside it),
+// then repeatedly the nearest unvisited cone; a boundary whose ends are close is a loop.
+std::vector<Vec2> chain(std::vector<Vec2> pts, const Pose2& start, bool& closed) {
+  std::vector<Vec2> out;
+  if (pts.empty()) return out;
+  const Vec2 s = start.position();
+  const Vec2 fwd(std::cos(start.yaw), std::sin(start.yaw));
+  std::size_t first = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Vec2 d = pts[i] - s;
+    // Prefer cones beside or just ahead of the car: penalise those behind it.
+    const double cost = d.norm() + (d.dot(fwd) < -1.0 ? 100.0 : 0.0);
+    if (cost < best) best = cost, first = i;
+  }
+  std::vector<bool> used(pts.size(), false);
+  out.push_back(pts[first]);
+  used[first] = true;
+  // First step goes forwards along the start heading so the loop runs the driving direction.
+  for (std::size_t n = 1; n < pts.size(); ++n) {
+    const Vec2& cur = out.back();
+    std::size_t pick = pts.size();
+    double pick_cost = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      if (used[i]) continue;
+      const Vec2 d = pts[i] - cur;
+      double cost = d.norm();
+      if (n == 1 && d.dot(fwd) < 0) cost += 1000.0;
+      if (cost < pick_cost) pick_cost = cost, pick = i;
+    }
+    used[pick] = true;
+    out.push_back(pts[pick]);
+  }
+  double max_step = 0;
+  for (std::size_t i = 1; i < out.size(); ++i) max_step = std::max(max_step, (out[i] - out[i - 1]).norm());
+  closed = out.size() > 3 && (out.front() - out.back()).norm() <= std::max(6.0, 1.5 * max_step);
+  return out;
+}
+
+std::vector<Vec2> resample(const std::vector<Vec2>& poly, bool closed, double spacing) {
+  std::vector<Vec2> out;
+  if (poly.size() < 2) return poly;
+  std::vector<Vec2> p = poly;
+  if (closed) p.push_back(poly.front());
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const Vec2 a = p[i - 1], b = p[i];
+    const double len = (b - a).norm();
+    const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+    for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / n));
+  }
+  if (!closed) out.push_back(p.back());
+  return out;
+}
+
+double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+Vec2 closest_on(const std::vector<Vec2>& poly, bool closed, const Vec2& p) {
+  Vec2 best = poly.front();
+  double bd = std::numeric_limits<double>::infinity();
+  const std::size_t n = poly.size();
+  const std::size_t segs = closed ? n : n - 1;
+  for (std::size_t i = 0; i < segs; ++i) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % n];
+    const Vec2 ab = b - a;
+    const double l2 = ab.squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+    const Vec2 q = a + t * ab;
+    const double d = (p - q).squaredNorm();
+    if (d < bd) bd = d, best = q;
+  }
+  return best;
+}
+
+}  // namespace
+
+ReferenceLine::ReferenceLine(const Track& track, double spacing) {
+  std::vector<Vec2> l, r;
+  for (const auto& c : track.cones) {
+    if (c.role == ConeRole::Left) l.push_back(c.position);
+    if (c.role == ConeRole::Right) r.push_back(c.position);
+  }
+  bool lc = false, rc = false;
+  left_ = chain(l, track.start, lc);
+  right_ = chain(r, track.start, rc);
+  closed_ = lc && rc;
+  if (left_.size() < 2 || right_.size() < 2) return;
+  const auto ls = resample(left_, closed_, spacing);
+  for (const auto& p : ls) centre_.push_back(0.5 * (p + closest_on(right_, closed_, p)));
+  for (std::size_t i = 1; i < centre_.size(); ++i) length_ += (centre_[i] - centre_[i - 1]).norm();
+  if (closed_ && centre_.size() > 1) length_ += (centre_.front() - centre_.back()).norm();
+}
+
+double ReferenceLine::distance(const Vec2& p) const {
+  if (centre_.empty()) return std::numeric_limits<double>::infinity();
+  if (centre_.size() == 1) return (p - centre_[0]).norm();
+  double best = std::numeric_limits<double>::infinity();
+  const std::size_t n = centre_.size();
+  const std::size_t segs = closed_ ? n : n - 1;
+  for (std::size_t i = 0; i < segs; ++i) best = std::min(best, point_segment_distance(p, centre_[i], centre_[(i + 1) % n]));
+  return best;
+}
+
+}  // namespace fsd::sim

@@ -1,0 +1,44 @@
+#pragma once
+// The cone map (DESIGN.md §3 "mapping"): cone positions and colours in the map frame, built from detections and
+// the vehicle pose. Each detection is associated with the nearest mapped cone inside a gate (else starts a new
+// cone); positions are fused in information form, colours by vote.
+#include <array>
+#include <vector>
+
+#include "common/config.hpp"
+#include "common/types.hpp"
+
+namespace fsd {
+
+struct ConeMapConfig {
+  double association_gate = 1.0;  // m
+  int min_observations = 2;       // a cone is reported once seen this often
+  double max_range = 20.0;        // detections farther than this are ignored (m)
+};
+const ConfigSection<ConeMapConfig>& cone_map_section();
+
+class ConeMap {
+ public:
+  explicit ConeMap(const ConeMapConfig& cfg = {}) : cfg_(cfg) {}
+  // Detections in the vehicle frame, taken at vehicle pose `pose` (map frame).
+  void update(const ConeDetections& detections, const Pose2& pose);
+  // Confirmed cones in the map frame with fused position, covariance and voted colour.
+  std::vector<Cone> cones() const;
+  std::size_t size() const { return entries_.size(); }
+  void clear() { entries_.clear(); }
+
+ private:
+  struct Entry {
+    Eigen::Matrix2d info = Eigen::Matrix2d::Zero();  // Σ⁻¹
+    Vec2 info_vec = Vec2::Zero();                    // Σ⁻¹ μ
+    Vec2 mean = Vec2::Zero();
+    int observations = 0;
+    std::array<int, 6> colour_votes{};
+    std::uint32_t id = 0;
+  };
+  ConeMapConfig cfg_;
+  std::vector<Entry> entries_;
+  std::uint32_t next_id_ = 1;
+};
+
+}  // namespace fsd

@@ -1,0 +1,70 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "localization/cone_map.hpp"
+
+namespace fsd {
+namespace {
+
+ConeDetections detect(const std::vector<std::pair<Vec2, ConeColour>>& world, const Pose2& pose, double sigma,
+                      std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, sigma);
+  ConeDetections d;
+  for (const auto& [p, colour] : world) {
+    Cone c;
+    const Vec2 local = pose.inverse_transform(p) + Vec2(n(rng), n(rng));
+    c.position = Vec3(local.x(), local.y(), 0);
+    c.colour = colour;
+    c.covariance = Eigen::Matrix2d::Identity() * sigma * sigma;
+    d.cones.push_back(c);
+  }
+  return d;
+}
+
+TEST(ConeMap, FusesRepeatedNoisyDetectionsToTheTruePosition) {
+  const std::vector<std::pair<Vec2, ConeColour>> world{{{5, 2}, ConeColour::Blue}, {{5, -2}, ConeColour::Yellow},
+                                                      {{9, 2}, ConeColour::Blue}};
+  ConeMap map;
+  std::mt19937 rng(3);
+  for (int k = 0; k < 100; ++k) {
+    const Pose2 pose{0.02 * k, 0.0, 0.01 * std::sin(k)};  // the car creeps forward
+    map.update(detect(world, pose, 0.1, rng), pose);
+  }
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), 3u);
+  for (const auto& [p, colour] : world) {
+    const auto it = std::min_element(cones.begin(), cones.end(), [&](const Cone& a, const Cone& b) {
+      return (a.position.head<2>() - p).norm() < (b.position.head<2>() - p).norm();
+    });
+    // 100 samples of σ = 0.1 m: the mean is within ~3σ/√100 = 0.03 m.
+    EXPECT_LT((it->position.head<2>() - p).norm(), 0.04);
+    EXPECT_EQ(it->colour, colour);
+  }
+}
+
+TEST(ConeMap, ColourByMajorityAndGhostsNeedConfirmation) {
+  ConeMapConfig cfg;
+  cfg.min_observations = 3;
+  ConeMap map(cfg);
+  auto one = [](Vec2 p, ConeColour c) {
+    ConeDetections d;
+    Cone cone;
+    cone.position = Vec3(p.x(), p.y(), 0);
+    cone.colour = c;
+    d.cones.push_back(cone);
+    return d;
+  };
+  map.update(one({4, 1}, ConeColour::Blue), {});
+  map.update(one({4, 1}, ConeColour::Yellow), {});
+  EXPECT_TRUE(map.cones().empty());  // two observations, not yet confirmed
+  map.update(one({4, 1}, ConeColour::Blue), {});
+  map.update(one({30, 0}, ConeColour::Blue), {});  // beyond max_range: ignored
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), 1u);
+  EXPECT_EQ(cones[0].colour, ConeColour::Blue);
+  EXPECT_NEAR(cones[0].confidence, 2.0 / 3.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace fsd
