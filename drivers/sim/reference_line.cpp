@@ -101,6 +101,20 @@ ReferenceLine::ReferenceLine(const Track& track, double spacing) {
   if (left_.size() < 2 || right_.size() < 2) return;
   const auto ls = resample(left_, closed_, spacing);
   for (const auto& p : ls) centre_.push_back(0.5 * (p + closest_on(right_, closed_, p)));
+  if (!closed_ && centre_.size() >= 2) {
+    // An open track (acceleration) starts behind its first cones and ends in a braking zone past its last ones:
+    // extend the line back to the start pose and straight on beyond the end.
+    const Vec2 s = track.start.position();
+    if ((s - centre_.front()).norm() > spacing) {
+      const Vec2 step = (centre_.front() - s) / std::ceil((centre_.front() - s).norm() / spacing);
+      std::vector<Vec2> head;
+      for (Vec2 q = s; (q - centre_.front()).norm() > 0.5 * spacing; q += step) head.push_back(q);
+      centre_.insert(centre_.begin(), head.begin(), head.end());
+    }
+    const Vec2 dir = (centre_.back() - centre_[centre_.size() - 2]).normalized();
+    const Vec2 end = centre_.back();
+    for (double d = spacing; d <= 100.0; d += spacing) centre_.push_back(end + d * dir);
+  }
   for (std::size_t i = 1; i < centre_.size(); ++i) length_ += (centre_[i] - centre_[i - 1]).norm();
   if (closed_ && centre_.size() > 1) length_ += (centre_.front() - centre_.back()).norm();
 }

@@ -1,0 +1,67 @@
+// The scorecard's yardstick: the true centre line lies half-way between the boundaries on every loop track.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "drivers/sim/reference_line.hpp"
+
+namespace fsd::sim {
+namespace {
+
+double nearest(const std::vector<Vec2>& pts, const Vec2& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& q : pts) d = std::min(d, (q - p).norm());
+  return d;
+}
+
+TEST(ReferenceLine, MidwayBetweenBoundariesOnLoopTracks) {
+  for (const char* name : {"epfl_track_1", "epfl_track_2", "epfl_track_3", "epfl_track_4", "epfl_track_5",
+                           "epfl_fsds_competition_1", "epfl_fsds_default", "amz_fssim_thin"}) {
+    SCOPED_TRACE(name);
+    const Track t = load_track(std::string("../shared/tracks/") + name + ".csv");
+    const ReferenceLine ref(t);
+    ASSERT_TRUE(ref.closed());
+    ASSERT_GT(ref.points().size(), 100u);
+    // Perimeter between the two boundary loops' lengths (the centre of a band is between its edges).
+    auto perimeter = [](const std::vector<Vec2>& p) {
+      double l = (p.front() - p.back()).norm();
+      for (std::size_t i = 1; i < p.size(); ++i) l += (p[i] - p[i - 1]).norm();
+      return l;
+    };
+    const double lo = std::min(perimeter(ref.left()), perimeter(ref.right()));
+    const double hi = std::max(perimeter(ref.left()), perimeter(ref.right()));
+    EXPECT_GT(ref.length(), 0.9 * lo);
+    EXPECT_LT(ref.length(), 1.1 * hi);
+    // Every cone is 0.7–4 m from the centre line (FS tracks are ≥ 3 m wide; amz_fssim_thin is narrower, about
+    // 1.6 m half-width), and no centre point is near a cone.
+    const double min_half = 0.7;
+    for (const auto& c : t.cones)
+      if (c.role == ConeRole::Left || c.role == ConeRole::Right) {
+        const double d = ref.distance(c.position);
+        EXPECT_GT(d, min_half) << c.position.transpose();
+        EXPECT_LT(d, 4.0) << c.position.transpose();
+      }
+    std::vector<Vec2> cones;
+    for (const auto& c : t.cones) cones.push_back(c.position);
+    for (const auto& p : ref.points()) EXPECT_GT(nearest(cones, p), min_half);
+  }
+}
+
+TEST(ReferenceLine, StraightOfTheAccelerationTrack) {
+  const Track t = load_track("../shared/tracks/epfl_acceleration.csv");
+  const ReferenceLine ref(t);
+  EXPECT_FALSE(ref.closed());
+  // The start is on the centre of the straight (x = 0, heading +y).
+  EXPECT_LT(ref.distance(t.start.position()), 0.3);
+  EXPECT_LT(ref.distance({0.0, 60.0}), 0.3);
+  EXPECT_LT(ref.distance({0.0, 120.0}), 0.3);  // the braking zone beyond the last cones
+  EXPECT_GT(ref.distance({1.0, 60.0}), 0.7);
+}
+
+TEST(ReferenceLine, OpenUTurnTrackIsNotALoop) {
+  const ReferenceLine ref(load_track("../shared/tracks/epfl_VSV.csv"));
+  EXPECT_FALSE(ref.closed());
+}
+
+}  // namespace
+}  // namespace fsd::sim
