@@ -1,0 +1,84 @@
+#pragma once
+// The scorecard of a simulated run (DESIGN.md §8): what happened, measured against the virtual car's truth —
+// laps by the timekeeper's gates, cross-track error against the true centre line, cones hit, the stop after the
+// finish — plus the stack's own latencies and faults. Keys are a contract relied on by tests and CI.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "common/latency_stats.hpp"
+#include "common/types.hpp"
+#include "drivers/sim/reference_line.hpp"
+#include "drivers/sim/timing_gates.hpp"
+#include "drivers/sim/vehicle_truth.hpp"
+
+namespace fsd {
+
+struct FaultRecord {
+  Stamp t = 0;
+  std::string source, what, action;
+};
+
+struct LapRecord {
+  int lap = 0;
+  double time_s = 0;
+  double cte_rms_m = 0, cte_max_m = 0, v_max_m_s = 0;
+};
+
+struct VehicleLimits {
+  double mu = 0, a_accel_max = 0, a_brake_max = 0, v_max = 0;
+};
+
+class Scorecard {
+ public:
+  // `laps_to_finish`: timed laps of the mission (trackdrive N, autocross 1, acceleration 1, skid pad 4).
+  // `stop_zone_m`: how far past the last timing line the car must come to rest.
+  Scorecard(const Track& track, Mission mission, int laps_to_finish, double stop_zone_m, int seed);
+
+  // Called at every simulation step with the true state (monotonic time).
+  void on_truth(const sim::VehicleTruth& truth);
+  void set_as_state(AsState s) { as_state_ = s; }
+  void set_cones_hit(int n) { cones_hit_ = n; }
+  void add_fault(const FaultRecord& f) { faults_.push_back(f); }
+  void set_vehicle_limits(const VehicleLimits& v) { limits_ = v; }
+  void set_wall_time(double s) { wall_time_s_ = s; }
+  LatencyStats& latency(const std::string& stage) { return latency_[stage]; }
+  // Extra sections measured elsewhere (map, perception, odometry).
+  void set_section(const std::string& key, const nlohmann::json& value);
+
+  bool finished() const { return finished_; }
+  bool stopped_after_finish() const { return stopped_after_finish_; }
+  int laps_completed() const { return static_cast<int>(laps_.size()); }
+  const std::vector<LapRecord>& laps() const { return laps_; }
+  // Success of the run as `fsd run` reports it in its exit status.
+  bool mission_succeeded() const;
+  nlohmann::json to_json() const;
+
+ private:
+  Track track_;
+  Mission mission_;
+  int laps_to_finish_;
+  double stop_zone_m_;
+  int seed_;
+  sim::ReferenceLine ref_;
+  sim::TimingGates gates_;
+  std::optional<sim::VehicleTruth> last_;
+  std::optional<Stamp> lap_start_;
+  double cte_sq_ = 0, cte_max_ = 0, v_max_ = 0;
+  std::size_t cte_n_ = 0;
+  std::vector<LapRecord> laps_;
+  bool finished_ = false, stopped_after_finish_ = false, left_stop_zone_ = false;
+  std::size_t finish_gate_ = 0;
+  double sim_time_ = 0, wall_time_s_ = 0;
+  int cones_hit_ = 0;
+  AsState as_state_ = AsState::Off;
+  VehicleLimits limits_;
+  std::vector<FaultRecord> faults_;
+  std::map<std::string, LatencyStats> latency_;
+  std::map<std::string, std::shared_ptr<const nlohmann::json>> sections_;
+};
+
+}  // namespace fsd

@@ -1,0 +1,81 @@
+// The scorecard measured on a hand-made drive: along the true centre line of epfl_track_1 at a constant 5 m/s,
+// offset laterally by a known amount, two laps and a stop.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "daemon/scorecard.hpp"
+
+namespace fsd {
+namespace {
+
+TEST(Scorecard, LapsCrossTrackErrorAndStopOnAHandMadeDrive) {
+  const Track track = load_track("../shared/tracks/epfl_track_1.csv");
+  const sim::ReferenceLine ref(track);
+  Scorecard card(track, Mission::Trackdrive, 2, 30.0, 7);
+  const auto& pts = ref.points();
+  const double v = 5.0, offset = 0.2;
+  sim::VehicleTruth truth;
+  truth.t = 0;
+  double s = 0;
+  // Drive the centre line from its first point, offset 0.2 m left, until 10 m past the finish.
+  const std::size_t n = pts.size();
+  std::size_t after_finish = 0;
+  for (std::size_t k = 0; k < 4 * n && after_finish < 40; ++k) {
+    if (card.finished()) ++after_finish;
+    const Vec2 a = pts[k % n], b = pts[(k + 1) % n];
+    const Vec2 dir = (b - a).normalized();
+    const Vec2 left(-dir.y(), dir.x());
+    truth.pose = {a.x() + offset * left.x(), a.y() + offset * left.y(), std::atan2(dir.y(), dir.x())};
+    truth.vx = v;
+    card.on_truth(truth);
+    const double ds = (b - a).norm();
+    s += ds;
+    truth.t += ds / v;
+  }
+  // Stand still where the drive ended (just past the finish line).
+  truth.vx = 0;
+  card.on_truth(truth);
+  card.set_as_state(AsState::Finished);
+
+  ASSERT_EQ(card.laps_completed(), 2);
+  const double lap_time = ref.length() / v;
+  for (const auto& lap : card.laps()) {
+    EXPECT_NEAR(lap.time_s, lap_time, 0.2);
+    EXPECT_NEAR(lap.cte_rms_m, offset, 0.02);  // the centre line is sampled every 0.25 m
+    EXPECT_LT(lap.cte_max_m, offset + 0.05);
+    EXPECT_NEAR(lap.v_max_m_s, v, 1e-9);
+  }
+  EXPECT_TRUE(card.finished());
+  EXPECT_TRUE(card.stopped_after_finish());
+  EXPECT_TRUE(card.mission_succeeded());
+  const auto j = card.to_json();
+  EXPECT_EQ(j["track"], "epfl_track_1");
+  EXPECT_EQ(j["mission"], "trackdrive");
+  EXPECT_EQ(j["as_state"], "Finished");
+  EXPECT_EQ(j["laps"].size(), 2u);
+  for (const char* key : {"seed", "finished", "stopped_after_finish", "sim_time_s", "wall_time_s", "cones_hit",
+                          "laps", "latency_ms", "faults", "vehicle"})
+    EXPECT_TRUE(j.contains(key)) << key;
+}
+
+TEST(Scorecard, HitConeOrNoStopFailsTheMission) {
+  const Track track = load_track("../shared/tracks/epfl_acceleration.csv");
+  Scorecard card(track, Mission::Acceleration, 1, 100.0, 1);
+  sim::VehicleTruth t;
+  t.pose = {0, 0, M_PI / 2};
+  t.vx = 10;
+  for (int k = 0; k <= 2000; ++k) {  // straight up the centre at 10 m/s, 200 m: past the 100 m stop zone
+    t.t = k * 0.01;
+    t.pose.y = k * 0.1;
+    card.on_truth(t);
+  }
+  EXPECT_EQ(card.laps_completed(), 1);
+  EXPECT_NEAR(card.laps()[0].time_s, 7.5, 0.02);  // 75 m between the gates at 10 m/s
+  EXPECT_TRUE(card.finished());
+  EXPECT_FALSE(card.stopped_after_finish());
+  EXPECT_FALSE(card.mission_succeeded());
+}
+
+}  // namespace
+}  // namespace fsd
