@@ -40,7 +40,8 @@ double SteeringActuator::step(Stamp t, double dt, double requested) {
   return angle_;
 }
 
-LongitudinalRequest SpeedController::step(double dt, const ActuatorCommand& cmd, double speed) {
+LongitudinalRequest SpeedController::step(double dt, const ActuatorCommand& cmd, double speed,
+                                          const LongitudinalRequest& grip) {
   if (cmd.ebs || cmd.max_brake) {
     reset();
     return {0.0, p_.brake_max_force};
@@ -58,15 +59,15 @@ LongitudinalRequest SpeedController::step(double dt, const ActuatorCommand& cmd,
   const double error = target - speed;
   const double accel = p_.speed_kp * error + p_.speed_ki * integral_;
   const double force = p_.mass * accel + drag_force(p_, speed) + rolling_resistance_force(p_);
-  const double drive_max = drive_force_limit(p_, speed);
-  // Anti-windup: do not integrate further into a saturated actuator.
-  const bool pushing_saturated = (force > drive_max && error > 0) || (force < -p_.brake_max_force && error < 0);
-  if (!pushing_saturated && p_.speed_ki > 0) {
+  const double drive_max = std::min(drive_force_limit(p_, speed), grip.drive);
+  const double brake_max = std::min(p_.brake_max_force, grip.brake);
+  const bool saturated = force > drive_max || force < -brake_max;
+  if (!saturated && std::abs(error) < p_.speed_integral_band && p_.speed_ki > 0) {
     const double limit = p_.speed_integral_limit / p_.speed_ki;
     integral_ = std::clamp(integral_ + error * dt, -limit, limit);
   }
   if (force >= 0) return {std::min(force, drive_max), 0.0};
-  return {0.0, std::min(-force, p_.brake_max_force)};
+  return {0.0, std::min(-force, brake_max)};
 }
 
 }  // namespace fsd::sim

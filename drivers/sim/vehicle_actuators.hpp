@@ -50,15 +50,17 @@ struct LongitudinalRequest {
   double brake = 0;  // N, all wheels together
 };
 
-// The VCU's speed controller: PI on the speed error plus drag and rolling-resistance feed-forward, with
-// conditional-integration anti-windup. Positive force goes to the motor (only with drive enabled), negative
-// to the brakes. With target 0 it brakes to a stop and holds the car on the brakes. Without drive enabled the
-// controller is off and the car coasts unless max_brake or ebs brakes it fully.
+// The VCU's speed controller: PI on the speed error plus drag and rolling-resistance feed-forward. Positive
+// force goes to the motor (only with drive enabled), negative to the brakes. The integral only acts near the
+// target and stops while the request is cut by the motor or the tyres (traction control, ABS), so a launch or a
+// hard stop does not wind it up. With target 0 it brakes to a stop and holds the car on the brakes. Without
+// drive enabled the controller is off and the car coasts unless max_brake or ebs brakes it fully.
 class SpeedController {
  public:
   explicit SpeedController(const VehicleParams& p) : p_(p) {}
   void reset() { integral_ = 0; }
-  LongitudinalRequest step(double dt, const ActuatorCommand& cmd, double speed);
+  // `grip`: what the tyres can transmit now (traction control's and ABS's estimate), N at the ground.
+  LongitudinalRequest step(double dt, const ActuatorCommand& cmd, double speed, const LongitudinalRequest& grip);
 
  private:
   VehicleParams p_;

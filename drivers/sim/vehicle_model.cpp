@@ -152,7 +152,8 @@ void VehicleModel::step(double dt, const ActuatorCommand& cmd) {
 void VehicleModel::substep(double dt, const ActuatorCommand& cmd) {
   Inputs u;
   u.steering = steering_.step(t_, dt, cmd.steering);
-  u.request = vcu_.step(dt, cmd, s_.vx);
+  const AxleLoads fz = axle_loads(p_, s_.vx, ax_lagged_);
+  u.request = vcu_.step(dt, cmd, s_.vx, {p_.mu * fz.rear, p_.mu * (fz.front + fz.rear)});
   u.ax_lagged = ax_lagged_;
 
   const State k1 = derivative(p_, s_, u).d;

@@ -57,6 +57,8 @@ const ConfigSection<VehicleParams>& vehicle_section() {
           .number("speed_ki", &P::speed_ki, 0.0, 20.0, "1/s²", "VCU speed controller: integral gain.")
           .number("speed_integral_limit", &P::speed_integral_limit, 0.0, 20.0, "m/s²",
                   "VCU speed controller: largest acceleration from the integral term.")
+          .number("speed_integral_band", &P::speed_integral_band, 0.0, 10.0, "m/s",
+                  "VCU speed controller: the integral acts only while the speed error is smaller than this.")
           .number("stop_hold_speed", &P::stop_hold_speed, 0.0, 2.0, "m/s",
                   "With target speed 0 the VCU holds the car on the brakes below this speed.")
           .number("kinematic_speed", &P::kinematic_speed, 0.1, 10.0, "m/s",
@@ -74,7 +76,7 @@ std::string validate(const VehicleParams& p) {
                            p.max_speed, p.brake_max_force, p.brake_front_share, p.air_density, p.drag_area,
                            p.downforce_area, p.aero_front_share, p.roll_stiffness, p.pitch_stiffness,
                            p.load_transfer_time_constant, p.steer_dead_time, p.steer_max_rate, p.steer_max_angle,
-                           p.speed_kp, p.speed_ki, p.speed_integral_limit, p.stop_hold_speed, p.kinematic_speed,
+                           p.speed_kp, p.speed_ki, p.speed_integral_limit, p.speed_integral_band, p.stop_hold_speed, p.kinematic_speed,
                            p.dynamic_speed};
   for (double f : fields)
     if (!std::isfinite(f)) return "a vehicle parameter is not a finite number";

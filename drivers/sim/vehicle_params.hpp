@@ -53,9 +53,10 @@ struct VehicleParams {
   double steer_max_rate = 1.2;       // rad/s
   double steer_max_angle = 0.4;      // rad
   // VCU speed controller: acceleration = kp·e + ki·∫e plus drag and rolling-resistance feed-forward
-  double speed_kp = 1.5;             // 1/s
-  double speed_ki = 0.5;             // 1/s²
-  double speed_integral_limit = 3.0; // m/s², largest acceleration the integral term may ask for
+  double speed_kp = 2.0;             // 1/s
+  double speed_ki = 0.2;             // 1/s²
+  double speed_integral_limit = 1.0; // m/s², largest acceleration the integral term may ask for
+  double speed_integral_band = 0.5;  // m/s, the integral acts only while the error is smaller
   double stop_hold_speed = 0.3;      // m/s: with target 0 below this speed the VCU holds the car on the brakes
   // Blend of the kinematic and the dynamic single-track model
   double kinematic_speed = 1.5;      // m/s, pure kinematic below
