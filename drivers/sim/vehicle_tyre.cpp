@@ -9,11 +9,11 @@ double lateral_force(const MagicFormula& mf, double alpha, double peak) {
   return peak * std::sin(mf.c * std::atan(ba - mf.e * (ba - std::atan(ba))));
 }
 
-AxleForce friction_circle(double fx_demand, double fy_tyre, double limit) {
+double slip_angle(double u, double w) { return -std::atan2(w, std::abs(u)); }
+
+double friction_circle_scale(double fx_demand, double fy_tyre, double limit) {
   const double total = std::hypot(fx_demand, fy_tyre);
-  if (total <= limit || total <= 0.0) return {fx_demand, fy_tyre};
-  const double k = limit / total;
-  return {fx_demand * k, fy_tyre * k};
+  return total <= limit ? 1.0 : limit / total;
 }
 
 }  // namespace fsd::sim

@@ -224,6 +224,40 @@ TEST(VehicleModel, LaunchWithSteeringThroughTheModelBlendIsSmooth) {
   EXPECT_NEAR(car.truth().vx, 6.0, 0.1);
 }
 
+TEST(VehicleModel, EmergencyBrakeInAFastCornerStopsWithinTheTyresLimits) {
+  // EBS at the limit of grip in a corner: the car may spin (locked-up rear, no ABS against yaw), but the tyres
+  // can never decelerate it harder than μ·(m g + downforce) plus drag, it comes to rest, and then stands still.
+  const VehicleParams p;
+  for (double v0 : {8.0, 15.0, 22.0}) {
+    for (double steering : {0.05, 0.1, 0.2, 0.4}) {
+      VehicleModel car(p);
+      car.reset(Pose2{}, v0);
+      ActuatorCommand cmd = test::drive(v0, steering);
+      test::run_for(car, cmd, 5.0);
+      const double t0 = car.truth().t, speed0 = car.truth().speed();
+      cmd.ebs = true;
+      auto grip_limit = [&](double v) {
+        const double q = 0.5 * p.air_density * v * v;
+        return (p.mu * (p.mass * test::kG + q * p.downforce_area) + q * p.drag_area) / p.mass +
+               p.rolling_resistance * test::kG;
+      };
+      double stopped_at = -1;
+      test::run_for(car, cmd, 6.0, [&](const VehicleTruth& t) {
+        ASSERT_TRUE(all_finite(t));
+        // 5 % for the lag of the load transfer and the blend of the two models.
+        EXPECT_LT(std::hypot(t.ax, t.ay), 1.05 * grip_limit(t.speed())) << v0 << " m/s, δ " << steering;
+        if (stopped_at < 0 && t.vx == 0 && t.vy == 0 && t.yaw_rate == 0) stopped_at = t.t;
+      });
+      ASSERT_GT(stopped_at, 0) << v0 << " m/s, δ " << steering << ": not at rest";
+      EXPECT_GT(stopped_at - t0, speed0 / grip_limit(speed0)) << v0 << " m/s, δ " << steering;
+      const Pose2 rest = car.truth().pose;
+      test::run_for(car, cmd, 1.0);
+      EXPECT_EQ(car.truth().pose.x, rest.x);
+      EXPECT_EQ(car.truth().pose.yaw, rest.yaw);
+    }
+  }
+}
+
 TEST(VehicleModel, BodyAttitudeFromLoadTransfer) {
   const VehicleParams p;
   // Steady left turn: the body rolls to the right (roll +) by m·ay·h / k_roll.
