@@ -204,10 +204,10 @@ void VehicleModel::substep(double dt, const ActuatorCommand& cmd) {
   s_.yaw = wrap_angle(s_.yaw);
   t_ += dt;
 
-  // The low-speed brakes and rolling resistance as dry friction: they slow the car by at most their impulse and
-  // never push it through zero speed, so a braked car stops exactly and a stopped car stays (no reverse gear,
-  // flat ground). A car still sliding sideways after a spin loses that motion through the kinematic model, no
-  // faster than the tyres allow; below a trace it is zero so that a stopped car stands exactly still.
+  // The kinematic share of brakes and rolling resistance as dry friction: it slows the car by at most its
+  // impulse and never pushes it through zero speed, so a braked car stops exactly and a stopped car stays (no
+  // reverse gear, flat ground). Sideways motion left over from a slide decays in the kinematic model; below a
+  // trace it is zeroed so that a stopped car stands exactly still.
   const double impulse = dt * start.kinematic_resistance / p_.mass;
   if (impulse > 0.0) {
     const double v = std::abs(s_.vx);

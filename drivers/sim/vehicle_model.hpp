@@ -4,8 +4,10 @@
 // with torque and power limits, brakes, aero drag and rolling resistance; blended into a kinematic single-track
 // model at low speed so it is well-behaved from standstill. The steering actuator and the VCU's speed controller
 // sit in front of it. Body roll and pitch follow the (lagged) accelerations through roll and pitch stiffness.
-// Integration: RK4 at the caller's fixed step (split into sub-steps of at most 5 ms). Deterministic, no
-// allocation in step().
+// Integration: RK4 at the caller's fixed step (split into sub-steps of at most 5 ms); at low speed the brakes
+// and rolling resistance act as dry friction, applied as an impulse after the RK4 step so that the car stops
+// exactly and stands still. Tyres run at their friction limit without wheel spin or lock-up (traction control
+// and ABS), so the wheel speeds are the contact patches' rolling speeds. Deterministic, no allocation in step().
 #include <array>
 #include <cstdint>
 
