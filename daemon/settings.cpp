@@ -1,5 +1,9 @@
 #include "daemon/settings.hpp"
 
+#include "daemon/truth_perception.hpp"
+#include "drivers/sim/vehicle_params.hpp"
+#include "localization/cone_map.hpp"
+
 namespace fsd {
 
 const ConfigSection<DaemonSettings>& daemon_section() {
@@ -33,6 +37,9 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   auto schema = std::make_shared<ConfigSchema>();
   daemon_section().describe(*schema);
   run_section().describe(*schema);
+  truth_perception_section().describe(*schema);
+  cone_map_section().describe(*schema);
+  sim::vehicle_section().describe(*schema);
   return schema;
 }
 

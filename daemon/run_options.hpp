@@ -1,0 +1,22 @@
+#pragma once
+// What `fsd run` was asked to do (DESIGN.md §9), after the command line is parsed and before the config is read.
+#include <optional>
+#include <string>
+
+namespace fsd {
+
+struct RunOptions {
+  std::string config_file;           // empty: compiled-in defaults
+  bool sim = false;
+  std::optional<std::string> track;  // overrides run.track
+  std::optional<std::string> mission;
+  std::optional<int> laps;
+  std::optional<int> seed;
+  std::optional<int> port;           // overrides web.port
+  std::string replay, record;
+  bool headless = false;
+  bool until_finished = false;
+  std::string report;                // scorecard JSON path, empty: none
+};
+
+}  // namespace fsd
