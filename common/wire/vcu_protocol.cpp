@@ -153,6 +153,14 @@ std::vector<std::uint8_t> encode(const VcuStatus& s, std::uint16_t seq) {
   return encode_frame(MessageType::Status, seq, p);
 }
 
+bool SendSchedule::due(Stamp now) {
+  constexpr Duration kSlack = 1e-9;  // absorbs the rounding of the caller's own time steps
+  if (now + kSlack < next()) return false;
+  const auto behind = static_cast<std::uint64_t>(std::floor((now - origin_) / period_ + kSlack)) + 1;
+  n_ = std::max(n_ + 1, behind);
+  return true;
+}
+
 Decoder::Decoder(Handlers h, DecoderConfig cfg) : h_(std::move(h)), cfg_(cfg) { buf_.reserve(2 * kMaxFrameSize); }
 
 void Decoder::feed(std::span<const std::uint8_t> bytes) {

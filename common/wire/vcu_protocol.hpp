@@ -92,6 +92,22 @@ class Sequencer {
   std::uint16_t next_;
 };
 
+// When the next periodic frame is due (both ends send at a fixed rate): a grid origin + n·period, so rounding
+// never accumulates; a caller that falls behind continues on the grid instead of sending a burst.
+class SendSchedule {
+ public:
+  SendSchedule(double rate_hz, Stamp origin) : period_(1.0 / rate_hz), origin_(origin) {}
+  // True when a frame is due at `now` (then the schedule moves on).
+  bool due(Stamp now);
+  Stamp next() const { return origin_ + static_cast<double>(n_) * period_; }
+  Duration period() const { return period_; }
+
+ private:
+  Duration period_;
+  Stamp origin_;
+  std::uint64_t n_ = 0;
+};
+
 enum class Reject : std::uint8_t {
   BadCrc,       // CRC mismatch (line noise, or a false sync in garbage)
   Truncated,    // a frame cut short: the next sync arrived inside it, or the stream was reset mid-frame

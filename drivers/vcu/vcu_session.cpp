@@ -1,6 +1,5 @@
 #include "drivers/vcu/vcu_session.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -39,7 +38,7 @@ VcuSession::VcuSession(const VcuLinkConfig& cfg, Stamp start, EventHandler on_ev
           },
           nullptr}),
       last_status_at_(start),
-      send_origin_(start) {}
+      schedule_(cfg.rate_hz, start) {}
 
 void VcuSession::set_command(const ControlCommand& c, Stamp now) {
   std::lock_guard lock(m_);
@@ -106,21 +105,12 @@ void VcuSession::check_timeout(Stamp now) {
 }
 
 Stamp VcuSession::tick(Stamp now, const Writer& write) {
-  // Sends are scheduled on a grid origin + n·period (no accumulated rounding); 1 ns of slack absorbs the
-  // rounding of the caller's own time steps.
-  constexpr Duration kSlack = 1e-9;
   bool due = false;
   Stamp next = 0;
   {
     std::lock_guard lock(m_);
-    const Duration period = 1.0 / cfg_.rate_hz;
-    if (now + kSlack >= send_origin_ + static_cast<double>(sends_due_) * period) {
-      due = true;
-      // Fell behind: continue on the grid after `now` instead of a burst of catch-up frames.
-      const auto behind = static_cast<std::uint64_t>(std::floor((now - send_origin_) / period + kSlack)) + 1;
-      sends_due_ = std::max(sends_due_ + 1, behind);
-    }
-    next = send_origin_ + static_cast<double>(sends_due_) * period;
+    due = schedule_.due(now);
+    next = schedule_.next();
   }
   if (due && write) write(command_frame(now));
   check_timeout(now);

@@ -93,8 +93,7 @@ class VcuSession {
   Stamp last_status_at_;
   Stamp rx_now_ = 0;  // time of the bytes being decoded
   bool timed_out_ = false;
-  Stamp send_origin_;
-  std::uint64_t sends_due_ = 0;
+  wire::vcu::SendSchedule schedule_;
   VcuSessionCounters counters_;
   std::vector<VcuLinkEvent> pending_;  // raised while decoding, emitted after the lock is released
 };
