@@ -62,6 +62,7 @@ struct SerialPort::Impl {
   std::vector<std::uint8_t> inflight;
   std::optional<Stamp> lost_at;
   std::string lost_reason;
+  std::string last_error;  // why the last open/configure failed
   bool stopping = false;
 
   void try_open() {
@@ -106,7 +107,6 @@ struct SerialPort::Impl {
     start_write();
   }
 
-  std::string last_error;
   error_code configure() {
     error_code ec;
     port.set_option(asio::serial_port_base::character_size(8), ec);
@@ -203,6 +203,8 @@ SerialPort::~SerialPort() { stop(); }
 void SerialPort::start() {
   auto& d = *impl_;
   if (d.thread.joinable()) return;
+  d.io.restart();  // allows start() after stop()
+  d.stopping = false;
   d.guard.emplace(d.io.get_executor());
   asio::post(d.io, [&d] { d.try_open(); });
   d.thread = std::thread([&d] { d.io.run(); });

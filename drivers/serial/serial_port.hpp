@@ -58,7 +58,7 @@ class SerialPort {
   SerialPort(const SerialPort&) = delete;
   SerialPort& operator=(const SerialPort&) = delete;
 
-  void start();
+  void start();  // opens (or keeps retrying) on the I/O thread; may follow a stop()
   // Lets queued writes drain (bounded by drain_timeout_ms), closes the port and joins the thread. Idempotent.
   void stop();
   // Thread-safe, never blocks. Returns false when the bytes or an older queued write were dropped.

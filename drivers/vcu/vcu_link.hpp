@@ -38,7 +38,7 @@ class VcuLink {
   VcuLink(const VcuLink&) = delete;
   VcuLink& operator=(const VcuLink&) = delete;
 
-  void start();
+  void start();  // once: after stop() the link only ever sends safe Commands
   // Sends `stop_frames` safe Commands at the command rate, then closes the port. Idempotent.
   void stop();
 

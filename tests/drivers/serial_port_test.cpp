@@ -178,6 +178,11 @@ TEST(SerialPort, StopDeliversQueuedWritesFirst) {
   EXPECT_EQ(read_master(pty, last.size(), 1.0), last);
   EXPECT_FALSE(port.is_open());
   port.stop();  // idempotent
+  port.start();  // and startable again
+  ASSERT_TRUE(wait_until([&] { return port.is_open(); }));
+  port.write(last);
+  EXPECT_EQ(read_master(pty, last.size(), 1.0), last);
+  port.stop();
 }
 
 TEST(SerialPort, WriteQueueIsBoundedAndKeepsTheNewest) {
