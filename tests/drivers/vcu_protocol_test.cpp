@@ -324,7 +324,8 @@ TEST(VcuProtocol, GarbageBetweenFramesResynchronises) {
   const Bytes garbage = {0x00, 0xa5, 0x13, 0x5a, 0xa5, 0xa5, 0xff, 0x5a};
   // A false sync with a plausible header inside the garbage must not swallow the real frame after it.
   const Bytes false_sync = {0xa5, 0x5a, 0x08, 0x01, 0x01, 0x00};
-  k.feed(cat({garbage, kCommandFrame, garbage, false_sync, command_frame(0x1235), garbage, encode(VcuStatus{}, 0x1236)}));
+  k.feed(cat({garbage, kCommandFrame, garbage, false_sync, command_frame(0x1235), garbage,
+              encode(VcuStatus{}, 0x1236)}));
   ASSERT_EQ(k.commands.size(), 2u);
   EXPECT_EQ(k.commands[1].second, 0x1235);
   EXPECT_EQ(k.statuses.size(), 1u);
