@@ -1,7 +1,9 @@
 #include "daemon/settings.hpp"
 
 #include "daemon/truth_perception.hpp"
+#include "drivers/sim/vcu_standin.hpp"
 #include "drivers/sim/vehicle_params.hpp"
+#include "drivers/vcu/vcu_config.hpp"
 #include "localization/cone_map.hpp"
 
 namespace fsd {
@@ -40,6 +42,8 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
   sim::vehicle_section().describe(*schema);
+  sim::vcu_standin_section().describe(*schema);
+  vcu_section().describe(*schema);
   return schema;
 }
 
