@@ -133,6 +133,8 @@ Fields::Fields(std::string_view payload) {
   }
 }
 
+std::string_view Fields::operator[](std::size_t i) const { return i < n_ ? f_[i] : std::string_view{}; }
+
 std::optional<double> parse_decimal(std::string_view s) {
   bool negative = false;
   if (!s.empty() && (s[0] == '+' || s[0] == '-')) {

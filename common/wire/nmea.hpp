@@ -50,7 +50,7 @@ class Fields {
   explicit Fields(std::string_view payload);
   std::size_t size() const { return n_; }
   bool overflow() const { return overflow_; }  // more than kMax fields; the rest were dropped
-  std::string_view operator[](std::size_t i) const { return i < n_ ? f_[i] : std::string_view{}; }
+  std::string_view operator[](std::size_t i) const;
 
  private:
   std::array<std::string_view, kMax> f_{};
