@@ -1,6 +1,8 @@
 #include "drivers/gnss/gnss_driver.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "common/wire/nmea.hpp"
 
@@ -64,8 +66,10 @@ GnssDriver::GnssDriver(const GnssConfig& config, SampleCallback on_sample)
       min_fix_rank_(fix_rank(config.min_fix)),
       lever_(config.antenna_x, config.antenna_y, config.antenna_z),
       on_sample_(std::move(on_sample)),
-      splitter_(static_cast<std::size_t>(config.max_line_length)),
+      splitter_(static_cast<std::size_t>(std::clamp(config.max_line_length, 16, 65536))),
       assembler_(ender_from_config(config.emit_on), [this](const Epoch& e) { on_epoch(e); }) {
+  if (config_.max_line_length < 16 || config_.max_line_length > 65536)
+    throw std::invalid_argument("drivers.gnss.max_line_length: " + std::to_string(config_.max_line_length));
   if (!config_.use_first_fix)
     origin_.emplace(Geodetic::from_degrees(config_.origin_lat_deg, config_.origin_lon_deg, config_.origin_height_m));
 }

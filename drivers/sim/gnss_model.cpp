@@ -231,9 +231,8 @@ void GnssModel::emit_epoch(std::uint64_t k, const VehicleTruth& truth) {
 
 void GnssModel::queue(Stamp t_epoch, std::vector<std::string> sentences) {
   const double byte_time = 10.0 / c_.baud;
-  Stamp t = t_epoch + c_.latency_s;
-  if (!pending_.empty()) t = std::max(t, pending_.back().t);  // the line is still busy with earlier output
-  if (t - (t_epoch + c_.latency_s) > kMaxSerialBacklog) {      // output buffer full: the receiver drops the epoch
+  Stamp t = std::max(t_epoch + c_.latency_s, line_free_);  // the line may still be busy with earlier output
+  if (t - (t_epoch + c_.latency_s) > kMaxSerialBacklog) {   // output buffer full: the receiver drops the epoch
     ++stats_.silent_epochs;
     return;
   }
@@ -250,6 +249,7 @@ void GnssModel::queue(Stamp t_epoch, std::vector<std::string> sentences) {
     pending_.push_back({t, std::move(s)});
     ++stats_.sentences;
   }
+  line_free_ = t;
 }
 
 }  // namespace fsd::sim

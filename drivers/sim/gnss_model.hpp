@@ -118,7 +118,8 @@ class GnssModel {
   Vec2 multipath_ = Vec2::Zero();       // current multipath offset, ENU
   Stamp multipath_end_ = -1.0;
   std::uint64_t next_epoch_ = 0;
-  std::deque<Pending> pending_;         // bounded by latency × rate × sentences per epoch
+  std::deque<Pending> pending_;         // bounded by latency and the 1 s serial backlog
+  Stamp line_free_ = 0.0;               // when the last queued byte has left
   GnssModelStats stats_;
 };
 

@@ -389,6 +389,28 @@ TEST(GnssDriver, RejectsUnknownConfigChoices) {
   c = GnssConfig{};
   c.emit_on = "GSV";
   EXPECT_THROW(GnssDriver(c, [](const GnssSample&) {}), std::invalid_argument);
+  c = GnssConfig{};
+  c.max_line_length = -1;
+  EXPECT_THROW(GnssDriver(c, [](const GnssSample&) {}), std::invalid_argument);
+}
+
+TEST(GnssDriver, ConfigSectionDeclaresEveryKeyWithItsDefault) {
+  ConfigSchema schema;
+  gnss_section().describe(schema);
+  EXPECT_EQ(schema.entries().size(), 17u);  // one per GnssConfig member
+  for (const auto& e : schema.entries()) {
+    EXPECT_EQ(e.key.rfind("drivers.gnss.", 0), 0u) << e.key;
+    EXPECT_FALSE(e.doc.empty()) << e.key;
+  }
+  const GnssConfig read = gnss_section().read(Config(std::make_shared<const ConfigSchema>(schema)));
+  const GnssConfig def;
+  EXPECT_EQ(read.min_fix, def.min_fix);
+  EXPECT_EQ(read.emit_on, def.emit_on);
+  EXPECT_EQ(read.max_hdop, def.max_hdop);
+  EXPECT_EQ(read.antenna_z, def.antenna_z);
+  EXPECT_EQ(read.use_first_fix, def.use_first_fix);
+  ASSERT_NE(schema.find("drivers.gnss.max_hdop"), nullptr);
+  EXPECT_TRUE(schema.find("drivers.gnss.max_hdop")->tunable);
 }
 
 }  // namespace

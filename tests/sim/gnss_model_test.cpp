@@ -329,6 +329,17 @@ TEST(GnssModel, UtcDateRollsOverAtMidnight) {
   EXPECT_DOUBLE_EQ(times[50], 0.0);
 }
 
+TEST(GnssModel, ConfigSectionDeclaresEveryKey) {
+  ConfigSchema schema;
+  gnss_model_section().describe(schema);
+  EXPECT_EQ(schema.entries().size(), 37u);  // one per GnssModelConfig member
+  for (const auto& e : schema.entries()) EXPECT_EQ(e.key.rfind("sim.gnss.", 0), 0u) << e.key;
+  const GnssModelConfig read = gnss_model_section().read(Config(std::make_shared<const ConfigSchema>(schema)));
+  EXPECT_EQ(read.mode, "rtk");
+  EXPECT_EQ(read.rate_hz, 50.0);
+  EXPECT_EQ(read.origin_lat_deg, GnssModelConfig{}.origin_lat_deg);
+}
+
 TEST(GnssModel, RejectsImpossibleSettings) {
   GnssModelConfig mc;
   mc.utc_month = 2;
