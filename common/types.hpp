@@ -75,13 +75,16 @@ struct ControlCommand {
 // GNSS-INS fix after NMEA parsing; position in local ENU of the configured origin.
 struct GnssSample {
   Stamp stamp = 0;
-  double lat_deg = 0, lon_deg = 0, alt_m = 0;
-  Vec3 enu = Vec3::Zero();
+  double lat_deg = 0, lon_deg = 0, alt_m = 0;  // antenna as reported; alt_m above the WGS-84 ellipsoid
+  Vec3 enu = Vec3::Zero();   // rear-axle centre (lever arm removed)
   double speed = 0;          // ground speed m/s
   double course = 0;         // course over ground, rad, ENU (0 = east, CCW)
   double heading = 0;        // vehicle yaw, rad, ENU
   double yaw_rate = 0;       // rad/s
-  double roll = 0, pitch = 0;
+  double roll = 0, pitch = 0;  // ISO 8855: roll positive right side down, pitch positive nose down
+  bool velocity_valid = false;   // speed (and course when moving) present in this epoch
+  bool attitude_valid = false;   // roll and pitch present in this epoch
+  bool yaw_rate_valid = false;   // yaw_rate present and valid in this epoch
   int fix_quality = 0;       // GGA: 0 invalid, 1 single, 2 DGPS, 4 RTK fixed, 5 RTK float
   int satellites = 0;
   double hdop = 99.0;
