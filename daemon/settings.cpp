@@ -3,6 +3,7 @@
 #include "daemon/truth_perception.hpp"
 #include "drivers/sim/vcu_standin.hpp"
 #include "drivers/sim/vehicle_params.hpp"
+#include "drivers/gnss/gnss_config.hpp"
 #include "drivers/vcu/vcu_config.hpp"
 #include "localization/cone_map.hpp"
 
@@ -44,6 +45,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   sim::vehicle_section().describe(*schema);
   sim::vcu_standin_section().describe(*schema);
   vcu_section().describe(*schema);
+  gnss_section().describe(*schema);
   return schema;
 }
 
