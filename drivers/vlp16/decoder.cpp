@@ -31,6 +31,7 @@ namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr std::uint16_t kAzimuthCounts = 36000;  // 0.01° per count
+constexpr double kCountsPerDeg = 1.0 / w::kAzimuthUnitDeg;
 
 struct SinCos {
   double s, c;
@@ -111,8 +112,9 @@ PacketStatus PacketDecoder::decode(std::span<const std::uint8_t> p, std::vector<
     // Rotation during this firing = azimuth of the next firing minus this one, modulo the 360° wrap; the last
     // firing of the packet reuses the previous firing's step.
     if (f + 1 < firings) step_counts = (azimuth_counts(p, block + blocks_per_firing) - az + kAzimuthCounts) % kAzimuthCounts;
-    const double base_deg = az * w::kAzimuthUnitDeg;
-    const double step_deg = step_counts * w::kAzimuthUnitDeg;
+    // Division rather than × 0.01: whole and hundredth degrees come out exact (frames cut at 90.00° cut there).
+    const double base_deg = az / kCountsPerDeg;
+    const double step_deg = step_counts / kCountsPerDeg;
     const SinCos base{std::sin(base_deg * kDegToRad), std::cos(base_deg * kDegToRad)};
     const bool small_step = step_deg * kDegToRad < kSmallRotationLimit;
 

@@ -6,7 +6,10 @@
 namespace fsd {
 
 FrameAssembler::FrameAssembler(double cut_deg, std::size_t max_points)
-    : cut_deg_(std::fmod(std::fmod(cut_deg, 360.0) + 360.0, 360.0)), max_points_(max_points == 0 ? 1 : max_points) {}
+    : cut_deg_(std::fmod(cut_deg, 360.0)), max_points_(max_points == 0 ? 1 : max_points) {
+  if (cut_deg_ < 0) cut_deg_ += 360.0;
+  if (!(cut_deg_ >= 0.0 && cut_deg_ < 360.0)) cut_deg_ = 0.0;  // NaN or rounding to 360
+}
 
 void FrameAssembler::cut(const ScanHandler& emit) {
   if (current_.points.empty()) return;

@@ -5,16 +5,16 @@
 namespace fsd {
 
 namespace {
-constexpr std::uint32_t kHourUs = 3'600'000'000U;
-constexpr std::uint32_t kHalfHourUs = kHourUs / 2;
+constexpr std::int64_t kHalfHourUs = 1'800'000'000;
 }  // namespace
 
 Stamp SensorClock::packet_start(Stamp receive, std::uint32_t timestamp_us, double duration_us) {
   // Unwrap the hour: a timestamp far below the previous one is the next hour; a small step back is reordering.
-  if (have_offset_ && timestamp_us + kHalfHourUs < last_timestamp_us_) {
+  const std::int64_t step = std::int64_t{timestamp_us} - std::int64_t{last_timestamp_us_};
+  if (have_offset_ && step < -kHalfHourUs) {
     hours_ += 3600.0;
     ++hour_wraps_;
-  } else if (have_offset_ && timestamp_us > last_timestamp_us_ + kHalfHourUs && hours_ > 0) {
+  } else if (have_offset_ && step > kHalfHourUs && hours_ > 0) {
     hours_ -= 3600.0;  // a late packet from before the wrap
   }
   const double sensor_start = hours_ + timestamp_us * 1e-6;
