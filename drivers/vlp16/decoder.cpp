@@ -55,6 +55,12 @@ std::uint16_t azimuth_counts(std::span<const std::uint8_t> p, std::size_t block)
 
 PacketDecoder::PacketDecoder(LaserTable table, double min_range, double max_range)
     : table_(table), min_range_(min_range), max_range_(max_range) {
+  // Firing time of each channel within its firing, and the fraction of the firing's rotation done by then.
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    const std::size_t seq = c / w::kLasers, laser = c % w::kLasers;
+    in_firing_us_[c] = static_cast<double>(seq) * w::kSequencePeriodUs + table_[laser].firing_slot * w::kFiringPeriodUs;
+    fraction_[c] = in_firing_us_[c] / w::kBlockPeriodUs;
+  }
   if (!(min_range >= 0.0 && min_range < max_range))
     throw std::invalid_argument("vlp16: need 0 <= min_range < max_range, got " + std::to_string(min_range) + " and " +
                                 std::to_string(max_range));
@@ -117,63 +123,63 @@ PacketStatus PacketDecoder::decode(std::span<const std::uint8_t> p, std::vector<
     const double step_deg = step_counts / kCountsPerDeg;
     const SinCos base{std::sin(base_deg * kDegToRad), std::cos(base_deg * kDegToRad)};
     const bool small_step = step_deg * kDegToRad < kSmallRotationLimit;
+    const double firing_start_us = static_cast<double>(f) * w::kBlockPeriodUs;
 
-    for (std::size_t seq = 0; seq < w::kSequencesPerBlock; ++seq) {
-      for (std::size_t laser = 0; laser < w::kLasers; ++laser) {
-        const LaserCalibration& cal = table_[laser];
-        const double in_firing_us = static_cast<double>(seq) * w::kSequencePeriodUs + cal.firing_slot * w::kFiringPeriodUs;
-        const double delta_deg = step_deg * (in_firing_us / w::kBlockPeriodUs);
+    for (std::size_t channel = 0; channel < kChannels; ++channel) {
+      const std::size_t seq = channel / w::kLasers, laser = channel % w::kLasers;
+      const LaserCalibration& cal = table_[laser];
+
+      // Reads one echo; geometry only for the ones kept (a third of a typical packet has no echo).
+      const auto emit = [&](std::size_t blk, ReturnKind kind) {
+        const std::size_t at = w::channel_offset(blk, seq, laser);
+        const std::uint16_t raw = w::read_u16(p, at);
+        if (raw == 0) {
+          ++counters_.no_return;
+          return;
+        }
+        const double d = raw * w::kDistanceUnit;
+        if (d < min_range_ || d > max_range_) {
+          ++counters_.out_of_range;
+          return;
+        }
+        const double delta_deg = step_deg * fraction_[channel];
         double azimuth_deg = base_deg + delta_deg;
         if (azimuth_deg >= 360.0) azimuth_deg -= 360.0;
         const SinCos sc = small_step ? rotate_small(base, delta_deg * kDegToRad)
                                      : SinCos{std::sin(azimuth_deg * kDegToRad), std::cos(azimuth_deg * kDegToRad)};
-        const double firing_offset_us = static_cast<double>(f) * w::kBlockPeriodUs + in_firing_us;
+        const double firing_offset_us = firing_start_us + in_firing_us_[channel];
+        Vlp16Return& r = out.emplace_back();
+        r.t_us = t0 + firing_offset_us;
+        r.firing_offset_us = firing_offset_us;
+        r.azimuth_deg = azimuth_deg;
+        r.distance_m = d;
+        const double horizontal = d * cal.cos_elevation;
+        r.x = horizontal * sc.c;
+        r.y = -horizontal * sc.s;
+        r.z = d * cal.sin_elevation + cal.vertical_offset;
+        r.laser = static_cast<std::uint8_t>(laser);
+        r.intensity = p[at + 2];
+        r.ring = cal.ring;
+        r.kind = kind;
+        ++counters_.returns;
+      };
 
-        const auto emit = [&](std::size_t blk, ReturnKind kind) {
-          const std::size_t at = w::channel_offset(blk, seq, laser);
-          const std::uint16_t raw = w::read_u16(p, at);
-          if (raw == 0) {
-            ++counters_.no_return;
-            return;
-          }
-          const double d = raw * w::kDistanceUnit;
-          if (d < min_range_ || d > max_range_) {
-            ++counters_.out_of_range;
-            return;
-          }
-          Vlp16Return& r = out.emplace_back();
-          r.t_us = t0 + firing_offset_us;
-          r.firing_offset_us = firing_offset_us;
-          r.azimuth_deg = azimuth_deg;
-          r.distance_m = d;
-          const double horizontal = d * cal.cos_elevation;
-          r.x = horizontal * sc.c;
-          r.y = -horizontal * sc.s;
-          r.z = d * cal.sin_elevation + cal.vertical_offset;
-          r.laser = static_cast<std::uint8_t>(laser);
-          r.intensity = p[at + 2];
-          r.ring = cal.ring;
-          r.kind = kind;
-          ++counters_.returns;
-        };
-
-        if (!h.dual()) {
-          emit(block, single_kind);
-          continue;
-        }
-        // Dual: the first block of the pair holds the last echo, the second the strongest. Identical echoes
-        // (same distance and reflectivity) are one return.
-        const std::size_t last_at = w::channel_offset(block, seq, laser);
-        const std::size_t strongest_at = w::channel_offset(block + 1, seq, laser);
-        const bool same = p[last_at] == p[strongest_at] && p[last_at + 1] == p[strongest_at + 1] &&
-                          p[last_at + 2] == p[strongest_at + 2];
-        if (same && w::read_u16(p, last_at) != 0) {
-          ++counters_.dual_duplicates;
-          emit(block, ReturnKind::StrongestAndLast);
-        } else {
-          emit(block, ReturnKind::Last);
-          emit(block + 1, ReturnKind::Strongest);
-        }
+      if (!h.dual()) {
+        emit(block, single_kind);
+        continue;
+      }
+      // Dual: the first block of the pair holds the last echo, the second the strongest. Identical echoes
+      // (same distance and reflectivity) are one return.
+      const std::size_t last_at = w::channel_offset(block, seq, laser);
+      const std::size_t strongest_at = w::channel_offset(block + 1, seq, laser);
+      const bool same = p[last_at] == p[strongest_at] && p[last_at + 1] == p[strongest_at + 1] &&
+                        p[last_at + 2] == p[strongest_at + 2];
+      if (same && w::read_u16(p, last_at) != 0) {
+        ++counters_.dual_duplicates;
+        emit(block, ReturnKind::StrongestAndLast);
+      } else {
+        emit(block, ReturnKind::Last);
+        emit(block + 1, ReturnKind::Strongest);
       }
     }
   }

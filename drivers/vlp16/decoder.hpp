@@ -2,6 +2,7 @@
 // Decoder of VLP-16 data packets (DESIGN.md §6, VLP-16 User Manual ch. 9): validation, single and dual return,
 // azimuth interpolation per firing and per laser, firing time of every return, sensor-frame coordinates.
 // Pure computation: no I/O, no threads, no allocation beyond the caller's output vector. One owner thread.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -69,8 +70,11 @@ class PacketDecoder {
   const LaserTable& lasers() const { return table_; }
 
  private:
+  static constexpr std::size_t kChannels = wire::vlp16::kSequencesPerBlock * wire::vlp16::kLasers;
   void count_rejection(PacketStatus s);
   LaserTable table_;
+  std::array<double, kChannels> in_firing_us_{};  // per channel (sequence × 16 + laser)
+  std::array<double, kChannels> fraction_{};
   double min_range_, max_range_;
   DecodeCounters counters_;
 };

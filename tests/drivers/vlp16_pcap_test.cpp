@@ -249,6 +249,25 @@ TEST(Vlp16Pcap, ReaderDeliversPayloadsWithCaptureTimes) {
   EXPECT_EQ(reader.counters().filtered, 16u);  // the position packets on 8308
 }
 
+TEST(Vlp16Pcap, LinuxCookedAndRawIpCapturesGiveTheSamePayloads) {
+  // The fuzz seeds hold the recording's first data packet and first position packet behind three link layers:
+  // Ethernet (as recorded), Linux cooked capture v1 (16-byte header) and raw IPv4.
+  const auto payloads = [](const std::string& file) {
+    PcapReader reader("tests/fuzz/corpus/vlp16_pcap/" + file);
+    std::vector<std::vector<std::uint8_t>> out;
+    UdpDatagram d;
+    while (reader.next(d)) out.emplace_back(d.payload.begin(), d.payload.end());
+    EXPECT_EQ(reader.counters().malformed, 0u) << file;
+    return out;
+  };
+  const auto ethernet = payloads("ethernet.pcap");
+  ASSERT_EQ(ethernet.size(), 2u);
+  EXPECT_EQ(ethernet[0].size(), 1206u);
+  EXPECT_EQ(ethernet[1].size(), 512u);
+  EXPECT_EQ(payloads("linux_sll.pcap"), ethernet);
+  EXPECT_EQ(payloads("raw_ip.pcap"), ethernet);
+}
+
 TEST(Vlp16Pcap, PositionPacketOfTheRecording) {
   PcapReader reader(kPcap, {8308});
   UdpDatagram d;
