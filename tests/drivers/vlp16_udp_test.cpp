@@ -104,6 +104,34 @@ TEST(Vlp16Udp, ReceivesCountsAndStops) {
   rx.stop();  // idempotent
 }
 
+TEST(Vlp16Udp, KernelDropsAreCounted) {
+  RealClock clock;
+  Inbox inbox;
+  auto options = loopback();
+  options.receive_buffer_bytes = 4096;  // room for a few datagrams only
+  UdpReceiver rx(options, clock, [&](Stamp t, std::span<const std::uint8_t> p) { inbox.push(t, p); });
+  Sender tx;
+  // Not reading yet: the kernel queues what fits and drops the rest.
+  std::vector<std::uint8_t> p(1206, 0);
+  for (int i = 0; i < 50; ++i) tx.send(rx.port(), p);
+  rx.start();
+  // The drop count travels with the next datagram queued after the drops: send marked ones until one gets in
+  // (the first may still meet a full queue).
+  p[0] = 1;
+  std::uint64_t sent = 50;
+  const auto marked_arrived = [&] {
+    std::unique_lock lock(inbox.m);
+    return inbox.cv.wait_for(lock, 20ms, [&] { return !inbox.payloads.empty() && inbox.payloads.back()[0] == 1; });
+  };
+  do {
+    tx.send(rx.port(), p);
+    ++sent;
+  } while (!marked_arrived() && sent < 500);
+  const auto c = rx.counters();
+  EXPECT_GT(c.kernel_drops, 0u);
+  EXPECT_EQ(c.datagrams + c.kernel_drops, sent);
+}
+
 TEST(Vlp16Udp, HandlerExceptionsAreCountedAndReceptionGoesOn) {
   RealClock clock;
   Inbox inbox;
