@@ -45,7 +45,7 @@ SinCos rotate_small(SinCos base, double d) {
   const double cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0);
   return {base.s * cd + base.c * sd, base.c * cd - base.s * sd};
 }
-constexpr double kSmallRotationLimit = 2.0 * kDegToRad;  // per firing; the sensor turns ≤ 0.45° at 20 Hz
+constexpr double kSmallRotationLimit = 2.0 * kDegToRad;  // per firing; the sensor turns 0.4° at 10 Hz, 0.8° at 20 Hz
 
 std::uint16_t azimuth_counts(std::span<const std::uint8_t> p, std::size_t block) {
   return w::read_u16(p, block * w::kBlockSize + 2);

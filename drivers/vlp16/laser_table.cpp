@@ -6,7 +6,6 @@
 #include <fstream>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <vector>
 
