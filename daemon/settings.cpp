@@ -5,6 +5,7 @@
 #include "drivers/sim/vehicle_params.hpp"
 #include "drivers/gnss/gnss_config.hpp"
 #include "drivers/vcu/vcu_config.hpp"
+#include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
 
 namespace fsd {
@@ -46,6 +47,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   sim::vcu_standin_section().describe(*schema);
   vcu_section().describe(*schema);
   gnss_section().describe(*schema);
+  vlp16_section().describe(*schema);
   return schema;
 }
 

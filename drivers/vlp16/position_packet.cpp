@@ -1,5 +1,7 @@
 #include "drivers/vlp16/position_packet.hpp"
 
+#include "common/wire/nmea.hpp"
+
 #include <algorithm>
 
 #include "common/wire/vlp16_format.hpp"
@@ -39,27 +41,15 @@ std::string_view to_string(PositionStatus s) {
 
 namespace {
 
-int hex_value(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
-
+// Framing and checksum are the NMEA codec's (common/wire/nmea.hpp); a wrong checksum is still well formed.
 bool well_formed(std::string_view s) {
-  return s.size() >= 4 && s.front() == '$' && s[s.size() - 3] == '*' && hex_value(s[s.size() - 2]) >= 0 &&
-         hex_value(s[s.size() - 1]) >= 0;
+  const auto e = nmea::unframe(s).error;
+  return e == nmea::FrameError::None || e == nmea::FrameError::ChecksumMismatch;
 }
 
 }  // namespace
 
-bool nmea_checksum_ok(std::string_view s) {
-  if (!well_formed(s)) return false;
-  unsigned sum = 0;
-  for (const char c : s.substr(1, s.size() - 4)) sum ^= static_cast<unsigned char>(c);
-  const auto given = static_cast<unsigned>(hex_value(s[s.size() - 2]) * 16 + hex_value(s[s.size() - 1]));
-  return sum == given;
-}
+bool nmea_checksum_ok(std::string_view s) { return nmea::unframe(s).error == nmea::FrameError::None; }
 
 PositionStatus parse_position_packet(std::span<const std::uint8_t> p, PositionPacket& out) {
   if (p.size() != w::kPositionPacketSize) return PositionStatus::WrongSize;
