@@ -77,6 +77,7 @@ class LidarModel {
   std::uint8_t return_mode_;
   std::uint64_t packets_ = 0;
   std::array<double, wire::vlp16::kLasers> cos_elev_{}, sin_elev_{}, offset_{};
+  double cos_step_ = 1.0, sin_step_ = 0.0;  // head rotation between two lasers' firings
   std::array<std::uint8_t, wire::vlp16::kPacketSize> packet_{};
 };
 

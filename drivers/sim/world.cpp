@@ -6,7 +6,9 @@
 namespace fsd::sim {
 
 namespace {
-constexpr double kGridCell = 1.0;          // m
+// Layers by the top of their bodies above the ground (m) and their grid cells (m).
+constexpr std::array<double, 3> kLayerTop{0.4, 0.7, std::numeric_limits<double>::infinity()};
+constexpr std::array<double, 3> kLayerCell{1.0, 4.0, 4.0};
 constexpr double kPanelPiece = 2.0;        // m: fences enter the grid in short pieces
 constexpr double kTyreReflectivity = 6.0;  // black rubber
 constexpr double kPostReflectivity = 60.0; // painted post
@@ -132,16 +134,41 @@ void World::finish_body(Body& b) const {
   }
 }
 
-void World::rebuild_index() {
-  std::vector<Eigen::AlignedBox2d> boxes;
-  max_body_height_ = 0;
-  for (const auto& b : bodies_) {
-    const Vec2 c = b.centre.head<2>();
-    boxes.emplace_back(c - Vec2::Constant(b.bound_radius), c + Vec2::Constant(b.bound_radius));
-    const double top = b.centre.z() + b.bound_radius - ground_.height(b.centre.x(), b.centre.y());
-    max_body_height_ = std::max(max_body_height_, top);
+Eigen::AlignedBox3d World::bounds(const Body& b) const {
+  const Eigen::Matrix3d to_map = b.to_local.transpose();
+  Eigen::AlignedBox3d box;
+  if (b.shape == Body::Shape::Panel) {
+    for (double x : {0.0, b.a})
+      for (double z : {0.0, b.h}) box.extend(b.origin + to_map * Vec3(x, 0, z));
+    return box;
   }
-  grid_.build(boxes, kGridCell);
+  // A disc of radius r and unit normal n spans r·sqrt(1 − n_i²) about its centre along axis i.
+  const Vec3 axis = to_map.col(2);
+  const Vec3 spread = (Vec3::Ones() - axis.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
+  for (const auto& [centre, r] : {std::pair{b.origin, b.a}, std::pair{Vec3(b.origin + axis * b.h), b.b}}) {
+    box.extend(centre - r * spread);
+    box.extend(centre + r * spread);
+  }
+  return box;
+}
+
+void World::rebuild_index() {
+  std::array<std::vector<Eigen::AlignedBox2d>, kLayerTop.size()> boxes;
+  std::array<std::vector<std::uint32_t>, kLayerTop.size()> ids;
+  for (auto& layer : layers_) layer.max_height = 0;
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    const auto box = bounds(bodies_[i]);
+    double ground_low = std::numeric_limits<double>::infinity();
+    for (double x : {box.min().x(), box.max().x()})
+      for (double y : {box.min().y(), box.max().y()}) ground_low = std::min(ground_low, ground_.height(x, y));
+    const double top = box.max().z() - ground_low;
+    std::size_t l = 0;
+    while (top > kLayerTop[l]) ++l;
+    boxes[l].emplace_back(box.min().head<2>(), box.max().head<2>());
+    ids[l].push_back(i);
+    layers_[l].max_height = std::max(layers_[l].max_height, top);
+  }
+  for (std::size_t l = 0; l < layers_.size(); ++l) layers_[l].grid.build(boxes[l], ids[l], kLayerCell[l]);
 }
 
 std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double max_range) const {
@@ -151,29 +178,28 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double
   const double hd = dir.z() - ground_.slope_x() * dir.x() - ground_.slope_y() * dir.y();
   if (h0 < 0.0 || !(max_range > 0.0)) return std::nullopt;
   const double t_ground = hd < 0.0 ? -h0 / hd : kInf;
-  // Bodies can only be hit while the ray is between the ground and the tallest body.
-  double t_begin = 0.0, t_end = std::min(max_range, t_ground);
-  if (h0 > max_body_height_) t_begin = hd < 0.0 ? (max_body_height_ - h0) / hd : kInf;
-  if (hd > 0.0) t_end = std::min(t_end, (max_body_height_ - h0) / hd);
 
   const Body* best_body = nullptr;
   LocalHit best{};
-  double best_t = kInf;
-  if (t_begin <= t_end) {
-    const double t_limit = t_end;
-    grid_.traverse(origin.head<2>(), dir.head<2>(), t_begin, t_end, [&](std::span<const std::uint32_t> items, double t_exit) {
+  double best_t = std::min(max_range, t_ground);
+  for (const auto& layer : layers_) {
+    // The layer's bodies can only be hit while the ray is between the ground and the layer's tallest body.
+    double t_begin = 0.0, t_end = best_t;
+    if (h0 > layer.max_height) t_begin = hd < 0.0 ? (layer.max_height - h0) / hd : kInf;
+    if (hd > 0.0) t_end = std::min(t_end, (layer.max_height - h0) / hd);
+    if (t_begin > t_end) continue;
+    layer.grid.traverse(origin.head<2>(), dir.head<2>(), t_begin, t_end, [&](std::span<const std::uint32_t> items, double t_exit) {
       for (const auto idx : items) {
         const Body& b = bodies_[idx];
         // Bounding sphere first.
         const Vec3 v = b.centre - origin;
         const double tc = v.dot(dir);
         if (v.squaredNorm() - tc * tc > b.bound_radius * b.bound_radius) continue;
-        if (tc + b.bound_radius < kRayEpsilon || tc - b.bound_radius > std::min(best_t, t_limit)) continue;
+        if (tc + b.bound_radius < kRayEpsilon || tc - b.bound_radius > best_t) continue;
         const Vec3 o = b.to_local * (origin - b.origin);
         const Vec3 d = b.to_local * dir;
-        const double t_max = std::min(best_t, t_limit);
-        const auto hit = b.shape == Body::Shape::Panel ? intersect_panel(o, d, b.a, b.h, kRayEpsilon, t_max)
-                                                       : intersect_frustum(o, d, b.a, b.b, b.h, kRayEpsilon, t_max);
+        const auto hit = b.shape == Body::Shape::Panel ? intersect_panel(o, d, b.a, b.h, kRayEpsilon, best_t)
+                                                       : intersect_frustum(o, d, b.a, b.b, b.h, kRayEpsilon, best_t);
         if (hit) {
           best = *hit;
           best_t = hit->t;
@@ -190,7 +216,7 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double
   g.point = origin + t_ground * dir;
   g.normal = ground_.normal();
   g.surface = ground_.surface(g.point.x(), g.point.y());
-  g.reflectivity = ground_.reflectivity(g.point.x(), g.point.y());
+  g.reflectivity = ground_.reflectivity(g.point.x(), g.point.y(), g.surface);
   return g;
 }
 

@@ -8,6 +8,7 @@
 //
 // raycast() is const and keeps no state: sensors may call it from several threads. update_hits() changes the
 // world and must not run at the same time as a raycast.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -85,9 +86,18 @@ class World {
     int cone = -1, distractor = -1;
   };
 
+  // Bodies are indexed in layers by height so that a ray walks a layer's grid only while it is low enough to hit
+  // one of its bodies: small cones (below the LiDAR, so rays going up skip them at once), then big cones and
+  // tyres, then tall objects (posts, stacks, fences). The higher layers are sparse and use coarser grids.
+  struct Layer {
+    UniformGrid grid;
+    double max_height = 0;  // top of the tallest body above the ground
+  };
+
   Body cone_body(int index) const;
   void add_distractor_bodies(int index);
   void finish_body(Body& body) const;
+  Eigen::AlignedBox3d bounds(const Body& body) const;
   void rebuild_index();
   RayHit describe_hit(const Body& body, const LocalHit& hit, const Vec3& origin, const Vec3& dir) const;
 
@@ -99,8 +109,7 @@ class World {
   std::vector<WorldCone> cones_;
   std::vector<Distractor> distractors_;
   std::vector<Body> bodies_;      // cones first (body i is cone i), then distractors
-  UniformGrid grid_;
-  double max_body_height_ = 0;    // above the ground, for early ray termination
+  std::array<Layer, 3> layers_;
   int hits_ = 0;
 };
 

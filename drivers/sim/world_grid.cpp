@@ -2,7 +2,8 @@
 
 namespace fsd::sim {
 
-void UniformGrid::build(const std::vector<Eigen::AlignedBox2d>& boxes, double cell) {
+void UniformGrid::build(const std::vector<Eigen::AlignedBox2d>& boxes, const std::vector<std::uint32_t>& ids,
+                        double cell) {
   cell_ = cell;
   nx_ = ny_ = 0;
   start_.assign(1, 0);
@@ -32,7 +33,7 @@ void UniformGrid::build(const std::vector<Eigen::AlignedBox2d>& boxes, double ce
   items_.assign(start_.back(), 0);
   std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < boxes.size(); ++i)
-    for_cells(boxes[i], [&](std::size_t c) { items_[fill[c]++] = static_cast<std::uint32_t>(i); });
+    for_cells(boxes[i], [&](std::size_t c) { items_[fill[c]++] = ids[i]; });
 }
 
 }  // namespace fsd::sim

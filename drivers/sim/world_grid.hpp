@@ -15,8 +15,8 @@ namespace fsd::sim {
 
 class UniformGrid {
  public:
-  // boxes[i] is the xy extent of body i.
-  void build(const std::vector<Eigen::AlignedBox2d>& boxes, double cell);
+  // boxes[i] is the xy extent of the item ids[i].
+  void build(const std::vector<Eigen::AlignedBox2d>& boxes, const std::vector<std::uint32_t>& ids, double cell);
 
   std::span<const std::uint32_t> items(int ix, int iy) const {
     const auto c = static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix);

@@ -65,12 +65,14 @@ Surface Ground::surface(double x, double y) const {
              : Surface::Grass;
 }
 
-double Ground::reflectivity(double x, double y) const {
-  const double base = surface(x, y) == Surface::Grass ? grass_reflectivity_ : asphalt_reflectivity_;
+double Ground::reflectivity(double x, double y, Surface surface_there) const {
+  const double base = surface_there == Surface::Grass ? grass_reflectivity_ : asphalt_reflectivity_;
   if (texture_ <= 0.0) return base;
   const std::uint64_t s = hash64(seed_, kTextureStream);
-  // Patches of a couple of metres with fine grain on top.
-  const double n = 0.6 * value_noise(s, x, y, 2.0) + 0.4 * value_noise(s + 1, x, y, 0.3);
+  // Smooth patches of a couple of metres with a 10 cm grain on top.
+  const double grain = 2.0 * unit_double(lattice_hash(s, static_cast<std::int64_t>(std::floor(x * 10.0)),
+                                                      static_cast<std::int64_t>(std::floor(y * 10.0)))) - 1.0;
+  const double n = 0.6 * value_noise(s, x, y, 2.0) + 0.4 * grain;
   return std::clamp(base + texture_ * n, 0.0, 255.0);
 }
 

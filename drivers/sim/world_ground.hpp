@@ -21,7 +21,8 @@ class Ground {
   double height(double x, double y) const { return sx_ * x + sy_ * y; }
   Vec3 normal() const { return normal_; }
   Surface surface(double x, double y) const;   // Ground (asphalt) or Grass
-  double reflectivity(double x, double y) const;
+  double reflectivity(double x, double y) const { return reflectivity(x, y, surface(x, y)); }
+  double reflectivity(double x, double y, Surface surface_there) const;
 
  private:
   double sx_, sy_;

@@ -22,6 +22,12 @@ inline constexpr std::uint64_t hash64(std::uint64_t a, std::uint64_t b, std::uin
   return hash64(hash64(a, b), c);
 }
 
+// One mix for a point of an integer lattice (cheaper than chaining hash64 for noise evaluated per ray).
+inline constexpr std::uint64_t lattice_hash(std::uint64_t seed, std::int64_t i, std::int64_t j) {
+  return mix64(seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull) ^
+               (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full));
+}
+
 // Uniform in [0, 1) from the top 53 bits.
 inline constexpr double unit_double(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
 
@@ -53,9 +59,7 @@ inline double value_noise(std::uint64_t seed, double x, double y, double cell) {
   const double fx = x / cell, fy = y / cell;
   const double x0 = std::floor(fx), y0 = std::floor(fy);
   const auto ix = static_cast<std::int64_t>(x0), iy = static_cast<std::int64_t>(y0);
-  auto lattice = [&](std::int64_t i, std::int64_t j) {
-    return 2.0 * unit_double(hash64(seed, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j))) - 1.0;
-  };
+  auto lattice = [&](std::int64_t i, std::int64_t j) { return 2.0 * unit_double(lattice_hash(seed, i, j)) - 1.0; };
   auto smooth = [](double t) { return t * t * (3.0 - 2.0 * t); };
   const double sx = smooth(fx - x0), sy = smooth(fy - y0);
   const double a = lattice(ix, iy) + sx * (lattice(ix + 1, iy) - lattice(ix, iy));
