@@ -121,7 +121,9 @@ PathPoint sample(const Path& path, double s) {
   return r;
 }
 
-Path resample(const Path& path, double ds) {
+Path resample(const Path& input, double ds) {
+  Path path = input;
+  compute_geometry(path);  // arc lengths from the positions, whatever the input carried
   Path out;
   out.stamp = path.stamp;
   out.closed = path.closed;

@@ -42,8 +42,8 @@ struct PathProjection {
 
 // Recomputes s, yaw and kappa from the positions (kappa by the circle through three neighbours).
 void compute_geometry(Path& path);
-// Points at uniform arc-length spacing `ds` (the last spacing of an open path may be shorter); speeds
-// interpolated; geometry recomputed.
+// Points at uniform arc-length spacing `ds` along the positions (the last spacing of an open path may be
+// shorter); speeds interpolated; geometry recomputed.
 Path resample(const Path& path, double ds);
 // Point at arc length s: clamped on an open path, wrapped on a closed one; every field interpolated.
 PathPoint sample(const Path& path, double s);
