@@ -67,7 +67,14 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
     r.reason = "too few recorded poses for a lap (" + std::to_string(raw.points.size()) + ")";
     return r;
   }
-  r.closure_gap = (raw.points.back().p - raw.points.front().p).norm();
+  // Close the loop where the end comes nearest the start: poses driven past the start would double back.
+  auto& pts = raw.points;
+  std::size_t cut = pts.size() - 1;
+  for (std::size_t i = pts.size() - 1; i > pts.size() * 4 / 5; --i)
+    if ((pts[i].p - pts.front().p).norm() < (pts[cut].p - pts.front().p).norm()) cut = i;
+  if ((pts[cut].p - pts.front().p).norm() < 0.5 * config_.sample_spacing && cut > 0) --cut;
+  pts.resize(cut + 1);
+  r.closure_gap = (pts.back().p - pts.front().p).norm();
   compute_geometry(raw);
   if (r.closure_gap > config_.max_closure_gap) {
     r.reason = "recorded lap does not close: end " + std::to_string(r.closure_gap) + " m from its start";

@@ -17,7 +17,7 @@ struct RecordedTrajectoryConfig {
   double sample_spacing = 0.3;       // m between recorded poses
   int max_samples = 20000;           // bound on memory (6 km at the default spacing)
   double ds = 0.25;                  // m, spacing of the lap path
-  double smoothing_wavelength = 8.0; // m: ripples of the driven line shorter than this are smoothed out
+  double smoothing_wavelength = 12.0; // m: ripples of the driven line shorter than this are smoothed out
   double max_closure_gap = 6.0;      // m: the recorded lap's end must come back this close to its start
   double min_lap_length = 30.0;      // m
   bool recentre = true;              // pull the line to the middle of the mapped cones
