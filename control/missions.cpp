@@ -69,7 +69,8 @@ std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Po
 
 double stop_speed(double v_finish, double travelled, double decel, double max_distance) {
   const double v0 = std::max(0.0, v_finish);
-  const double a = std::max({decel, v0 * v0 / (2.0 * std::max(max_distance, 1.0)), 0.1});
+  // Aim at 80 % of the allowed distance: the speed loop lags the target.
+  const double a = std::max({decel, v0 * v0 / (1.6 * std::max(max_distance, 1.0)), 0.1});
   const double d_stop = v0 * v0 / (2.0 * a);
   const double left = d_stop - std::max(0.0, travelled);
   return left > 0 ? std::sqrt(2.0 * a * left) : 0.0;

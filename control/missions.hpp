@@ -49,7 +49,7 @@ struct MissionConfig {
 std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Pose2& start, double length, double ds);
 
 // Target speed while stopping after the finish: v² = 2·a·(d_stop − travelled), with a the larger of the
-// configured deceleration and what stopping within `max_distance` from `v_finish` needs.
+// configured deceleration and what stopping within 80 % of `max_distance` from `v_finish` needs.
 double stop_speed(double v_finish, double travelled, double decel, double max_distance);
 
 }  // namespace fsd

@@ -17,7 +17,7 @@ struct BicycleSim {
   double steer_rate = 1.5;       // rad/s
   double max_steer = 0.42;       // rad
   double accel = 5.0, brake = 8.0;  // m/s²
-  double speed_gain = 2.0;       // 1/s, speed loop
+  double speed_gain = 3.0;       // 1/s, speed loop
   double dt = 0.005;             // s, integration step
 
   double t = 0;
@@ -42,7 +42,9 @@ struct BicycleSim {
     const double target_delta = std::clamp(active.steering, -max_steer, max_steer);
     const double ddelta = std::clamp((target_delta - delta) / steer_tau, -steer_rate, steer_rate);
     delta += ddelta * dt;
-    const double want = active.brake_hard ? -brake : speed_gain * (active.target_speed - v);
+    // Speed loop; a zero target near standstill holds the car with the brakes (no creeping).
+    const bool hold = active.target_speed <= 0 && v < 0.5;
+    const double want = active.brake_hard || hold ? -brake : speed_gain * (active.target_speed - v);
     ax = std::clamp(want, -brake, accel);
     if (v <= 0 && ax < 0) ax = 0;
     yaw_rate = v * std::tan(delta) / wheelbase;
