@@ -78,7 +78,7 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
   switch (type_) {
     case FollowerType::PurePursuit: delta = pure_pursuit(path, pose, v, proj->s, r.target); break;
     case FollowerType::Stanley: delta = stanley(path, pose, v, proj->s); break;
-    case FollowerType::Lqr: delta = lqr(*proj, pose, v); break;
+    case FollowerType::Lqr: delta = lqr(path, *proj, pose, v); break;
   }
   if (!std::isfinite(delta)) delta = 0;
   r.command.steering = std::clamp(delta, -config_.max_steer, config_.max_steer);

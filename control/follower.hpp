@@ -18,7 +18,7 @@ std::string to_string(FollowerType t);
 struct FollowerConfig {
   std::string type = "lqr";            // pure_pursuit | stanley | lqr
   double wheelbase = 1.53;             // m, rear axle to front axle
-  double max_steer = 0.42;             // rad, front wheel angle limit (≈ 24°)
+  double max_steer = 0.5;              // rad, front wheel angle limit (≈ 29°); must match the car
   double latency = 0.06;               // s: sensing-to-wheel delay the pose is predicted over
   // Pure pursuit: look-ahead distance k·v + L0 along the path, clamped.
   double pp_gain = 0.2;                // s
@@ -32,6 +32,7 @@ struct FollowerConfig {
   double lqr_q_heading = 1.0;          // 1/rad²
   double lqr_r = 3.0;                  // 1/rad²
   double lqr_dt = 0.05;                // s: discretisation of the error model
+  double lqr_preview = 0.0;            // s: curvature feed-forward taken this far ahead (extra anticipation)
   double speed_preview = 0.4;          // s: the target speed is the path's speed this far ahead
   double search_window = 15.0;         // m: projection window around the last foot point on the same path
   double max_offset = 4.0;             // m: farther from the path is "off path" (result not ok)
@@ -64,7 +65,7 @@ class PathFollower {
  private:
   double pure_pursuit(const Path& path, const Pose2& pose, double v, double s, Vec2& target) const;
   double stanley(const Path& path, const Pose2& pose, double v, double s) const;
-  double lqr(const PathProjection& proj, const Pose2& pose, double v) const;
+  double lqr(const Path& path, const PathProjection& proj, const Pose2& pose, double v) const;
 
   FollowerConfig config_;
   FollowerType type_ = FollowerType::Lqr;

@@ -42,7 +42,7 @@ double PathFollower::stanley(const Path& path, const Pose2& pose, double v, doub
   return heading_error + correction;
 }
 
-double PathFollower::lqr(const PathProjection& proj, const Pose2& pose, double v) const {
+double PathFollower::lqr(const Path& path, const PathProjection& proj, const Pose2& pose, double v) const {
   // Error dynamics of the kinematic bicycle about the path (e lateral, θ heading error, u = δ − δ_ff):
   //   ė = v·θ,  θ̇ = (v/L)·u;  discretised exactly (zero-order hold) over dt.
   const double L = config_.wheelbase, dt = config_.lqr_dt;
@@ -66,7 +66,9 @@ double PathFollower::lqr(const PathProjection& proj, const Pose2& pose, double v
   }
   const Eigen::RowVector2d K = (B.transpose() * P * A) / (R + B.dot(P * B));
   const Eigen::Vector2d x(proj.lateral, wrap_angle(pose.yaw - proj.yaw));
-  return std::atan(L * proj.kappa) - K.dot(x);
+  // Feed-forward from the curvature a little ahead: the steering actuator needs time to wind on.
+  const double kappa_ff = sample(path, proj.s + v * std::max(0.0, config_.lqr_preview)).kappa;
+  return std::atan(L * kappa_ff) - K.dot(x);
 }
 
 }  // namespace fsd

@@ -23,6 +23,8 @@ struct HarnessOptions {
   std::function<bool(double)> gnss_good = [](double) { return true; };
   std::function<bool(double)> lidar_alive = [](double) { return true; };
   std::function<bool(double)> planner_stalled = [](double) { return false; };
+  // Sees every cycle's output (checks inside the loop, debugging).
+  std::function<void(double, const ControlOutput&, const BicycleSim&)> observe;
 };
 
 struct CycleRecord {
@@ -78,6 +80,7 @@ class MissionHarness {
       autopilot_.on_gnss(t, options_.gnss_good(t));
       autopilot_.set_planner_stalled(options_.planner_stalled(t));
       const ControlOutput out = autopilot_.step(t);
+      if (options_.observe) options_.observe(t, out, car_);
       outputs_.push_back(out.request);
       if (out.lap) laps_.push_back(*out.lap);
       max_plan_time_ = std::max(max_plan_time_, out.planning_time);
@@ -110,6 +113,7 @@ class MissionHarness {
   const std::vector<CycleRecord>& records() const { return records_; }
   const TrackTruth& truth() const { return truth_; }
   int cones_hit() const { return static_cast<int>(hit_.size()); }
+  const std::vector<std::pair<double, Vec2>>& hits() const { return hits_; }
   // Distance the car rolled while the AS was not Driving (nor braking in Emergency).
   double moved_outside_driving() const { return moved_outside_; }
   double max_plan_time() const { return max_plan_time_; }
@@ -154,7 +158,8 @@ class MissionHarness {
     const double r = 0.114;
     for (std::size_t i = 0; i < track_.cones.size(); ++i) {
       const Vec2 l = car_.pose.inverse_transform(track_.cones[i].position);
-      if (l.x() > -0.3 - r && l.x() < car_.wheelbase + 0.7 + r && std::abs(l.y()) < 0.7 + r) hit_.insert(i);
+      if (l.x() > -0.3 - r && l.x() < car_.wheelbase + 0.7 + r && std::abs(l.y()) < 0.7 + r && hit_.insert(i).second)
+        hits_.push_back({car_.t, track_.cones[i].position});
     }
   }
 
@@ -166,6 +171,7 @@ class MissionHarness {
   VcuStatus vcu_;
   double go_time_ = 1e9;
   std::set<std::size_t> seen_, hit_;
+  std::vector<std::pair<double, Vec2>> hits_;  // (time, cone) of each cone's first hit
   std::vector<AsRequest> outputs_;
   std::vector<LapEvent> laps_;
   std::vector<CycleRecord> records_;
