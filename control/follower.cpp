@@ -82,8 +82,11 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
   }
   if (!std::isfinite(delta)) delta = 0;
   r.command.steering = std::clamp(delta, -config_.max_steer, config_.max_steer);
-  const PathPoint ahead = sample(path, proj->s + v * std::max(0.0, config_.speed_preview));
-  r.command.target_speed = std::clamp(std::min(ahead.v, proj->v), 0.0, std::max(0.0, speed_cap));
+  // The speed a little ahead: the speed loop lags, and at standstill on a profile starting from zero the
+  // car must still be asked to move off.
+  const double preview = std::max(v * std::max(0.0, config_.speed_preview), 1.0);
+  const PathPoint ahead = sample(path, proj->s + preview);
+  r.command.target_speed = std::clamp(ahead.v, 0.0, std::max(0.0, speed_cap));
   r.ok = true;
   return r;
 }

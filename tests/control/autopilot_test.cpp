@@ -93,3 +93,186 @@ INSTANTIATE_TEST_SUITE_P(SharedLoops, TrackdriveOnEveryLoop,
 
 }  // namespace
 }  // namespace fsd
+
+namespace fsd {
+namespace {
+
+TEST(Autopilot, AutocrossOneLap) {
+  const Track track = test::shared_track("epfl_fsds_competition_1");
+  test::MissionHarness h(track, Mission::Autocross, test_config());
+  h.run();
+  print_laps("autocross", h);
+  ASSERT_EQ(h.laps().size(), 1u);
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  for (const auto& r : h.records()) EXPECT_NE(r.source, PathSource::Recorded);
+}
+
+TEST(Autopilot, AccelerationStopsInTheBrakingZone) {
+  for (const char* name : {"epfl_acceleration", "amz_fssim_acceleration"}) {
+    SCOPED_TRACE(name);
+    const Track track = test::shared_track(name);
+    AutopilotConfig c = test_config();
+    test::MissionHarness h(track, Mission::Acceleration, c);
+    h.run();
+    print_laps(name, h);
+    ASSERT_EQ(h.laps().size(), 1u);
+    EXPECT_EQ(h.as_state(), AsState::Finished);
+    EXPECT_EQ(h.cones_hit(), 0);
+    // Finish line 75 m past the start line; the braking zone is the 100 m after it (to the last cones).
+    const auto start = timing_line_from_cones(
+        [&] {
+          std::vector<Cone> v;
+          for (const auto& k : track.cones) v.push_back({Vec3(k.position.x(), k.position.y(), 0), k.colour});
+          return v;
+        }(),
+        track.start, track.convention);
+    ASSERT_TRUE(start);
+    const double past_start = start->past(h.car().pose.position());
+    EXPECT_GT(past_start, 75.0);
+    EXPECT_LT(past_start, 75.0 + c.mission.acceleration_stop_distance);
+    // Lower bound: full traction (a_max) from standstill at the start pose, capped at v_max, timed from the
+    // start line to 75 m past it. A good run is within a second of it (the speed loop lags).
+    const double a = c.speed.a_accel_max, vm = c.speed.v_max, sc = vm * vm / (2 * a);
+    auto time_to = [&](double s) { return s <= sc ? std::sqrt(2 * s / a) : vm / a + (s - sc) / vm; };
+    const double d0 = -start->past(track.start.position());
+    const double t_min = time_to(d0 + 75.0) - time_to(d0);
+    std::printf("    run %.2f s, bound %.2f s\n", h.laps()[0].time_s, t_min);
+    EXPECT_GT(h.laps()[0].time_s, t_min);
+    EXPECT_LT(h.laps()[0].time_s, t_min + 1.0);
+    double vmax = 0;
+    for (const auto& r : h.records()) vmax = std::max(vmax, r.speed);
+    EXPECT_LE(vmax, c.speed.v_max + 0.3);
+  }
+}
+
+TEST(Autopilot, SkidpadRightTwiceLeftTwiceThenStop) {
+  const Track track = test::shared_track("epfl_skidpad");
+  AutopilotConfig c = test_config();
+  test::MissionHarness h(track, Mission::Skidpad, c);
+  h.run();
+  print_laps("skidpad", h);
+  ASSERT_EQ(h.laps().size(), 4u);
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  // Steady laps (2nd and 4th, the timed ones in the rules) at √(μ·margin·g·R) on R = 9.125 m.
+  const double v = std::sqrt(c.speed.mu * c.speed.mu_margin_known * 9.81 * 9.125);
+  const double t_lap = 2 * std::numbers::pi * 9.125 / v;
+  EXPECT_NEAR(h.laps()[1].time_s, t_lap, 0.05 * t_lap);
+  EXPECT_NEAR(h.laps()[3].time_s, t_lap, 0.05 * t_lap);
+  // Right circle first: during lap 1 the car is on the right (x > 0) side; lap 3 on the left.
+  const auto& L = h.laps();
+  for (const auto& r : h.records()) {
+    if (r.t > L[0].t - L[0].time_s + 1 && r.t < L[1].t - 1) {
+      EXPECT_GT(r.position.x(), -0.5);
+    }
+    if (r.t > L[2].t - L[2].time_s + 1 && r.t < L[3].t - 1) {
+      EXPECT_LT(r.position.x(), 0.5);
+    }
+  }
+  // Exit straight ahead, stopped within the stop distance past the crossing (y = 15).
+  EXPECT_NEAR(h.car().pose.x, 0.0, 0.3);
+  EXPECT_GT(h.car().pose.y, 15.0);
+  EXPECT_LT(h.car().pose.y, 15.0 + c.mission.stop_distance + 1.0);
+}
+
+TEST(Autopilot, InspectionSweepsTheSteeringThenFinishes) {
+  const Track track = test::shared_track("epfl_acceleration");
+  AutopilotConfig c = test_config();
+  double min_cmd = 0, max_cmd = 0;
+  test::HarnessOptions o;
+  o.observe = [&](double, const ControlOutput& out, const test::BicycleSim&) {
+    min_cmd = std::min(min_cmd, out.command.steering);
+    max_cmd = std::max(max_cmd, out.command.steering);
+  };
+  test::MissionHarness h(track, Mission::Inspection, c, o);
+  h.run();
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_NEAR(max_cmd, c.mission.inspection_amplitude * c.follower.max_steer, 0.01);
+  EXPECT_NEAR(min_cmd, -c.mission.inspection_amplitude * c.follower.max_steer, 0.01);
+  ASSERT_TRUE(h.finished_at());
+  EXPECT_GT(*h.finished_at(), 5.0 + c.mission.inspection_duration);  // Driving began after the 5 s go delay
+}
+
+TEST(Autopilot, EbsTestAsksForEmergencyAtSpeed) {
+  const Track track = test::shared_track("epfl_ebs_test_fss");
+  AutopilotConfig c = test_config();
+  test::MissionHarness h(track, Mission::EbsTest, c);
+  h.run();
+  EXPECT_EQ(h.as_state(), AsState::Emergency);
+  ASSERT_TRUE(h.emergency_at());
+  double v_at = 0;
+  for (const auto& r : h.records())
+    if (std::abs(r.t - *h.emergency_at()) < 0.011) v_at = r.speed;
+  EXPECT_GT(v_at, 10.0);
+  EXPECT_EQ(h.cones_hit(), 0);
+}
+
+TEST(Autopilot, GnssLostOnLapTwoFallsBackToRealtimePlanning) {
+  const Track track = test::shared_track("epfl_track_1");
+  test::HarnessOptions o;
+  // Lap 1 ends near t = 43 s (5 s go delay + 38 s); GNSS is bad from 50 s to 60 s of lap 2.
+  o.gnss_good = [](double t) { return t < 50.0 || t > 60.0; };
+  test::MissionHarness h(track, Mission::Trackdrive, test_config(), o);
+  h.run();
+  print_laps("gnss loss", h);
+  ASSERT_EQ(h.laps().size(), 2u);
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  bool planner_in_gap = false, recorded_after = false;
+  for (const auto& r : h.records()) {
+    if (r.t > 50.1 && r.t < 59.9) {
+      EXPECT_EQ(r.source, PathSource::Planner) << r.t;
+      planner_in_gap = true;
+    }
+    if (r.t > 60.2 && r.laps_done == 1) recorded_after = recorded_after || r.source == PathSource::Recorded;
+  }
+  EXPECT_TRUE(planner_in_gap);
+  EXPECT_TRUE(recorded_after);
+  ASSERT_FALSE(h.autopilot().faults().empty());
+  const Fault& f = h.autopilot().faults().front();
+  EXPECT_EQ(f.source, "gnss");
+  EXPECT_EQ(f.action, "fallback to real-time planning");
+  EXPECT_NEAR(f.t, 50.0, 0.03);  // the first bad fix (a silent GNSS would count after gnss_timeout)
+}
+
+TEST(Autopilot, LidarLostForOneSecondSlowsAndRecovers) {
+  const Track track = test::shared_track("epfl_track_1");
+  test::HarnessOptions o;
+  o.lidar_alive = [](double t) { return t < 20.0 || t > 21.0; };  // lap 1, on the planner
+  test::MissionHarness h(track, Mission::Trackdrive, test_config(), o);
+  h.run();
+  ASSERT_EQ(h.laps().size(), 2u);
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  for (const auto& r : h.records())
+    if (r.t > 20.6 && r.t < 21.0) {
+      EXPECT_LT(r.speed, test_config().supervisor.degraded_speed + 2.5) << r.t;
+    }
+  ASSERT_EQ(h.autopilot().faults().size(), 1u);
+  EXPECT_EQ(h.autopilot().faults()[0].source, "lidar");
+}
+
+TEST(Autopilot, PlannerStallIsAControlledStop) {
+  const Track track = test::shared_track("epfl_track_1");
+  test::HarnessOptions o;
+  o.planner_stalled = [](double t) { return t > 15.0; };
+  test::MissionHarness h(track, Mission::Trackdrive, test_config(), o);
+  h.run();
+  EXPECT_EQ(h.as_state(), AsState::Emergency);  // stopped, then the EBS holds it
+  EXPECT_EQ(h.cones_hit(), 0);
+  ASSERT_FALSE(h.autopilot().faults().empty());
+  const Fault& f = h.autopilot().faults().front();
+  EXPECT_EQ(f.source, "planning");
+  EXPECT_EQ(f.action, "controlled stop");
+  EXPECT_NEAR(f.t, 15.0 + test_config().supervisor.plan_timeout, 0.15);
+  ASSERT_TRUE(h.emergency_at());
+  // Braked to standstill before asking for the EBS.
+  for (const auto& r : h.records())
+    if (std::abs(r.t - *h.emergency_at()) < 0.011) {
+      EXPECT_LT(r.speed, 0.1);
+    }
+}
+
+}  // namespace
+}  // namespace fsd
