@@ -276,3 +276,35 @@ TEST(Autopilot, PlannerStallIsAControlledStop) {
 
 }  // namespace
 }  // namespace fsd
+
+namespace fsd {
+namespace {
+
+class EverySharedLayout : public ::testing::TestWithParam<std::pair<std::string, Mission>> {};
+
+TEST_P(EverySharedLayout, FinishesWithoutHittingCones) {
+  const auto& [name, mission] = GetParam();
+  const Track track = test::shared_track(name);
+  test::MissionHarness h(track, mission, test_config());
+  h.run();
+  print_laps(name.c_str(), h);
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  EXPECT_EQ(h.laps().size(), mission == Mission::Skidpad ? 4u : 1u);
+  for (const auto& f : h.autopilot().faults()) ADD_FAILURE() << f.t << " " << f.source << ": " << f.what;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AccelerationAndSkidpad, EverySharedLayout,
+    ::testing::Values(std::make_pair("epfl_acceleration_4m", Mission::Acceleration),
+                      std::make_pair("epfl_acceleration_4_5m", Mission::Acceleration),
+                      std::make_pair("epfl_acceleration_5_5m", Mission::Acceleration),
+                      std::make_pair("epfl_acceleration_large", Mission::Acceleration),
+                      std::make_pair("epfl_skidpad_v2", Mission::Skidpad),
+                      std::make_pair("epfl_skidpad_reversed", Mission::Skidpad),
+                      std::make_pair("epfl_skidpad_minimalist", Mission::Skidpad),
+                      std::make_pair("epfl_short_skidpad", Mission::Skidpad),
+                      std::make_pair("amz_fssim_skidpad", Mission::Skidpad)));
+
+}  // namespace
+}  // namespace fsd
