@@ -1,0 +1,127 @@
+// Planning and following time per call on epfl_track_1 (Google Benchmark; p50/p99 as counters, in µs).
+//   Planning: the midline planner with the whole track's cones as the map, the car at every centre-line
+//   rung (nearest left/right cone midpoints) facing along the track.
+//   Following: one follow() call on the lap-2 path (the smoothed closed centre line) and on a real-time plan,
+//   for each steering law, the car stepping round the lap.
+//   Run: build/bench/control_bench  (from the project root, so that ../shared resolves)
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "common/track.hpp"
+#include "control/follower.hpp"
+#include "control/midline_planner.hpp"
+#include "control/smoothing.hpp"
+
+namespace fsd {
+namespace {
+
+struct Fixture {
+  Track track = load_track("../shared/tracks/epfl_track_1.csv");
+  std::vector<Cone> cones;
+  std::vector<Pose2> poses;  // along the centre line, facing along the track
+  Path lap;                  // closed centre line
+  Fixture() {
+    std::vector<Vec2> left, right;
+    for (const auto& c : track.cones) {
+      Cone k;
+      k.position = Vec3(c.position.x(), c.position.y(), 0);
+      k.colour = c.colour;
+      cones.push_back(k);
+      if (c.role == ConeRole::Left) left.push_back(c.position);
+      if (c.role == ConeRole::Right) right.push_back(c.position);
+    }
+    lap.closed = true;
+    for (const auto& l : left) {
+      const Vec2* best = &right.front();
+      for (const auto& r : right)
+        if ((r - l).norm() < (*best - l).norm()) best = &r;
+      const Vec2 across = (l - *best).normalized();  // right → left
+      const Vec2 mid = 0.5 * (l + *best);
+      poses.push_back({mid.x(), mid.y(), std::atan2(-across.x(), across.y())});
+      lap.points.push_back({mid, 0, 0, 0, 0});
+    }
+    lap = smooth_path(lap, 0.25, 8.0);
+    SpeedLimits limits;
+    limits.mu = 1.1;
+    SpeedProfile(limits).apply(lap, 0, 0);
+  }
+};
+
+const Fixture& fixture() {
+  static const Fixture f;
+  return f;
+}
+
+void report(benchmark::State& state, std::vector<double>& us) {
+  if (us.empty()) return;
+  std::sort(us.begin(), us.end());
+  auto pct = [&](double p) { return us[std::min(us.size() - 1, static_cast<std::size_t>(p * us.size()))]; };
+  state.counters["p50_us"] = pct(0.50);
+  state.counters["p99_us"] = pct(0.99);
+  state.counters["max_us"] = us.back();
+}
+
+void BM_MidlinePlan(benchmark::State& state) {
+  const Fixture& f = fixture();
+  MidlinePlannerConfig config;
+  config.use_colours = state.range(0) != 0;
+  const MidlinePlanner planner(config, f.track.convention, SpeedLimits{});
+  std::vector<double> us;
+  std::size_t i = 0, failed = 0;
+  for (auto _ : state) {
+    VehicleState s;
+    s.pose = f.poses[i++ % f.poses.size()];
+    s.vx = 6.0;
+    const auto t0 = std::chrono::steady_clock::now();
+    const PlanResult r = planner.plan(f.cones, s);
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    failed += !r.ok;
+    benchmark::DoNotOptimize(r);
+  }
+  report(state, us);
+  state.counters["failed"] = static_cast<double>(failed);
+}
+BENCHMARK(BM_MidlinePlan)->Arg(1)->Arg(0)->ArgName("colours")->Iterations(2000)->Unit(benchmark::kMicrosecond);
+
+void BM_Follow(benchmark::State& state) {
+  const Fixture& f = fixture();
+  FollowerConfig config;
+  config.type = state.range(0) == 0 ? "pure_pursuit" : state.range(0) == 1 ? "stanley" : "lqr";
+  const bool on_plan = state.range(1) != 0;
+  PathFollower follower(config);
+  const MidlinePlanner planner({}, f.track.convention, SpeedLimits{});
+  std::vector<double> us;
+  std::size_t i = 0;
+  Path plan;
+  for (auto _ : state) {
+    VehicleState s;
+    s.pose = f.poses[i % f.poses.size()];
+    s.pose.x += 0.2;  // a little off the line
+    s.vx = 8.0;
+    s.steering = 0.05;
+    if (on_plan && (i % 10 == 0 || plan.empty())) {  // a new plan every tenth cycle, as at 10 Hz / 100 Hz
+      state.PauseTiming();
+      plan = planner.plan(f.cones, s).path;
+      state.ResumeTiming();
+    }
+    ++i;
+    const auto t0 = std::chrono::steady_clock::now();
+    const FollowResult r = follower.follow(on_plan ? plan : f.lap, s, 0.0, 20.0);
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(r);
+  }
+  report(state, us);
+}
+BENCHMARK(BM_Follow)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->ArgNames({"law", "on_plan"})
+    ->Iterations(20000)
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace fsd
+
+BENCHMARK_MAIN();

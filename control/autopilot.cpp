@@ -1,0 +1,325 @@
+#include "control/autopilot.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+namespace fsd {
+
+std::string_view to_string(PathSource s) {
+  switch (s) {
+    case PathSource::None: return "none";
+    case PathSource::Planner: return "planner";
+    case PathSource::Recorded: return "recorded";
+    case PathSource::Skidpad: return "skidpad";
+    case PathSource::Straight: return "straight";
+  }
+  return "none";
+}
+
+Autopilot::Autopilot(AutopilotConfig config, Mission mission, ColourConvention convention)
+    : config_(config),
+      mission_(mission),
+      convention_(convention),
+      planner_(config.planner, convention, config.speed.realtime()),
+      follower_(config.follower),
+      supervisor_(config.supervisor),
+      trajectory_(config.trajectory) {
+  supervisor_.set_mission(mission);
+  const bool inspection = mission == Mission::Inspection;
+  supervisor_.require(InputStream::Lidar, !inspection);
+  supervisor_.require(InputStream::Plan, !inspection);
+}
+
+void Autopilot::set_config(const AutopilotConfig& config) {
+  config_ = config;
+  planner_.set_config(config.planner);
+  planner_.set_speed_limits(config.speed.realtime());
+  follower_.set_config(config.follower);
+  supervisor_.set_config(config.supervisor);
+}
+
+void Autopilot::on_vcu(const VcuStatus& status) { supervisor_.on_vcu(status); }
+
+void Autopilot::on_cones(Stamp t, std::vector<Cone> map_cones) {
+  if (!std::isfinite(t)) return;
+  cones_ = std::move(map_cones);
+  cones_stamp_ = t;
+  new_cones_ = true;
+  supervisor_.heartbeat(InputStream::Lidar, t);
+}
+
+void Autopilot::on_state(const VehicleState& state) {
+  if (!std::isfinite(state.stamp) || !std::isfinite(state.pose.x) || !std::isfinite(state.pose.y) ||
+      !std::isfinite(state.pose.yaw))
+    return;
+  state_ = state;
+  supervisor_.heartbeat(InputStream::Pose, state.stamp);
+}
+
+void Autopilot::on_gnss(Stamp t, bool good) {
+  if (!std::isfinite(t)) return;
+  gnss_good_ = good;
+  if (good) {
+    gnss_good_since_ = t;
+    supervisor_.heartbeat(InputStream::Gnss, t);
+  }
+}
+
+void Autopilot::plan_realtime(Stamp now, ControlOutput& out) {
+  if (!state_ || planner_stalled_) return;
+  if (!new_cones_ && now - last_plan_attempt_ < config_.replan_period) return;
+  new_cones_ = false;
+  last_plan_attempt_ = now;
+  PlanResult r = planner_.plan(cones_, *state_);
+  out.planned = true;
+  out.plan_ok = r.ok;
+  out.planning_time = r.compute_time;
+  supervisor_.on_plan(now, r.ok, r.compute_time, config_.planner.time_budget);
+  const bool late = config_.supervisor.check_plan_time && r.over_budget;
+  if (r.ok && !late) plan_ = std::move(r.path);
+}
+
+void Autopilot::start_mission(Stamp now) {
+  started_ = true;
+  mission_start_ = now;
+  start_pose_ = state_->pose;
+  follower_.reset();
+  if (uses_planner()) {
+    const auto line = timing_line_from_cones(cones_, start_pose_, convention_);
+    lap_counter_.emplace(line ? *line : line_across(start_pose_), config_.laps);
+    // A layout whose start pose is past the line (and close to it) times the first lap from the start.
+    const double past = lap_counter_->line().past(start_pose_.position());
+    if (past > 0 && past < config_.laps.hysteresis) {
+      lap_counter_->start_timing_at(now);
+      lap1_start_ = now;
+    }
+  }
+}
+
+void Autopilot::finish(Stamp now) {
+  if (finished_) return;
+  finished_ = true;
+  finish_speed_ = state_ ? state_->speed() : 0.0;
+  finish_odometer_ = odometer_;
+  stop_distance_ = mission_ == Mission::Acceleration || mission_ == Mission::EbsTest
+                       ? config_.mission.acceleration_stop_distance
+                       : config_.mission.stop_distance;
+  (void)now;
+}
+
+void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out) {
+  const VehicleState& st = *state_;
+  const Vec2 pos = st.pose.position();
+  switch (mission_) {
+    case Mission::Trackdrive:
+    case Mission::Autocross: {
+      const bool was_timing = lap_counter_->timing();
+      const auto ev = lap_counter_->update(now, pos);
+      if (!was_timing && lap_counter_->timing() && !lap1_start_) lap1_start_ = lap_counter_->last_crossing();
+      if (lap_counter_->laps_completed() == 0) trajectory_.record(st);
+      if (ev) {
+        lap_times_.push_back(ev->time_s);
+        out.lap = ev;
+        if (ev->lap == 1 && target_laps() > 1) {
+          const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), ev->t, cones_, convention_,
+                                               SpeedProfile(config_.speed.known()));
+          if (built.path) lap_path_ = *built.path;
+          else supervisor_.report(now, "mission", "lap-2 trajectory not built: " + built.reason,
+                                  "keep real-time planning");
+        }
+        if (ev->lap >= target_laps()) finish(now);
+      }
+      break;
+    }
+    case Mission::Acceleration:
+    case Mission::EbsTest: {
+      if (!straight_) break;
+      const auto proj = project(*straight_, pos);
+      if (!proj) break;
+      const double s = proj->s;
+      if (!straight_timing_start_ && s >= straight_start_s_) straight_timing_start_ = now;
+      const double finish_s = straight_start_s_ + config_.mission.acceleration_length;
+      if (mission_ == Mission::Acceleration && !finished_ && s >= finish_s) {
+        const double t = now - straight_timing_start_.value_or(mission_start_);
+        lap_times_.push_back(t);
+        out.lap = LapEvent{1, now, t};
+        finish(now);
+      }
+      break;
+    }
+    case Mission::Skidpad: {
+      if (!skidpad_plan_ || !last_follow || !last_follow->ok) break;
+      const double s = last_follow->s;
+      while (skidpad_mark_ < 5 && s >= skidpad_plan_->crossing_s[static_cast<std::size_t>(skidpad_mark_)]) {
+        if (skidpad_mark_ > 0 && skidpad_mark_time_) {
+          const double t = now - *skidpad_mark_time_;
+          lap_times_.push_back(t);
+          out.lap = LapEvent{skidpad_mark_, now, t};
+        }
+        skidpad_mark_time_ = now;
+        ++skidpad_mark_;
+      }
+      if (skidpad_mark_ >= 5) finish(now);
+      break;
+    }
+    case Mission::Inspection:
+      if (now - mission_start_ >= config_.mission.inspection_duration) finish(now);
+      break;
+    case Mission::None:
+      break;
+  }
+}
+
+const Path* Autopilot::select_path(Stamp now, PathSource& source) {
+  switch (mission_) {
+    case Mission::Trackdrive:
+    case Mission::Autocross: {
+      const bool lap2 = lap_path_ && lap_counter_ && lap_counter_->laps_completed() >= 1;
+      const bool gnss_ok = gnss_good_ && gnss_good_since_ && now - *gnss_good_since_ <= config_.gnss_timeout;
+      if (lap2) {
+        supervisor_.report(now, "gnss", "fix lost", "fallback to real-time planning", !gnss_ok);
+        if (gnss_ok) {
+          source = PathSource::Recorded;
+          return &*lap_path_;
+        }
+      }
+      source = plan_ ? PathSource::Planner : PathSource::None;
+      return plan_ ? &*plan_ : nullptr;
+    }
+    case Mission::Acceleration:
+    case Mission::EbsTest:
+      source = straight_ ? PathSource::Straight : PathSource::None;
+      return straight_ ? &*straight_ : nullptr;
+    case Mission::Skidpad:
+      if (skidpad_plan_) {
+        source = PathSource::Skidpad;
+        return &skidpad_plan_->path;
+      }
+      source = entry_ ? PathSource::Straight : PathSource::None;
+      return entry_ ? &*entry_ : nullptr;
+    default:
+      source = PathSource::None;
+      return nullptr;
+  }
+}
+
+ControlOutput Autopilot::step(Stamp now) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  ControlOutput out;
+  out.command.stamp = now;
+  const double speed = state_ ? std::max(0.0, state_->speed()) : 0.0;
+  if (state_) {
+    const Vec2 p = state_->pose.position();
+    if (last_position_) odometer_ += (p - *last_position_).norm();
+    last_position_ = p;
+  }
+  const bool driving = supervisor_.as_state() == AsState::Driving;
+  if (driving && !started_ && state_) start_mission(now);
+
+  // Paths of the mission: real-time plan, acceleration straight, skid pad figure of eight.
+  if (uses_planner()) plan_realtime(now, out);
+  if (state_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest) && new_cones_ && !finished_) {
+    new_cones_ = false;
+    const Pose2 origin = started_ ? start_pose_ : state_->pose;
+    const double length = 2.0 * config_.mission.acceleration_length + config_.mission.acceleration_stop_distance;
+    if (auto line = straight_from_cones(cones_, origin, length, config_.planner.ds)) {
+      SpeedConfig sc = config_.speed;
+      SpeedProfile(sc.known()).apply(*line, 0, sc.v_max);
+      line->stamp = cones_stamp_;
+      const auto timing = timing_line_from_cones(cones_, origin, convention_);
+      const auto foot = timing ? project(*line, timing->mid()) : std::nullopt;
+      straight_start_s_ = foot ? foot->s : config_.mission.acceleration_start_offset;
+      straight_ = std::move(*line);
+    }
+  }
+  if (state_ && mission_ == Mission::Skidpad && new_cones_) {
+    new_cones_ = false;
+    const Pose2 origin = started_ ? start_pose_ : state_->pose;
+    if (!entry_) {
+      Path e;
+      for (int i = 0; i <= 120; ++i)
+        e.points.push_back({origin.transform(Vec2(0.25 * i, 0.0)), 0, 0, 0, config_.mission.skidpad_entry_speed});
+      compute_geometry(e);
+      entry_ = std::move(e);
+    }
+    // Refit while still on the entry lane: more of the circles are seen as the car approaches.
+    if (skidpad_mark_ == 0) {
+      const bool on_entry = !skidpad_plan_ || progress_s_ < skidpad_plan_->crossing_s[0] - 3.0;
+      if (on_entry) {
+        if (auto g = fit_skidpad(cones_, origin, convention_)) {
+          SkidpadPlan plan = skidpad_path(*g, origin, config_.mission.skidpad_exit_length, config_.planner.ds);
+          SpeedProfile(config_.speed.known()).apply(plan.path, speed, 0.0);
+          plan.path.stamp = cones_stamp_;
+          skidpad_ = g;
+          skidpad_plan_ = std::move(plan);
+          follower_.reset();
+        }
+      }
+    }
+  }
+  // The fixed paths count as plans for the watchdog while they exist.
+  if ((straight_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest)) ||
+      (mission_ == Mission::Skidpad && (skidpad_plan_ || entry_)))
+    supervisor_.heartbeat(InputStream::Plan, now);
+
+  // Follow the mission's path.
+  PathSource source = PathSource::None;
+  const Path* path = state_ ? select_path(now, source) : nullptr;
+  FollowResult follow;
+  if (path && state_) {
+    follow = follower_.follow(*path, *state_, now, config_.speed.v_max);
+    if (follow.ok) progress_s_ = follow.s;
+  }
+  if (driving && started_ && state_) update_mission(now, path ? &follow : nullptr, out);
+
+  // Mission speed limits on top of the path's own profile.
+  double cap = config_.speed.v_max;
+  if (finished_) cap = std::min(cap, stop_speed(finish_speed_, odometer_ - finish_odometer_,
+                                                config_.mission.stop_decel, stop_distance_));
+  ControlCommand cmd = follow.command;
+  cmd.stamp = now;
+  cmd.target_speed = std::min(cmd.target_speed, cap);
+  if (mission_ == Mission::Inspection) {
+    const double t = now - mission_start_;
+    const double amplitude = config_.mission.inspection_amplitude * config_.follower.max_steer;
+    cmd.steering = started_ ? amplitude * std::sin(2 * std::numbers::pi * t / config_.mission.inspection_period) : 0;
+    cmd.target_speed = finished_ ? 0.0 : config_.mission.inspection_speed;
+  }
+
+  // Supervision: no motion outside Driving, controlled stop on faults, Ready/Finished/Emergency requests.
+  const Supervision sup = supervisor_.evaluate(now, speed, finished_);
+  out.request = sup.request;
+  if (mission_ == Mission::EbsTest && driving && straight_ && state_) {
+    const auto proj = project(*straight_, state_->pose.position());
+    if (proj && proj->s >= straight_start_s_ + config_.mission.ebs_trigger_distance) {
+      out.request = AsRequest::Emergency;
+      finish(now);
+    }
+  }
+  if (sup.may_move) {
+    cmd.target_speed = std::clamp(std::min(cmd.target_speed, sup.speed_cap), 0.0, config_.speed.v_max);
+    cmd.brake_hard = false;
+  } else if (sup.controlled_stop) {
+    cmd.target_speed = 0;
+    cmd.brake_hard = true;
+    if (!follow.ok) cmd.steering = last_steering_;  // no pose or off the path: hold the wheel
+  } else {
+    cmd.target_speed = 0;
+    cmd.steering = 0;
+    cmd.brake_hard = false;
+  }
+  if (!std::isfinite(cmd.steering)) cmd.steering = 0;
+  last_steering_ = cmd.steering;
+  out.command = cmd;
+  out.source = source;
+  out.path = path;
+  out.follow = follow;
+  out.finished = finished_;
+  out.stopping = supervisor_.stopping();
+  out.control_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+}  // namespace fsd

@@ -1,0 +1,137 @@
+#pragma once
+// The driving brain in one object, for the daemon's control thread: takes the newest VCU status, cone map,
+// fused vehicle state and GNSS quality, and each cycle returns the command for the VCU and the AS request.
+// Inside: the mission (trackdrive, autocross, acceleration, skid pad, inspection, EBS test), real-time midline
+// planning, the lap-2 trajectory, the lap counter, the path follower and the AS supervisor. No I/O, no threads:
+// the caller owns time (every call carries the stack's clock) and calls from one thread.
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "common/track.hpp"
+#include "common/types.hpp"
+#include "control/as_supervisor.hpp"
+#include "control/follower.hpp"
+#include "control/lap_counter.hpp"
+#include "control/midline_planner.hpp"
+#include "control/missions.hpp"
+#include "control/recorded_trajectory.hpp"
+#include "control/skidpad.hpp"
+
+namespace fsd {
+
+struct AutopilotConfig {
+  MidlinePlannerConfig planner;
+  FollowerConfig follower;
+  SpeedConfig speed;
+  MissionConfig mission;
+  SupervisorConfig supervisor;
+  LapCounterConfig laps;
+  RecordedTrajectoryConfig trajectory;
+  double replan_period = 0.1;   // s: the real-time plan is refreshed at least this often (on new cones at once)
+  double gnss_timeout = 0.5;    // s without a good GNSS fix: lap 2 falls back to real-time planning
+};
+
+enum class PathSource { None, Planner, Recorded, Skidpad, Straight };
+std::string_view to_string(PathSource s);
+
+struct ControlOutput {
+  ControlCommand command;              // to the VCU, every cycle
+  AsRequest request = AsRequest::None; // to the VCU while not None
+  PathSource source = PathSource::None;
+  const Path* path = nullptr;          // the path followed this cycle (valid until the next call)
+  FollowResult follow;                 // tracking diagnostics (cross-track error, look-ahead point)
+  std::optional<LapEvent> lap;         // a lap (or skid pad circle, or acceleration run) completed this cycle
+  bool planned = false;                // the real-time planner ran this cycle
+  bool plan_ok = false;                // its outcome when it ran
+  Duration planning_time = 0;          // s, wall clock of that plan
+  Duration control_time = 0;           // s, wall clock of the whole step
+  bool finished = false;               // past the mission's finish (stopping or stopped)
+  bool stopping = false;               // a fault stop is under way
+};
+
+class Autopilot {
+ public:
+  Autopilot(AutopilotConfig config, Mission mission, ColourConvention convention);
+
+  // Inputs: call whenever new data arrives, before step(). Stamps are sensor times on the stack's clock.
+  void on_vcu(const VcuStatus& status);
+  void on_cones(Stamp t, std::vector<Cone> map_cones);  // the whole cone map, map frame (or detections)
+  void on_state(const VehicleState& state);             // fused pose and motion, map frame
+  void on_gnss(Stamp t, bool good);                     // each GNSS-INS sample: usable for lap-2 tracking?
+
+  // One control cycle at time `now` (≥ the newest input stamp): plans when due, runs the mission, follows,
+  // supervises. Always returns a command; outside AS Driving it holds the car.
+  ControlOutput step(Stamp now);
+
+  // Read-outs for telemetry and the scorecard.
+  Mission mission() const { return mission_; }
+  const Path* realtime_path() const { return plan_ ? &*plan_ : nullptr; }
+  const Path* recorded_path() const { return lap_path_ ? &*lap_path_ : nullptr; }
+  const std::vector<Fault>& faults() const { return supervisor_.faults(); }
+  const std::vector<double>& lap_times() const { return lap_times_; }
+  const std::vector<Cone>& cones() const { return cones_; }
+  const std::optional<SkidpadGeometry>& skidpad() const { return skidpad_; }
+  AsState as_state() const { return supervisor_.as_state(); }
+  const AutopilotConfig& config() const { return config_; }
+
+  // Live tuning: the planner, follower, speed and supervisor settings take effect from the next step.
+  void set_config(const AutopilotConfig& config);
+  // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
+  void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
+
+ private:
+  void start_mission(Stamp now);
+  void plan_realtime(Stamp now, ControlOutput& out);
+  void update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out);
+  void finish(Stamp now);
+  const Path* select_path(Stamp now, PathSource& source);
+  bool uses_planner() const { return mission_ == Mission::Trackdrive || mission_ == Mission::Autocross; }
+  int target_laps() const { return mission_ == Mission::Autocross ? 1 : config_.mission.laps; }
+
+  AutopilotConfig config_;
+  Mission mission_;
+  ColourConvention convention_;
+  MidlinePlanner planner_;
+  PathFollower follower_;
+  AsSupervisor supervisor_;
+  RecordedTrajectory trajectory_;
+
+  // Newest inputs.
+  std::optional<VehicleState> state_;
+  std::vector<Cone> cones_;
+  Stamp cones_stamp_ = -1;
+  bool new_cones_ = false;
+  std::optional<Stamp> gnss_good_since_;  // stamp of the newest good fix
+  bool gnss_good_ = false;
+
+  // Real-time planning.
+  std::optional<Path> plan_;
+  Stamp last_plan_attempt_ = -1e9;
+  bool planner_stalled_ = false;
+
+  // Mission state.
+  bool started_ = false;
+  Pose2 start_pose_;
+  std::optional<LapCounter> lap_counter_;
+  std::optional<Stamp> lap1_start_;
+  std::optional<Path> lap_path_;
+  std::optional<Path> straight_;
+  double straight_start_s_ = 0;
+  std::optional<Stamp> straight_timing_start_;
+  std::optional<SkidpadGeometry> skidpad_;
+  std::optional<SkidpadPlan> skidpad_plan_;
+  std::optional<Path> entry_;
+  int skidpad_mark_ = 0;
+  std::optional<Stamp> skidpad_mark_time_;
+  std::vector<double> lap_times_;
+  bool finished_ = false;
+  double finish_speed_ = 0, finish_odometer_ = 0, stop_distance_ = 0;
+  double odometer_ = 0;
+  std::optional<Vec2> last_position_;
+  Stamp mission_start_ = 0;
+  double last_steering_ = 0;
+  double progress_s_ = 0;
+};
+
+}  // namespace fsd

@@ -1,0 +1,180 @@
+#include "control/control_config.hpp"
+
+namespace fsd {
+
+const ConfigSection<MidlinePlannerConfig>& planner_section() {
+  using C = MidlinePlannerConfig;
+  static const auto s =
+      ConfigSection<C>("control.planner")
+          .number("range", &C::range, 5, 60, "m", "Cones farther from the car are not planned through.")
+          .number("behind", &C::behind, 0, 20, "m", "Cones farther behind the rear axle are ignored.")
+          .integer("max_cones", &C::max_cones, 10, 1000, "", "Nearest cones kept per plan (bounds the work).")
+          .number("merge_distance", &C::merge_distance, 0, 1, "m", "Cones closer than this are one cone.")
+          .boolean("use_colours", &C::use_colours, "Use cone colours; false plans colour-blind from geometry.", true)
+          .number("width_min", &C::width_min, 1, 10, "m", "Shortest edge the walk may cross.")
+          .number("width_max", &C::width_max, 2, 15, "m", "Longest crossing edge unless its colours say left-right.")
+          .number("crossing_max", &C::crossing_max, 2, 20, "m", "Longest crossing edge between a left and a right cone.")
+          .number("nominal_width", &C::nominal_width, 2, 10, "m", "Expected track width before the walk measured it.")
+          .number("start_radius", &C::start_radius, 1, 20, "m", "First crossing within this distance ahead.")
+          .number("start_angle_deg", &C::start_angle_deg, 10, 90, "deg", "First crossing within this bearing.")
+          .number("max_turn_deg", &C::max_turn_deg, 10, 180, "deg", "Largest heading change between midpoints.")
+          .number("min_crossing_cos", &C::min_crossing_cos, 0, 1, "", "Crossing edge width across travel over its length, least.")
+          .number("horizon", &C::horizon, 5, 100, "m", "Walks stop growing at this length.", true)
+          .integer("beam_width", &C::beam_width, 1, 200, "", "Partial walks kept per step.")
+          .integer("max_depth", &C::max_depth, 1, 500, "", "Steps per walk.")
+          .number("w_turn", &C::w_turn, 0, 100, "1/rad²", "Cost of heading change.")
+          .number("w_width", &C::w_width, 0, 100, "", "Cost of relative width change.")
+          .number("w_unknown", &C::w_unknown, 0, 100, "", "Cost per crossed cone of unknown side.")
+          .number("w_colour_conflict", &C::w_colour_conflict, 0, 100, "", "Cost per cone whose colour says the other side.")
+          .number("w_boundary_bend", &C::w_boundary_bend, 0, 100, "1/rad²", "Cost of boundary bend beyond the free bend.")
+          .number("boundary_free_bend_deg", &C::boundary_free_bend_deg, 0, 180, "deg", "Boundary bend per cone that costs nothing.")
+          .number("w_boundary_gap", &C::w_boundary_gap, 0, 100, "1/m²", "Cost of boundary cone spacing beyond the maximum.")
+          .number("boundary_spacing_max", &C::boundary_spacing_max, 1, 20, "m", "Boundary cone spacing that costs nothing.")
+          .number("w_length", &C::w_length, 0, 10, "1/m", "Reward per metre of walk.")
+          .number("w_start", &C::w_start, 0, 10, "1/m", "Cost per metre from the car to the first midpoint.")
+          .number("max_score", &C::max_score, -100, 100, "", "A best walk scoring worse is no plan.")
+          .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the planned path.")
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 50, "m", "Ripples shorter than this are smoothed out.", true)
+          .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")
+          .number("fallback_below", &C::fallback_below, 0, 50, "m", "Walks ending nearer try the single-boundary fallback.")
+          .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)
+          .number("time_budget", &C::time_budget, 0.001, 1, "s", "A plan slower than this is late (a fault).", true);
+  return s;
+}
+
+const ConfigSection<FollowerConfig>& follower_section() {
+  using C = FollowerConfig;
+  static const auto s =
+      ConfigSection<C>("control.follower")
+          .string("type", &C::type, {"pure_pursuit", "stanley", "lqr"}, "Path-following law.")
+          .number("wheelbase", &C::wheelbase, 0.5, 5, "m", "Rear axle to front axle.")
+          .number("max_steer", &C::max_steer, 0.05, 1.0, "rad", "Front wheel angle limit.")
+          .number("latency", &C::latency, 0, 1, "s", "Sensing-to-wheel delay the pose is predicted over.", true)
+          .number("pp_gain", &C::pp_gain, 0, 5, "s", "Pure pursuit look-ahead per m/s (k in k·v + L0).", true)
+          .number("pp_min", &C::pp_min, 0.5, 20, "m", "Pure pursuit look-ahead at standstill (L0).", true)
+          .number("pp_max", &C::pp_max, 1, 50, "m", "Pure pursuit longest look-ahead.", true)
+          .number("stanley_gain", &C::stanley_gain, 0, 50, "1/s", "Stanley cross-track gain k.", true)
+          .number("stanley_softening", &C::stanley_softening, 0.01, 20, "m/s", "Stanley low-speed softening.", true)
+          .number("lqr_q_lateral", &C::lqr_q_lateral, 0, 1e4, "1/m²", "LQR weight of lateral error.", true)
+          .number("lqr_q_heading", &C::lqr_q_heading, 0, 1e4, "1/rad²", "LQR weight of heading error.", true)
+          .number("lqr_r", &C::lqr_r, 1e-4, 1e4, "1/rad²", "LQR weight of steering.", true)
+          .number("lqr_dt", &C::lqr_dt, 0.005, 0.5, "s", "LQR discretisation step.")
+          .number("lqr_preview", &C::lqr_preview, 0, 2, "s", "LQR curvature feed-forward taken this far ahead.", true)
+          .number("speed_preview", &C::speed_preview, 0, 3, "s", "Target speed taken this far ahead on the path.", true)
+          .number("search_window", &C::search_window, 1, 100, "m", "Projection window around the last foot point.")
+          .number("max_offset", &C::max_offset, 0.5, 20, "m", "Farther from the path is off path (stop).");
+  return s;
+}
+
+const ConfigSection<SpeedConfig>& speed_section() {
+  using C = SpeedConfig;
+  static const auto s =
+      ConfigSection<C>("control.speed")
+          .number("mu", &C::mu, 0.1, 3, "", "Tyre-road friction coefficient of the car.", true)
+          .number("mu_margin_realtime", &C::mu_margin_realtime, 0.1, 1, "", "Share of mu when planning on what is seen.", true)
+          .number("mu_margin_known", &C::mu_margin_known, 0.1, 1, "", "Share of mu on a known path (lap 2, skid pad).", true)
+          .number("a_accel_max", &C::a_accel_max, 0.1, 30, "m/s²", "Traction acceleration limit.", true)
+          .number("a_brake_max", &C::a_brake_max, 0.1, 30, "m/s²", "Service brake deceleration limit.", true)
+          .number("power_max", &C::power_max, 0, 1e6, "W", "Power at the wheels; 0 = no power limit.")
+          .number("mass", &C::mass, 50, 2000, "kg", "Vehicle mass (for the power limit).")
+          .number("v_max", &C::v_max, 0.5, 60, "m/s", "Target speed cap.", true)
+          .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).", true);
+  return s;
+}
+
+const ConfigSection<MissionConfig>& mission_section() {
+  using C = MissionConfig;
+  static const auto s =
+      ConfigSection<C>("control.mission")
+          .number("stop_decel", &C::stop_decel, 0.5, 15, "m/s²", "Braking to standstill after the finish.", true)
+          .number("stop_distance", &C::stop_distance, 2, 200, "m", "Stop within this after the finish line.")
+          .number("acceleration_length", &C::acceleration_length, 10, 500, "m", "Acceleration: start line to finish line.")
+          .number("acceleration_stop_distance", &C::acceleration_stop_distance, 5, 500, "m", "Acceleration: stop within this after the finish.")
+          .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m", "Start pose to start line when no timing cones are seen.")
+          .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m", "EBS test: ask for Emergency this far past the start line.")
+          .number("skidpad_exit_length", &C::skidpad_exit_length, 5, 100, "m", "Skid pad exit lane past the crossing.")
+          .number("skidpad_entry_speed", &C::skidpad_entry_speed, 0.5, 20, "m/s", "Skid pad speed until the circles are fitted.", true)
+          .number("inspection_duration", &C::inspection_duration, 1, 600, "s", "Inspection steering sweep duration.")
+          .number("inspection_speed", &C::inspection_speed, 0, 5, "m/s", "Inspection wheel speed.")
+          .number("inspection_period", &C::inspection_period, 0.5, 30, "s", "Inspection sweep period.")
+          .number("inspection_amplitude", &C::inspection_amplitude, 0, 1, "", "Share of the steering limit swept.");
+  return s;
+}
+
+const ConfigSection<SupervisorConfig>& supervisor_section() {
+  using C = SupervisorConfig;
+  static const auto s =
+      ConfigSection<C>("control.supervisor")
+          .number("lidar_timeout", &C::lidar_timeout, 0.05, 10, "s", "No cone detections this long: slow down.")
+          .number("lidar_stop_timeout", &C::lidar_stop_timeout, 0.1, 30, "s", "No cone detections this long: controlled stop.")
+          .number("pose_timeout", &C::pose_timeout, 0.02, 5, "s", "No pose this long: controlled stop.")
+          .number("vcu_timeout", &C::vcu_timeout, 0.02, 5, "s", "No VCU status this long: controlled stop.")
+          .number("plan_timeout", &C::plan_timeout, 0.05, 10, "s", "No usable plan this long: controlled stop.")
+          .boolean("check_plan_time", &C::check_plan_time, "A plan over its compute budget is a fault (wall clock).")
+          .number("degraded_speed", &C::degraded_speed, 0, 20, "m/s", "Speed cap while the LiDAR is stale.", true)
+          .number("standstill_speed", &C::standstill_speed, 0.01, 2, "m/s", "Below this the car stands.")
+          .number("standstill_time", &C::standstill_time, 0, 10, "s", "Standing this long counts as standstill.")
+          .number("stop_timeout", &C::stop_timeout, 1, 60, "s", "A controlled stop longer than this asks for Emergency.")
+          .boolean("emergency_after_fault_stop", &C::emergency_after_fault_stop, "Ask for Emergency at standstill after a fault stop.")
+          .integer("max_faults", &C::max_faults, 1, 100000, "", "Faults kept in the log.");
+  return s;
+}
+
+const ConfigSection<LapCounterConfig>& lap_counter_section() {
+  using C = LapCounterConfig;
+  static const auto s =
+      ConfigSection<C>("control.laps")
+          .number("hysteresis", &C::hysteresis, 1, 100, "m", "Distance from the line before the next crossing counts.")
+          .number("min_lap_time", &C::min_lap_time, 0, 600, "s", "Crossings closer in time are ignored.")
+          .number("line_margin", &C::line_margin, 0, 10, "m", "The timing line's ends are extended by this.");
+  return s;
+}
+
+const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
+  using C = RecordedTrajectoryConfig;
+  static const auto s =
+      ConfigSection<C>("control.trajectory")
+          .number("sample_spacing", &C::sample_spacing, 0.05, 5, "m", "Spacing of recorded lap-1 poses.")
+          .integer("max_samples", &C::max_samples, 100, 1000000, "", "Recorded poses kept at most.")
+          .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the lap path.")
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 100, "m", "Ripples of the driven line shorter than this are smoothed out.")
+          .number("max_closure_gap", &C::max_closure_gap, 0.5, 50, "m", "The lap must come back this close to its start.")
+          .number("min_lap_length", &C::min_lap_length, 1, 10000, "m", "Shorter recorded laps are rejected.")
+          .boolean("recentre", &C::recentre, "Pull the lap onto the middle of the mapped cones.")
+          .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m", "Cones this close along and across count for recentring.");
+  return s;
+}
+
+const ConfigSection<AutopilotConfig>& autopilot_section() {
+  using C = AutopilotConfig;
+  static const auto s =
+      ConfigSection<C>("control")
+          .number("replan_period", &C::replan_period, 0.01, 5, "s", "The real-time plan is refreshed at least this often.")
+          .number("gnss_timeout", &C::gnss_timeout, 0.05, 10, "s", "No good GNSS fix this long: lap 2 falls back to real-time planning.");
+  return s;
+}
+
+void describe_control(ConfigSchema& schema) {
+  planner_section().describe(schema);
+  follower_section().describe(schema);
+  speed_section().describe(schema);
+  mission_section().describe(schema);
+  supervisor_section().describe(schema);
+  lap_counter_section().describe(schema);
+  trajectory_section().describe(schema);
+  autopilot_section().describe(schema);
+}
+
+AutopilotConfig read_control(const Config& config) {
+  AutopilotConfig c = autopilot_section().read(config);
+  c.planner = planner_section().read(config);
+  c.follower = follower_section().read(config);
+  c.speed = speed_section().read(config);
+  c.mission = mission_section().read(config);
+  c.supervisor = supervisor_section().read(config);
+  c.laps = lap_counter_section().read(config);
+  c.trajectory = trajectory_section().read(config);
+  return c;
+}
+
+}  // namespace fsd

@@ -1,0 +1,22 @@
+#pragma once
+// Configuration sections of the control library (keys under "control.*"); see docs/configuration.md once the
+// daemon gathers them. Tunable keys can change while the car runs (Autopilot::set_config).
+#include "common/config.hpp"
+#include "control/autopilot.hpp"
+
+namespace fsd {
+
+const ConfigSection<MidlinePlannerConfig>& planner_section();        // control.planner
+const ConfigSection<FollowerConfig>& follower_section();             // control.follower
+const ConfigSection<SpeedConfig>& speed_section();                   // control.speed
+const ConfigSection<MissionConfig>& mission_section();               // control.mission (laps: run.laps)
+const ConfigSection<SupervisorConfig>& supervisor_section();         // control.supervisor
+const ConfigSection<LapCounterConfig>& lap_counter_section();        // control.laps
+const ConfigSection<RecordedTrajectoryConfig>& trajectory_section(); // control.trajectory
+const ConfigSection<AutopilotConfig>& autopilot_section();           // control (loop timing)
+
+// Every control section into a schema, and all of them back into one AutopilotConfig.
+void describe_control(ConfigSchema& schema);
+AutopilotConfig read_control(const Config& config);
+
+}  // namespace fsd

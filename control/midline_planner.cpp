@@ -1,0 +1,424 @@
+#include "control/midline_planner.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "control/smoothing.hpp"
+#include "control/triangulation.hpp"
+
+namespace fsd {
+
+namespace {
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Which side of the track a cone marks: +1 left, −1 right, 0 unknown.
+int side_of_role(ConeRole r) {
+  if (r == ConeRole::Left) return 1;
+  if (r == ConeRole::Right) return -1;
+  return 0;
+}
+
+struct LocalCone {
+  Vec2 p;
+  int side = 0;  // from colour
+};
+
+// One step of a walk: the car crossed `edge` into triangle `next_tri` (−1: left the triangulation).
+struct Node {
+  int edge = -1;
+  int next_tri = -1;
+  int parent = -1;
+  Vec2 m = Vec2::Zero();       // edge midpoint
+  Vec2 normal = Vec2::Zero();  // unit normal of the edge in the direction of travel
+  double heading = 0;
+  double cost = 0;
+  double length = 0;
+  double width_ref = 0;
+  // The last two cones passed on each side (0 left, 1 right): the boundaries as the walk has seen them.
+  std::array<int, 2> last{-1, -1}, prev{-1, -1};
+};
+
+class Walker {
+ public:
+  Walker(const MidlinePlannerConfig& c, const std::vector<LocalCone>& cones, const Triangulation& tri)
+      : c_(c), cones_(cones), tri_(tri) {
+    crossable_.resize(tri.edges.size());
+    for (std::size_t i = 0; i < tri.edges.size(); ++i) {
+      const auto& e = tri.edges[i];
+      const LocalCone& a = cones_[static_cast<std::size_t>(e.a)];
+      const LocalCone& b = cones_[static_cast<std::size_t>(e.b)];
+      const double len = (a.p - b.p).norm();
+      const bool left_right = a.side * b.side == -1;
+      crossable_[i] = len >= c.width_min && len <= (left_right ? c.crossing_max : c.width_max);
+    }
+  }
+
+  // Best walk from the car (origin, heading +x: the planner works in the vehicle frame), as midpoints.
+  std::vector<Vec2> walk() {
+    seed();
+    for (int depth = 0; depth < c_.max_depth && !beam_.empty(); ++depth) {
+      std::map<std::pair<int, int>, int> best_of;  // (edge, next triangle) → candidate node
+      std::vector<int> candidates;
+      for (const int u : beam_) {
+        const Node nu = nodes_[static_cast<std::size_t>(u)];
+        if (nu.length >= c_.horizon || nu.next_tri < 0) {
+          finals_.push_back(u);
+          continue;
+        }
+        int expansions = 0;
+        for (const int f : tri_.triangle_edges[static_cast<std::size_t>(nu.next_tri)]) {
+          Node nn;
+          if (f == nu.edge || !crossable_[static_cast<std::size_t>(f)] || !step(u, nu, f, nn)) continue;
+          ++expansions;
+          const int id = push(nn);
+          const auto key = std::make_pair(f, nn.next_tri);
+          const auto it = best_of.find(key);
+          if (it == best_of.end()) {
+            best_of.emplace(key, id);
+            candidates.push_back(id);
+          } else if (score(id) < score(it->second)) {
+            std::replace(candidates.begin(), candidates.end(), it->second, id);
+            it->second = id;
+          }
+        }
+        if (expansions == 0) finals_.push_back(u);
+      }
+      std::sort(candidates.begin(), candidates.end(), [&](int a, int b) { return score(a) < score(b); });
+      if (candidates.size() > static_cast<std::size_t>(c_.beam_width))
+        candidates.resize(static_cast<std::size_t>(c_.beam_width));
+      beam_ = std::move(candidates);
+    }
+    finals_.insert(finals_.end(), beam_.begin(), beam_.end());
+    if (finals_.empty()) return {};
+    const int best = *std::min_element(finals_.begin(), finals_.end(), [&](int a, int b) { return score(a) < score(b); });
+    // Even the best walk may be implausible (the track ends, or only the next stretch of track is in view).
+    if (score(best) > c_.max_score) return {};
+    std::vector<Vec2> out;
+    for (int u = best; u >= 0; u = nodes_[static_cast<std::size_t>(u)].parent)
+      out.push_back(nodes_[static_cast<std::size_t>(u)].m);
+    std::reverse(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  const Vec2& cone(int i) const { return cones_[static_cast<std::size_t>(i)].p; }
+  Vec2 midpoint(int e) const {
+    const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
+    return 0.5 * (cone(ed.a) + cone(ed.b));
+  }
+  Vec2 edge_normal(int e) const {
+    const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
+    const Vec2 t = (cone(ed.b) - cone(ed.a)).normalized();
+    return {-t.y(), t.x()};
+  }
+  Vec2 third_vertex(int t, int e) const {
+    const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
+    for (const int v : tri_.triangles[static_cast<std::size_t>(t)])
+      if (v != ed.a && v != ed.b) return cone(v);
+    return cone(ed.a);
+  }
+  // Side (+1 left, −1 right) of vertex v when crossing edge e along normal n.
+  int crossing_side(int v, int e, const Vec2& n) const { return cross2(n, cone(v) - midpoint(e)) > 0 ? 1 : -1; }
+
+  // The walk from node u across edge f into the next triangle; false when the step is implausible.
+  bool step(int u, const Node& nu, int f, Node& nn) const {
+    const auto& e = tri_.edges[static_cast<std::size_t>(f)];
+    const Vec2 m = midpoint(f);
+    Vec2 n = edge_normal(f);
+    if (n.dot(m - third_vertex(nu.next_tri, f)) < 0) n = -n;
+    const Vec2 d = m - nu.m;
+    const double len = d.norm();
+    const Vec2 across = cone(e.b) - cone(e.a);
+    double heading = nu.heading, turn = 0, width = -1;
+    if (len > 0.3) {
+      heading = std::atan2(d.y(), d.x());
+      turn = wrap_angle(heading - nu.heading);
+      width = std::abs(cross2(d / len, across));
+      // A crossing edge lies across the direction of travel (radial in a hairpin, diagonal between staggered
+      // cones); one nearly along it is a boundary seen from an angle.
+      if (width < c_.min_crossing_cos * across.norm()) return false;
+    }
+    if (std::abs(turn) > deg2rad(c_.max_turn_deg)) return false;
+    if (revisits_or_flips(u, f, n)) return false;
+    nn.edge = f;
+    nn.next_tri = e.other(nu.next_tri);
+    nn.parent = u;
+    nn.m = m;
+    nn.normal = n;
+    nn.heading = heading;
+    nn.length = nu.length + len;
+    // A short step moves the path little sideways whatever its turn (hairpin fans, the last crossing at the
+    // edge of what is seen), so its turn costs in proportion.
+    nn.cost = nu.cost + c_.w_turn * turn * turn * std::min(1.0, len / 1.5) + side_cost(f, n);
+    nn.last = nu.last;
+    nn.prev = nu.prev;
+    nn.cost += boundary_cost(nn, f, n);
+    nn.width_ref = nu.width_ref;
+    if (width >= 0) {
+      const double rel = (width - nu.width_ref) / nu.width_ref;
+      nn.cost += c_.w_width * rel * rel;
+      nn.width_ref = 0.7 * nu.width_ref + 0.3 * width;
+    }
+    return true;
+  }
+
+  // Extends the walk's boundaries by the cones of edge e and returns the cost of their shape: a boundary
+  // bends gently from cone to cone, even round a hairpin's apex, and its cones are a few metres apart. A sharp
+  // bend or a long gap means the walk slipped across a boundary (the colour-blind failure: crossing between two
+  // cones of one side, or into the next stretch of a tightly packed track).
+  double boundary_cost(Node& nn, int e, const Vec2& n) const {
+    const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
+    double cost = 0;
+    for (const int v : {ed.a, ed.b}) {
+      const std::size_t k = crossing_side(v, e, n) > 0 ? 0 : 1;
+      if (nn.last[k] == v) continue;
+      if (nn.last[k] >= 0) {
+        const double gap = std::max(0.0, (cone(v) - cone(nn.last[k])).norm() - c_.boundary_spacing_max);
+        cost += c_.w_boundary_gap * gap * gap;
+      }
+      if (nn.last[k] >= 0 && nn.prev[k] >= 0) {
+        const Vec2 a = cone(nn.last[k]) - cone(nn.prev[k]), b = cone(v) - cone(nn.last[k]);
+        if (a.norm() > 1e-6 && b.norm() > 1e-6) {
+          const double bend = std::abs(std::atan2(cross2(a, b), a.dot(b)));
+          const double excess = std::max(0.0, bend - deg2rad(c_.boundary_free_bend_deg));
+          cost += c_.w_boundary_bend * excess * excess;
+        }
+      }
+      nn.prev[k] = nn.last[k];
+      nn.last[k] = v;
+    }
+    return cost;
+  }
+
+  double side_cost(int e, const Vec2& n) const {
+    const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
+    double cost = 0;
+    for (const int v : {ed.a, ed.b}) {
+      const int known = cones_[static_cast<std::size_t>(v)].side;
+      if (known == 0) cost += c_.w_unknown;
+      else if (known != crossing_side(v, e, n)) cost += c_.w_colour_conflict;
+    }
+    return cost;
+  }
+
+  // A walk may not cross an edge twice nor pass a cone on both sides (it would be going round it).
+  bool revisits_or_flips(int u, int e, const Vec2& n) const {
+    const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
+    const int sa = crossing_side(ed.a, e, n), sb = crossing_side(ed.b, e, n);
+    for (int w = u; w >= 0; w = nodes_[static_cast<std::size_t>(w)].parent) {
+      const Node& nw = nodes_[static_cast<std::size_t>(w)];
+      if (nw.edge == e) return true;
+      const auto& ew = tri_.edges[static_cast<std::size_t>(nw.edge)];
+      for (const int v : {ew.a, ew.b}) {
+        if (v == ed.a && crossing_side(v, nw.edge, nw.normal) != sa) return true;
+        if (v == ed.b && crossing_side(v, nw.edge, nw.normal) != sb) return true;
+      }
+    }
+    return false;
+  }
+
+  double score(int id) const {
+    const Node& n = nodes_[static_cast<std::size_t>(id)];
+    return n.cost - c_.w_length * std::min(n.length, c_.horizon);
+  }
+
+  int push(const Node& n) {
+    nodes_.push_back(n);
+    return static_cast<int>(nodes_.size()) - 1;
+  }
+
+  // First crossings: edges ahead of the car, entered from the car's side.
+  void seed() {
+    const double max_bearing = deg2rad(c_.start_angle_deg);
+    std::vector<int> seeds;
+    for (std::size_t i = 0; i < tri_.edges.size(); ++i) {
+      if (!crossable_[i]) continue;
+      const int f = static_cast<int>(i);
+      const Vec2 m = midpoint(f);
+      const double dist = m.norm();
+      if (m.x() <= 0 || dist > c_.start_radius || std::abs(std::atan2(m.y(), m.x())) > max_bearing) continue;
+      Vec2 n = edge_normal(f);
+      if (n.dot(m) < 0) n = -n;  // away from the car
+      const auto& e = tri_.edges[i];
+      int next = -1;
+      for (const int t : e.tri)
+        if (t >= 0 && n.dot(third_vertex(t, f) - m) > 0) next = t;
+      Node nn;
+      nn.edge = f;
+      nn.next_tri = next;
+      nn.m = m;
+      nn.normal = n;
+      nn.heading = std::atan2(m.y(), m.x());
+      nn.length = dist;
+      nn.width_ref = c_.nominal_width;
+      boundary_cost(nn, f, n);
+      const double w = std::abs(cross2(m / std::max(dist, 1e-6), cone(e.b) - cone(e.a)));
+      if (dist > 0.3 && w < c_.min_crossing_cos * (cone(e.b) - cone(e.a)).norm()) continue;
+      const double rel = (w - c_.nominal_width) / c_.nominal_width;
+      nn.cost = c_.w_turn * nn.heading * nn.heading + c_.w_start * dist + side_cost(f, n) + c_.w_width * rel * rel;
+      seeds.push_back(push(nn));
+    }
+    std::sort(seeds.begin(), seeds.end(), [&](int a, int b) { return score(a) < score(b); });
+    if (seeds.size() > static_cast<std::size_t>(c_.beam_width)) seeds.resize(static_cast<std::size_t>(c_.beam_width));
+    beam_ = std::move(seeds);
+  }
+
+  const MidlinePlannerConfig& c_;
+  const std::vector<LocalCone>& cones_;
+  const Triangulation& tri_;
+  std::vector<bool> crossable_;
+  std::vector<Node> nodes_;
+  std::vector<int> beam_, finals_;
+};
+
+// Fallback where one boundary is missing over a stretch (cones knocked over, not yet seen): follow the
+// boundary that is there, half a track width inside it. Cones of unknown colour count for the side of the car
+// they are on. The chain runs forward from the car, cone to nearest cone ahead, without sharp bends.
+std::vector<Vec2> boundary_offset_walk(const std::vector<LocalCone>& cones, const MidlinePlannerConfig& c) {
+  std::vector<Vec2> best;
+  for (const int side : {1, -1}) {
+    std::vector<Vec2> pts;
+    for (const auto& k : cones) {
+      const int s = k.side != 0 ? k.side : (std::abs(k.p.y()) > 0.5 ? (k.p.y() > 0 ? 1 : -1) : 0);
+      if (s == side && k.p.x() > -1.0) pts.push_back(k.p);
+    }
+    std::vector<Vec2> chain;
+    Vec2 at = Vec2::Zero(), dir = Vec2::UnitX();
+    std::vector<bool> used(pts.size(), false);
+    for (;;) {
+      int next = -1;
+      double nd = c.width_max + 1.0;  // boundary cones are at most a few metres apart
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        if (used[i]) continue;
+        const Vec2 d = pts[i] - at;
+        const double dist = d.norm();
+        const bool first = chain.empty();
+        // First cone: beside or ahead of the car on its side; then the next one ahead within a 60° bend.
+        const bool ok = first ? (pts[i].x() < c.start_radius && dist < c.start_radius + 2.0)
+                              : (dist > 0.5 && d.dot(dir) > std::cos(deg2rad(60.0)) * dist);
+        if (ok && dist < nd) {
+          nd = dist;
+          next = static_cast<int>(i);
+        }
+      }
+      if (next < 0) break;
+      used[static_cast<std::size_t>(next)] = true;
+      const Vec2 p = pts[static_cast<std::size_t>(next)];
+      if (!chain.empty()) dir = (p - chain.back()).normalized();
+      chain.push_back(p);
+      at = p;
+    }
+    if (chain.size() < 2) continue;
+    std::vector<Vec2> offset;
+    for (std::size_t i = 0; i < chain.size(); ++i) {
+      const Vec2 t = (chain[std::min(i + 1, chain.size() - 1)] - chain[i == 0 ? 0 : i - 1]).normalized();
+      const Vec2 inward = -side * Vec2(-t.y(), t.x());  // away from the boundary, into the track
+      offset.push_back(chain[i] + inward * (0.5 * c.nominal_width));
+    }
+    if (offset.size() > best.size()) best = std::move(offset);
+  }
+  return best;
+}
+
+}  // namespace
+
+MidlinePlanner::MidlinePlanner(MidlinePlannerConfig config, ColourConvention convention, SpeedLimits limits)
+    : config_(config), convention_(std::move(convention)), speed_(limits) {}
+
+PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleState& state) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  PlanResult result;
+  auto finish = [&](PlanResult r) {
+    r.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.over_budget = r.compute_time > config_.time_budget;
+    return r;
+  };
+  const Pose2& pose = state.pose;
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
+    result.reason = "vehicle pose not finite";
+    return finish(std::move(result));
+  }
+
+  // Cones in the vehicle frame, nearest first, merged when closer than merge_distance.
+  struct Near {
+    double d2;
+    LocalCone c;
+  };
+  std::vector<Near> near;
+  near.reserve(cones.size());
+  for (const Cone& c : cones) {
+    if (!c.position.allFinite()) continue;
+    const Vec2 local = pose.inverse_transform(c.position.head<2>());
+    if (local.x() < -config_.behind || local.squaredNorm() > config_.range * config_.range) continue;
+    const int side = config_.use_colours ? side_of_role(convention_.role_of(c.colour)) : 0;
+    near.push_back({local.squaredNorm(), {local, side}});
+  }
+  std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.d2 < b.d2; });
+  std::vector<LocalCone> local;
+  std::vector<Vec2> positions;
+  for (const auto& n : near) {
+    if (local.size() >= static_cast<std::size_t>(std::max(config_.max_cones, 3))) break;
+    bool merged = false;
+    for (auto& l : local) {
+      if ((l.p - n.c.p).squaredNorm() < config_.merge_distance * config_.merge_distance) {
+        if (l.side == 0) l.side = n.c.side;
+        merged = true;
+        break;
+      }
+    }
+    if (!merged) {
+      local.push_back(n.c);
+      positions.push_back(n.c.p);
+    }
+  }
+  result.cones_used = static_cast<int>(local.size());
+  const Triangulation tri = delaunay(positions);
+  result.triangles = static_cast<int>(tri.triangles.size());
+
+  Walker walker(config_, local, tri);
+  std::vector<Vec2> mids = walker.walk();
+  const double reach = mids.empty() ? 0.0 : mids.back().norm();
+  if (reach < config_.fallback_below) {
+    std::vector<Vec2> side = boundary_offset_walk(local, config_);
+    if (!side.empty() && side.back().norm() > reach + 1.0) {
+      mids = std::move(side);
+      result.single_boundary = true;
+    }
+  }
+  if (mids.empty()) {
+    result.reason = "no crossing edge ahead of the car";
+    return finish(std::move(result));
+  }
+
+  // Polyline from just behind the car, through the car, then the midpoints: the path starts where the car is
+  // and tangent to its heading, so the follower meets no step at the start; the walk's midpoints then pull it
+  // onto the centre line. Midpoints beside the car would kink the start and are left out of the polyline.
+  Path raw;
+  raw.stamp = state.stamp;
+  raw.points.push_back({Vec2(-1.0, 0.0), 0, 0, 0, 0});
+  raw.points.push_back({Vec2(0.0, 0.0), 0, 0, 0, 0});
+  std::size_t first = 0;
+  while (first < mids.size() && mids[first].x() < 1.0 && mids[first].norm() < 2.0) ++first;
+  for (std::size_t i = first; i < mids.size(); ++i) raw.points.push_back({mids[i], 0, 0, 0, 0});
+  compute_geometry(raw);
+  if (raw.length() - 1.0 < config_.min_length) {
+    result.reason = "planned path too short (" + std::to_string(raw.length() - 1.0) + " m)";
+    return finish(std::move(result));
+  }
+  Path smooth = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
+  for (auto& p : smooth.points) {
+    p.p = pose.transform(p.p);
+    p.yaw = wrap_angle(p.yaw + pose.yaw);
+  }
+  speed_.apply(smooth, state.speed(), config_.end_speed);
+  for (const Vec2& m : mids) result.midpoints.push_back(pose.transform(m));
+  result.path = std::move(smooth);
+  result.ok = true;
+  return finish(std::move(result));
+}
+
+}  // namespace fsd

@@ -1,0 +1,55 @@
+#pragma once
+// Mission-level settings and the pieces of the missions that are plain geometry: the car's limits for the
+// speed profiles, the acceleration straight fitted to its cones, and the braking to a stop after the finish.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/track.hpp"
+#include "common/types.hpp"
+#include "control/path.hpp"
+#include "control/speed_profile.hpp"
+
+namespace fsd {
+
+// The car's limits and how much of them each kind of path may use.
+struct SpeedConfig {
+  double mu = 1.2;                  // tyre–road friction of the car (estimate, or the virtual car's)
+  double mu_margin_realtime = 0.6;  // share of μ when planning on what is seen (lap 1, fallback, autocross)
+  double mu_margin_known = 0.92;    // share of μ on a known path (lap 2 and later, skid pad)
+  double a_accel_max = 6.0;         // m/s², traction
+  double a_brake_max = 8.0;         // m/s², service brakes
+  double power_max = 0.0;           // W at the wheels; 0 = no power limit
+  double mass = 230.0;              // kg (power limit only)
+  double v_max = 20.0;              // m/s: never faster
+  double v_max_realtime = 8.0;      // m/s: cap when planning on what is seen
+  SpeedLimits realtime() const;
+  SpeedLimits known() const;
+};
+
+struct MissionConfig {
+  int laps = 2;                          // trackdrive laps (FSAC 2017: 2, FSG: 10); autocross is 1
+  double stop_decel = 4.0;               // m/s²: braking to standstill after the finish
+  double stop_distance = 25.0;           // m: stop within this after the finish line (trackdrive, skid pad)
+  double acceleration_length = 75.0;     // m: start line to finish line
+  double acceleration_stop_distance = 70.0;  // m: stop within this after the finish (the braking zone is 100 m)
+  double acceleration_start_offset = 0.0;    // m from the start pose to the start line when no timing cones are seen
+  double ebs_trigger_distance = 40.0;    // m past the start line where the EBS test asks for Emergency
+  double skidpad_exit_length = 25.0;     // m of exit lane past the crossing
+  double skidpad_entry_speed = 4.0;      // m/s until the circles are fitted
+  double inspection_duration = 25.0;     // s of steering sweep
+  double inspection_speed = 1.0;         // m/s (wheels turning)
+  double inspection_period = 4.0;        // s per steering sweep
+  double inspection_amplitude = 0.8;     // share of the steering limit swept
+};
+
+// The acceleration lane's centre line (the rules make it straight): direction from the principal axis of the
+// cones near the start heading, lateral position midway between the cones on either side; a path from the
+// start pose's foot for `length` m. nullopt when fewer than 4 cones on each side are known.
+std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Pose2& start, double length, double ds);
+
+// Target speed while stopping after the finish: v² = 2·a·(d_stop − travelled), with a the larger of the
+// configured deceleration and what stopping within 80 % of `max_distance` from `v_finish` needs.
+double stop_speed(double v_finish, double travelled, double decel, double max_distance);
+
+}  // namespace fsd

@@ -1,0 +1,62 @@
+#pragma once
+// Lap 2 (paper §IV): the trajectory the car drove on lap 1, recorded pose by pose, closed at the loop,
+// resampled and smoothed, optionally pulled onto the centre of the mapped corridor, with a speed at every
+// waypoint from the lap's forward–backward pass. Followed on the fused GNSS-INS pose.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/track.hpp"
+#include "common/types.hpp"
+#include "control/path.hpp"
+#include "control/speed_profile.hpp"
+
+namespace fsd {
+
+struct RecordedTrajectoryConfig {
+  double sample_spacing = 0.3;       // m between recorded poses
+  int max_samples = 20000;           // bound on memory (6 km at the default spacing)
+  double ds = 0.25;                  // m, spacing of the lap path
+  double smoothing_wavelength = 12.0; // m: ripples of the driven line shorter than this are smoothed out
+  double max_closure_gap = 6.0;      // m: the recorded lap's end must come back this close to its start
+  double min_lap_length = 30.0;      // m
+  bool recentre = true;              // pull the line to the middle of the mapped cones
+  double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
+};
+
+struct TrajectoryResult {
+  std::optional<Path> path;   // closed lap with speeds, or nothing
+  std::string reason;         // why not, when empty
+  double closure_gap = 0;     // m
+  double recentre_rms = 0;    // m, how far recentring moved the line
+};
+
+class RecordedTrajectory {
+ public:
+  explicit RecordedTrajectory(RecordedTrajectoryConfig config = {}) : config_(config) {}
+
+  void record(const VehicleState& state);  // every pose of lap 1; keeps one per sample_spacing
+  void clear() { samples_.clear(); }
+  std::size_t size() const { return samples_.size(); }
+
+  // The closed lap from the samples stamped within [t0, t1] (the lap's line crossings, or the run start).
+  // `map_cones` (map frame) are used for recentring when enabled; may be empty.
+  TrajectoryResult build(Stamp t0, Stamp t1, const std::vector<Cone>& map_cones, const ColourConvention& convention,
+                         const SpeedProfile& speed) const;
+
+  const RecordedTrajectoryConfig& config() const { return config_; }
+
+ private:
+  struct Sample {
+    Stamp t;
+    Vec2 p;
+  };
+  RecordedTrajectoryConfig config_;
+  std::vector<Sample> samples_;
+};
+
+// Moves every point of a closed path sideways to the middle between the nearest mapped cones on its left and on
+// its right (within `reach`); returns the RMS shift. Points without cones on both sides stay.
+double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention, double reach);
+
+}  // namespace fsd

@@ -1,0 +1,93 @@
+#include "control/speed_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fsd {
+
+double SpeedProfile::curvature_limit(double kappa) const {
+  const double k = std::abs(kappa);
+  if (k < 1e-9) return limits_.v_max;
+  return std::min(limits_.v_max, std::sqrt(limits_.mu * limits_.g / k));
+}
+
+namespace {
+// Longitudinal grip left by the lateral acceleration v²κ on the friction circle.
+double friction_left(const SpeedLimits& l, double v, double kappa) {
+  const double total = l.mu * l.g;
+  const double ay = v * v * std::abs(kappa);
+  return ay >= total ? 0.0 : std::sqrt(total * total - ay * ay);
+}
+}  // namespace
+
+double SpeedProfile::max_acceleration(double v, double kappa) const {
+  double a = std::min(friction_left(limits_, v, kappa), limits_.a_accel_max);
+  if (limits_.power_max > 0 && limits_.mass > 0) a = std::min(a, limits_.power_max / (limits_.mass * std::max(v, 0.5)));
+  return std::max(a, 0.0);
+}
+
+double SpeedProfile::max_deceleration(double v, double kappa) const {
+  return std::max(0.0, std::min(friction_left(limits_, v, kappa), limits_.a_brake_max));
+}
+
+void SpeedProfile::apply(Path& path, double v_start, double v_end) const {
+  auto& pts = path.points;
+  const std::size_t n = pts.size();
+  if (n == 0) return;
+  for (auto& p : pts) p.v = curvature_limit(p.kappa);
+  if (n == 1) {
+    pts[0].v = std::min(pts[0].v, std::max(0.0, v_start));
+    return;
+  }
+  const bool closed = path.closed && n >= 3;
+  const double len = path.length();
+  auto ds_between = [&](std::size_t i, std::size_t j) {  // j follows i
+    return j > i ? pts[j].s - pts[i].s : len - pts[i].s + pts[j].s;
+  };
+  // Passes accelerate from one point to the next: v_next² ≤ v² + 2·a(v, κ)·ds.
+  auto forward = [&](std::size_t i, std::size_t j) {
+    const double v = pts[i].v;
+    const double reach = std::sqrt(v * v + 2.0 * max_acceleration(v, pts[i].kappa) * ds_between(i, j));
+    pts[j].v = std::min(pts[j].v, reach);
+  };
+  auto backward = [&](std::size_t j, std::size_t i) {  // i precedes j
+    const double v = pts[j].v;
+    const double reach = std::sqrt(v * v + 2.0 * max_deceleration(v, pts[j].kappa) * ds_between(i, j));
+    pts[i].v = std::min(pts[i].v, reach);
+  };
+  if (!closed) {
+    pts.front().v = std::min(pts.front().v, std::max(0.0, v_start));
+    for (std::size_t i = 0; i + 1 < n; ++i) forward(i, i + 1);
+    pts.back().v = std::min(pts.back().v, std::max(0.0, v_end));
+    for (std::size_t j = n - 1; j > 0; --j) backward(j, j - 1);
+    return;
+  }
+  // A lap: start both passes at the slowest curvature limit, where the speed is known to be at its limit,
+  // and go once round.
+  const auto start = static_cast<std::size_t>(
+      std::min_element(pts.begin(), pts.end(), [](const PathPoint& a, const PathPoint& b) { return a.v < b.v; }) -
+      pts.begin());
+  for (std::size_t k = 0; k < n; ++k) forward((start + k) % n, (start + k + 1) % n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t j = (start + n - k) % n;
+    backward(j, (j + n - 1) % n);
+  }
+}
+
+double travel_time(const Path& path) {
+  const auto& pts = path.points;
+  if (pts.size() < 2) return 0.0;
+  double t = 0;
+  const std::size_t segs = path.closed ? pts.size() : pts.size() - 1;
+  for (std::size_t i = 0; i < segs; ++i) {
+    const std::size_t j = (i + 1) % pts.size();
+    const double ds = (pts[j].p - pts[i].p).norm();
+    const double v = 0.5 * (pts[i].v + pts[j].v);
+    if (v <= 1e-9) return ds > 1e-9 ? std::numeric_limits<double>::infinity() : t;
+    t += ds / v;
+  }
+  return t;
+}
+
+}  // namespace fsd

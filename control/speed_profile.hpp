@@ -1,0 +1,42 @@
+#pragma once
+// Speed along a path under the car's limits: a forward–backward pass with the friction circle
+// (√(ax² + ay²) ≤ μg, ay = v²κ), the motor's acceleration and power limits, the brake limit and v_max.
+// Open paths run from the car's current speed to an end speed; closed paths (laps) are periodic.
+#include "control/path.hpp"
+
+namespace fsd {
+
+struct SpeedLimits {
+  double mu = 0.9;            // friction coefficient the profile may use (already including any margin)
+  double g = 9.81;            // m/s²
+  double a_accel_max = 5.0;   // motor traction limit, m/s²
+  double a_brake_max = 8.0;   // service brake limit, m/s²
+  double power_max = 0.0;     // power at the wheels, W; 0 = no power limit
+  double mass = 230.0;        // kg, with driver-less payload; used with power_max only
+  double v_max = 20.0;        // m/s
+};
+
+class SpeedProfile {
+ public:
+  explicit SpeedProfile(SpeedLimits limits = {}) : limits_(limits) {}
+  const SpeedLimits& limits() const { return limits_; }
+
+  // Highest steady speed on curvature kappa: √(μg/|κ|), capped at v_max.
+  double curvature_limit(double kappa) const;
+  // Largest acceleration (≥ 0) at speed v on curvature kappa: friction circle, traction and power.
+  double max_acceleration(double v, double kappa) const;
+  // Largest deceleration (≥ 0) at speed v on curvature kappa: friction circle and brakes.
+  double max_deceleration(double v, double kappa) const;
+
+  // Fills v of every point. Open path: starting from v_start, ending no faster than v_end.
+  // Closed path: periodic, v_start and v_end ignored.
+  void apply(Path& path, double v_start, double v_end) const;
+
+ private:
+  SpeedLimits limits_;
+};
+
+// Time to drive the path at its speeds (trapezoidal in 1/v); +inf if it stops somewhere inside.
+double travel_time(const Path& path);
+
+}  // namespace fsd

@@ -1,0 +1,211 @@
+// The AS supervisor: motion only in Driving, Ready asked only when healthy at standstill, watchdogs on each
+// stream and on the planner, controlled stop then Emergency, Finished only at standstill after the finish,
+// and the fault log (once per onset, with time, source, what and action).
+#include <gtest/gtest.h>
+
+#include "control/as_supervisor.hpp"
+
+namespace fsd {
+namespace {
+
+VcuStatus vcu(Stamp t, AsState s) {
+  VcuStatus v;
+  v.stamp = t;
+  v.as_state = s;
+  v.mission = Mission::Trackdrive;
+  return v;
+}
+
+void feed_all(AsSupervisor& sup, Stamp t, AsState s) {
+  sup.on_vcu(vcu(t, s));
+  sup.heartbeat(InputStream::Pose, t);
+  sup.heartbeat(InputStream::Lidar, t);
+  sup.on_plan(t, true, 0.001, 0.025);
+}
+
+TEST(AsSupervisor, NoMotionOutsideDriving) {
+  for (const AsState s : {AsState::Off, AsState::Ready, AsState::Emergency, AsState::Finished}) {
+    AsSupervisor sup;
+    sup.set_mission(Mission::Trackdrive);
+    for (double t = 0; t < 2; t += 0.1) {
+      feed_all(sup, t, s);
+      const auto d = sup.evaluate(t, 0.0, false);
+      EXPECT_FALSE(d.may_move) << to_string(s);
+      EXPECT_EQ(d.speed_cap, 0.0);
+    }
+  }
+}
+
+TEST(AsSupervisor, AsksForReadyOnlyWhenHealthyAndStanding) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  feed_all(sup, 0.0, AsState::Off);
+  EXPECT_EQ(sup.evaluate(0.0, 0.0, false).request, AsRequest::None);  // not yet standing for 0.5 s
+  feed_all(sup, 1.0, AsState::Off);
+  EXPECT_EQ(sup.evaluate(1.0, 0.0, false).request, AsRequest::Ready);
+  // No LiDAR for a while: not healthy.
+  sup.on_vcu(vcu(2.0, AsState::Off));
+  sup.heartbeat(InputStream::Pose, 2.0);
+  EXPECT_EQ(sup.evaluate(2.0, 0.0, false).request, AsRequest::None);
+  // Rolling: no Ready.
+  feed_all(sup, 3.0, AsState::Off);
+  EXPECT_EQ(sup.evaluate(3.0, 1.0, false).request, AsRequest::None);
+  // No mission: no Ready.
+  AsSupervisor none;
+  feed_all(none, 0, AsState::Off);
+  feed_all(none, 1, AsState::Off);
+  EXPECT_EQ(none.evaluate(1.0, 0.0, false).request, AsRequest::None);
+}
+
+TEST(AsSupervisor, StalePoseStopsThenAsksForEmergencyAtStandstill) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  double t = 0;
+  for (; t < 1.0; t += 0.01) {
+    feed_all(sup, t, AsState::Driving);
+    EXPECT_TRUE(sup.evaluate(t, 5.0, false).may_move);
+  }
+  // The pose stops arriving; everything else keeps coming.
+  const double last_pose = t - 0.01;
+  Supervision d;
+  for (; t < 1.5; t += 0.01) {
+    sup.on_vcu(vcu(t, AsState::Driving));
+    sup.heartbeat(InputStream::Lidar, t);
+    sup.on_plan(t, true, 0.001, 0.025);
+    d = sup.evaluate(t, 5.0, false);
+    if (t - last_pose <= 0.2 - 1e-9) {
+      EXPECT_TRUE(d.may_move) << t;
+    }
+  }
+  EXPECT_FALSE(d.may_move);
+  EXPECT_TRUE(d.controlled_stop);
+  EXPECT_EQ(d.speed_cap, 0.0);
+  ASSERT_EQ(sup.faults().size(), 1u);
+  EXPECT_EQ(sup.faults()[0].source, "pose");
+  EXPECT_EQ(sup.faults()[0].action, "controlled stop");
+  EXPECT_NEAR(sup.faults()[0].t, last_pose + 0.2, 0.02);
+  // The stop is latched even if the pose comes back; Emergency once standing.
+  feed_all(sup, 2.0, AsState::Driving);
+  EXPECT_TRUE(sup.evaluate(2.0, 0.0, false).controlled_stop);
+  feed_all(sup, 2.6, AsState::Driving);
+  EXPECT_EQ(sup.evaluate(2.6, 0.0, false).request, AsRequest::Emergency);
+  EXPECT_EQ(sup.faults().size(), 1u);  // logged once
+}
+
+TEST(AsSupervisor, LatePlanIsAFaultNotAStaleCommand) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  feed_all(sup, 0.0, AsState::Driving);
+  EXPECT_TRUE(sup.evaluate(0.0, 5.0, false).may_move);
+  sup.on_plan(0.1, true, 0.080, 0.025);  // 80 ms for a 25 ms budget
+  sup.on_vcu(vcu(0.1, AsState::Driving));
+  sup.heartbeat(InputStream::Pose, 0.1);
+  sup.heartbeat(InputStream::Lidar, 0.1);
+  const auto d = sup.evaluate(0.1, 5.0, false);
+  EXPECT_TRUE(d.controlled_stop);
+  ASSERT_FALSE(sup.faults().empty());
+  EXPECT_EQ(sup.faults().back().source, "planning");
+  EXPECT_NE(sup.faults().back().what.find("80.0 ms"), std::string::npos);
+}
+
+TEST(AsSupervisor, NoPlanForTooLongStops) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  feed_all(sup, 0.0, AsState::Driving);
+  Supervision d;
+  for (double t = 0.01; t < 0.8; t += 0.01) {
+    sup.on_vcu(vcu(t, AsState::Driving));
+    sup.heartbeat(InputStream::Pose, t);
+    sup.heartbeat(InputStream::Lidar, t);
+    sup.on_plan(t, false, 0.001, 0.025);  // the planner runs but finds nothing
+    d = sup.evaluate(t, 5.0, false);
+    if (t < 0.5 - 1e-9) {
+      EXPECT_TRUE(d.may_move) << t;
+    }
+  }
+  EXPECT_TRUE(d.controlled_stop);
+  EXPECT_EQ(sup.faults().back().source, "planning");
+}
+
+TEST(AsSupervisor, BriefLidarLossSlowsAndRecovers) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  Supervision d;
+  for (double t = 0; t < 5.0; t += 0.01) {
+    sup.on_vcu(vcu(t, AsState::Driving));
+    sup.heartbeat(InputStream::Pose, t);
+    sup.on_plan(t, true, 0.001, 0.025);
+    const bool lost = t > 2.0 && t < 3.0;  // 1 s without detections
+    if (!lost) sup.heartbeat(InputStream::Lidar, t);
+    d = sup.evaluate(t, 5.0, false);
+    ASSERT_TRUE(d.may_move) << t;
+    if (t > 2.35 && t < 2.99) {
+      EXPECT_DOUBLE_EQ(d.speed_cap, sup.config().degraded_speed) << t;
+    }
+    if (t > 3.05) {
+      EXPECT_GT(d.speed_cap, 100.0) << t;
+    }
+  }
+  ASSERT_EQ(sup.faults().size(), 1u);
+  EXPECT_EQ(sup.faults()[0].source, "lidar");
+  EXPECT_NE(sup.faults()[0].action.find("slow down"), std::string::npos);
+}
+
+TEST(AsSupervisor, LongLidarLossStops) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  Supervision d;
+  for (double t = 0; t < 4.0; t += 0.01) {
+    sup.on_vcu(vcu(t, AsState::Driving));
+    sup.heartbeat(InputStream::Pose, t);
+    sup.on_plan(t, true, 0.001, 0.025);
+    if (t < 1.0) sup.heartbeat(InputStream::Lidar, t);
+    d = sup.evaluate(t, 3.0, false);
+  }
+  EXPECT_TRUE(d.controlled_stop);
+}
+
+TEST(AsSupervisor, StaleVcuStops) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  feed_all(sup, 0.0, AsState::Driving);
+  sup.heartbeat(InputStream::Pose, 0.5);
+  sup.heartbeat(InputStream::Lidar, 0.5);
+  sup.on_plan(0.5, true, 0.001, 0.025);
+  const auto d = sup.evaluate(0.5, 5.0, false);
+  EXPECT_TRUE(d.controlled_stop);
+  EXPECT_EQ(sup.faults().front().source, "vcu");
+}
+
+TEST(AsSupervisor, FinishedOnlyAtStandstillAfterTheFinish) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  double t = 0;
+  auto step = [&](double speed, bool finished) {
+    feed_all(sup, t, AsState::Driving);
+    const auto d = sup.evaluate(t, speed, finished);
+    t += 0.1;
+    return d;
+  };
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(step(0.0, false).request, AsRequest::None);  // standing, not finished
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(step(3.0, true).request, AsRequest::None);   // finished, rolling
+  EXPECT_EQ(step(0.0, true).request, AsRequest::None);  // just stopped
+  Supervision d;
+  for (int i = 0; i < 6; ++i) d = step(0.0, true);
+  EXPECT_EQ(d.request, AsRequest::Finished);
+  EXPECT_TRUE(sup.faults().empty());
+}
+
+TEST(AsSupervisor, MissionFaultsAreLoggedOncePerOnset) {
+  AsSupervisor sup;
+  sup.report(1.0, "gnss", "fix lost", "fallback to real-time planning");
+  sup.report(1.1, "gnss", "fix lost", "fallback to real-time planning");
+  sup.report(2.0, "gnss", "fix lost", "", false);
+  sup.report(3.0, "gnss", "fix lost", "fallback to real-time planning");
+  ASSERT_EQ(sup.faults().size(), 2u);
+  EXPECT_DOUBLE_EQ(sup.faults()[0].t, 1.0);
+  EXPECT_DOUBLE_EQ(sup.faults()[1].t, 3.0);
+}
+
+}  // namespace
+}  // namespace fsd

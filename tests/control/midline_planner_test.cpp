@@ -1,0 +1,181 @@
+// Lap-1 midline planning on every shared trackdrive/autocross layout. The car is put on the true centre line
+// (rung midpoints of tests/control/track_truth.hpp) facing along the track and sees only the true cones up to
+// 15 m ahead, as the first lap's perception would; the planned path must stay near the true centre and clear
+// of every true cone. Then again with a fifth of the cones taken off the track, and with every colour unknown;
+// there the near field (the first 8 m, what the car drives before the next plans) is checked.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include "control/midline_planner.hpp"
+#include "tests/control/track_truth.hpp"
+
+namespace fsd {
+namespace {
+
+using test::TrackTruth;
+
+enum class Variant { AllCones, FifthRemoved, ColourBlind };
+
+// The track as the test presents it: a fifth of the cones taken away once (a seeded draw), or colours hidden.
+Track variant_of(Track track, Variant v) {
+  if (v == Variant::FifthRemoved) {
+    std::mt19937 rng(7);
+    std::shuffle(track.cones.begin(), track.cones.end(), rng);
+    track.cones.resize(track.cones.size() - track.cones.size() / 5);
+  }
+  if (v == Variant::ColourBlind)
+    for (auto& c : track.cones) c.colour = ConeColour::Unknown;
+  return track;
+}
+
+std::vector<Cone> visible_cones(const Track& track, const Pose2& car) {
+  std::vector<Cone> out;
+  for (const auto& c : track.cones) {
+    const Vec2 local = car.inverse_transform(c.position);
+    if (local.x() < 0 || local.norm() > 15.0) continue;
+    Cone cone;
+    cone.position = Vec3(c.position.x(), c.position.y(), 0);
+    cone.colour = c.colour;
+    out.push_back(cone);
+  }
+  return out;
+}
+
+// Limits on the checked part of the path. Track half widths are 1.5–2.4 m; a path point nearer than 0.5 m to a
+// cone's centre is taken as outside the track.
+struct Tolerance {
+  double reach;            // m: path points within this distance of the car are checked
+  double centre_max;       // m from the true centre line: a point farther is a bad placement
+  double clearance_min;    // m from the nearest true cone: a point nearer is a bad placement
+  double centre_rms;       // m, over every checked point of the track
+  double failed_fraction;  // placements where the planner may report no plan (it must say so, not guess)
+  double bad_fraction;     // placements whose checked path may be bad
+};
+
+struct Stats {
+  int placements = 0, failed = 0, bad = 0;
+  double worst_centre = 0, worst_clearance = 1e9, sum_sq = 0;
+  long samples = 0;
+};
+
+void run_track(const std::string& name, Variant variant, const Tolerance& tol) {
+  const Track full = test::shared_track(name);
+  const TrackTruth truth(full);
+  const Track track = variant_of(full, variant);
+  const MidlinePlanner planner({}, track.convention, SpeedLimits{});
+  Stats st;
+  for (const auto& rung : truth.rungs()) {
+    if (!rung.nearest) continue;
+    VehicleState state;
+    state.pose = {rung.mid.x(), rung.mid.y(), rung.heading};
+    state.vx = 5.0;
+    const auto cones = visible_cones(track, state.pose);
+    if (cones.size() < 4) continue;  // the end of an open layout: nothing to plan through
+    ++st.placements;
+    const PlanResult plan = planner.plan(cones, state);
+    if (!plan.ok) {
+      EXPECT_FALSE(plan.reason.empty());
+      ++st.failed;
+      continue;
+    }
+    bool bad = false;
+    for (const auto& p : plan.path.points) {
+      const Vec2 local = state.pose.inverse_transform(p.p);
+      if (local.x() < 0 || local.norm() > tol.reach) continue;
+      const double c = truth.centre_distance(p.p);
+      const double k = truth.cone_clearance(p.p);
+      st.worst_centre = std::max(st.worst_centre, c);
+      st.worst_clearance = std::min(st.worst_clearance, k);
+      st.sum_sq += c * c;
+      ++st.samples;
+      bad = bad || c > tol.centre_max || k < tol.clearance_min;
+    }
+    if (bad) ++st.bad;
+  }
+  const double rms = st.samples ? std::sqrt(st.sum_sq / static_cast<double>(st.samples)) : 0.0;
+  std::printf("  %-28s placements %4d no plan %3d bad %2d  centre max %.2f rms %.3f  clearance min %.2f\n",
+              name.c_str(), st.placements, st.failed, st.bad, st.worst_centre, rms, st.worst_clearance);
+  EXPECT_GT(st.placements, 10) << name;
+  EXPECT_LE(rms, tol.centre_rms) << name;
+  EXPECT_LE(st.failed, std::lround(tol.failed_fraction * st.placements)) << name;
+  EXPECT_LE(st.bad, std::lround(tol.bad_fraction * st.placements)) << name;
+}
+
+// The two layouts where the degraded variants are hardest: amz_fssim_thin packs its stretches of track within
+// 3–4 m of each other, and the autocross has a pointed 180° hairpin and a chicane that widens to 6 m. Without
+// colours or with cones missing, the planner there picks a wrong branch near the edge of what it sees at a
+// few placements; the fraction is bounded, and every other layout is held to nearly none.
+bool hardest(const std::string& name) { return name == "amz_fssim_thin" || name == "epfl_autoX_Vaudoise_Sponso"; }
+Tolerance degraded(const std::string& name, double failed_fraction) {
+  return hardest(name) ? Tolerance{8.0, 0.7, 0.5, 0.45, failed_fraction, 0.2}
+                       : Tolerance{8.0, 0.7, 0.5, 0.3, failed_fraction, 0.03};
+}
+
+TEST(MidlinePlanner, FollowsTheTrueCentreOnEverySharedTrack) {
+  for (const auto& name : test::loop_tracks()) run_track(name, Variant::AllCones, {15.0, 0.6, 0.6, 0.07, 0.0, 0.0});
+}
+
+TEST(MidlinePlanner, FifthOfConesMissing) {
+  for (const auto& name : test::loop_tracks())
+    run_track(name, Variant::FifthRemoved, degraded(name, 0.06));
+}
+
+TEST(MidlinePlanner, ColourBlind) {
+  for (const auto& name : test::loop_tracks())
+    run_track(name, Variant::ColourBlind, degraded(name, 0.03));
+}
+
+TEST(MidlinePlanner, StraightCorridorGivesTheCentreLineAndACurvatureSpeed) {
+  // Hand-made straight: left cones at y = +1.5, right at y = −1.5 every 3 m; the car on the centre at x = 0.
+  std::vector<Cone> cones;
+  for (int i = 0; i < 8; ++i) {
+    Cone l, r;
+    l.position = Vec3(1.0 + 3.0 * i, 1.5, 0);
+    l.colour = ConeColour::Blue;
+    r.position = Vec3(1.0 + 3.0 * i, -1.5, 0);
+    r.colour = ConeColour::Yellow;
+    cones.push_back(l);
+    cones.push_back(r);
+  }
+  SpeedLimits limits;
+  limits.v_max = 8.0;
+  MidlinePlannerConfig config;
+  const MidlinePlanner planner(config, ColourConvention{}, limits);
+  VehicleState state;
+  state.vx = 3.0;
+  const PlanResult plan = planner.plan(cones, state);
+  ASSERT_TRUE(plan.ok) << plan.reason;
+  EXPECT_GE(plan.path.length(), 18.0);
+  for (const auto& p : plan.path.points) {
+    EXPECT_NEAR(p.p.y(), 0.0, 0.05);
+    EXPECT_NEAR(p.yaw, 0.0, 0.02);
+    EXPECT_LE(p.v, limits.v_max + 1e-9);
+  }
+  // Speed starts at the car's speed and ends at the configured end speed (stop within what is seen).
+  EXPECT_NEAR(plan.path.points.front().v, 3.0, 1e-9);
+  EXPECT_NEAR(plan.path.points.back().v, config.end_speed, 1e-9);
+  EXPECT_FALSE(plan.over_budget);
+}
+
+TEST(MidlinePlanner, BadInputIsReportedNotThrown) {
+  const MidlinePlanner planner({}, ColourConvention{}, SpeedLimits{});
+  VehicleState state;
+  EXPECT_FALSE(planner.plan({}, state).ok);
+  std::vector<Cone> junk(3);
+  junk[0].position = Vec3(std::nan(""), 0, 0);
+  junk[1].position = Vec3(2, 1, 0);
+  junk[2].position = Vec3(2, 1, 0);
+  const PlanResult r = planner.plan(junk, state);
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.reason.empty());
+  state.pose.x = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(planner.plan(junk, state).ok);
+}
+
+}  // namespace
+}  // namespace fsd

@@ -1,0 +1,102 @@
+// Skid pad from the shared layouts' cones: the fitted circles against the Formula Student geometry (centres
+// 18.25 m apart, driven radius 9.125 m, inner ring 7.625 m, outer ring 10.625 m on the EPFL files), and the
+// figure-of-eight path: straight entry, right circle twice clockwise, left circle twice counter-clockwise,
+// straight exit.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "control/skidpad.hpp"
+#include "tests/control/track_truth.hpp"
+
+namespace fsd {
+namespace {
+
+std::vector<Cone> cones_of(const Track& t) {
+  std::vector<Cone> out;
+  for (const auto& c : t.cones) {
+    Cone k;
+    k.position = Vec3(c.position.x(), c.position.y(), 0);
+    k.colour = c.colour;
+    out.push_back(k);
+  }
+  return out;
+}
+
+TEST(Skidpad, EpflCirclesMatchTheRules) {
+  const Track t = test::shared_track("epfl_skidpad");
+  std::string why;
+  const auto g = fit_skidpad(cones_of(t), t.start, t.convention, &why);
+  ASSERT_TRUE(g) << why;
+  // The file's circles: centres (±9.125, 15), cone rings 7.625 and 10.625 m.
+  EXPECT_NEAR(g->right.centre.x(), 9.125, 0.01);
+  EXPECT_NEAR(g->right.centre.y(), 15.0, 0.01);
+  EXPECT_NEAR(g->left.centre.x(), -9.125, 0.01);
+  EXPECT_NEAR(g->left.centre.y(), 15.0, 0.01);
+  for (const auto* c : {&g->right, &g->left}) {
+    EXPECT_NEAR(c->inner_radius, 7.625, 0.01);
+    EXPECT_NEAR(c->outer_radius, 10.625, 0.01);
+    EXPECT_NEAR(c->centre_line_radius(), 9.125, 0.01);
+  }
+  EXPECT_NEAR(g->crossing.x(), 0.0, 0.01);
+  EXPECT_NEAR(g->crossing.y(), 15.0, 0.01);
+  EXPECT_NEAR(g->forward.y(), 1.0, 1e-4);
+}
+
+TEST(Skidpad, EverySharedSkidpadGivesTheRuleRadius) {
+  for (const char* name : {"epfl_skidpad", "epfl_skidpad_v2", "epfl_skidpad_reversed", "epfl_skidpad_minimalist",
+                           "epfl_short_skidpad", "amz_fssim_skidpad"}) {
+    SCOPED_TRACE(name);
+    const Track t = test::shared_track(name);
+    std::string why;
+    const auto g = fit_skidpad(cones_of(t), t.start, t.convention, &why);
+    ASSERT_TRUE(g) << why;
+    EXPECT_NEAR((g->left.centre - g->right.centre).norm(), 18.25, 0.1);
+    EXPECT_NEAR(g->right.centre_line_radius(), 9.125, 0.15);
+    EXPECT_NEAR(g->left.centre_line_radius(), 9.125, 0.15);
+    // The right circle is on the right of the start heading.
+    EXPECT_LT(t.start.inverse_transform(g->right.centre).y(), 0);
+  }
+}
+
+TEST(Skidpad, FigureOfEightPath) {
+  const Track t = test::shared_track("amz_fssim_skidpad");  // start (−16.5, 0) heading +x, centres (0, ∓9.125)
+  const auto g = fit_skidpad(cones_of(t), t.start, t.convention);
+  ASSERT_TRUE(g);
+  const SkidpadPlan plan = skidpad_path(*g, t.start, 25.0, 0.25);
+  const Path& p = plan.path;
+  const double r = 0.5 * (g->left.centre - g->right.centre).norm();
+  const double circle = 2 * std::numbers::pi * r;
+  // Entry from the start (16.5 m to the crossing), four circles, 25 m exit.
+  EXPECT_NEAR(plan.crossing_s[0], 16.5, 0.3);
+  for (int k = 1; k < 5; ++k) EXPECT_NEAR(plan.crossing_s[k] - plan.crossing_s[k - 1], circle, 0.05);
+  EXPECT_NEAR(p.length() - plan.crossing_s[4], 25.0, 0.3);
+  EXPECT_NEAR(p.points.front().yaw, 0.0, 1e-6);
+  EXPECT_NEAR(p.points.front().p.y(), 0.0, 0.05);
+  for (const auto& q : p.points) {
+    const double s = q.s;
+    if (s > plan.crossing_s[0] + 1 && s < plan.crossing_s[2] - 1) {
+      EXPECT_NEAR((q.p - g->right.centre).norm(), r, 1e-6);
+      EXPECT_NEAR(q.kappa, -1.0 / r, 1e-3);  // clockwise
+    } else if (s > plan.crossing_s[2] + 1 && s < plan.crossing_s[4] - 1) {
+      EXPECT_NEAR((q.p - g->left.centre).norm(), r, 1e-6);
+      EXPECT_NEAR(q.kappa, 1.0 / r, 1e-3);
+    } else if (s < plan.crossing_s[0] - 1 || s > plan.crossing_s[4] + 1) {
+      EXPECT_NEAR(q.kappa, 0.0, 1e-6);
+      EXPECT_NEAR(q.p.y(), 0.0, 0.05);
+    }
+  }
+  EXPECT_NEAR(p.points.back().p.x(), 25.0, 0.3);
+}
+
+TEST(Skidpad, TooFewConesIsReported) {
+  const Track t = test::shared_track("epfl_skidpad");
+  std::vector<Cone> few = cones_of(t);
+  few.resize(5);
+  std::string why;
+  EXPECT_FALSE(fit_skidpad(few, t.start, t.convention, &why));
+  EXPECT_FALSE(why.empty());
+}
+
+}  // namespace
+}  // namespace fsd

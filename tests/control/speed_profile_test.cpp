@@ -1,0 +1,117 @@
+// Speed profile against hand-computed values: steady cornering speed √(μgR), braking v² = v_c² + 2·a·d before a
+// tight corner, traction-limited acceleration from rest, the power limit, and a periodic lap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "control/speed_profile.hpp"
+#include "tests/control/path_helpers.hpp"
+
+namespace fsd {
+namespace {
+
+SpeedLimits limits(double mu, double accel, double brake, double vmax) {
+  SpeedLimits l;
+  l.mu = mu;
+  l.a_accel_max = accel;
+  l.a_brake_max = brake;
+  l.v_max = vmax;
+  return l;
+}
+
+TEST(SpeedProfile, CircleAtTheFrictionLimit) {
+  Path p = test::circle_path({0, 0}, 20.0, 400);
+  SpeedProfile(limits(0.8, 5, 8, 30)).apply(p, 0, 0);
+  const double expected = std::sqrt(0.8 * 9.81 * 20.0);  // 12.53 m/s
+  for (const auto& q : p.points) EXPECT_NEAR(q.v, expected, 1e-6);
+  EXPECT_NEAR(travel_time(p), p.length() / expected, 1e-6);
+}
+
+TEST(SpeedProfile, CircleCappedByVmax) {
+  Path p = test::circle_path({0, 0}, 20.0, 400);
+  SpeedProfile(limits(0.8, 5, 8, 10)).apply(p, 0, 0);
+  for (const auto& q : p.points) EXPECT_NEAR(q.v, 10.0, 1e-12);
+}
+
+TEST(SpeedProfile, BrakingBeforeATightCorner) {
+  // 60 m straight along +x, then a left arc of radius 5 m (quarter circle), points every 0.1 m.
+  Path p;
+  const double ds = 0.1, r = 5.0;
+  for (int i = 0; i <= 600; ++i) p.points.push_back({Vec2(i * ds, 0), 0, 0, 0, 0});
+  for (int i = 1; i <= 78; ++i) {
+    const double a = i * ds / r;
+    p.points.push_back({Vec2(60 + r * std::sin(a), r - r * std::cos(a)), 0, 0, 0, 0});
+  }
+  compute_geometry(p);
+  const double mu = 1.2, brake = 6.0;  // braking below μg, so the brakes limit, not the tyres
+  SpeedProfile(limits(mu, 4, brake, 25)).apply(p, 25, 100);
+  const double vc = std::sqrt(mu * 9.81 * r);  // 7.67 m/s
+  for (int i = 0; i <= 580; ++i) {  // from 2 m before the arc backwards
+    const double d = 60.0 - i * ds;
+    const double expected = std::min(25.0, std::sqrt(vc * vc + 2 * brake * d));
+    EXPECT_NEAR(p.points[static_cast<std::size_t>(i)].v, expected, 0.08) << "d = " << d;
+  }
+  for (std::size_t i = 610; i < p.points.size() - 2; ++i) EXPECT_NEAR(p.points[i].v, vc, 1e-3);
+}
+
+TEST(SpeedProfile, AccelerationFromRestAndPowerLimit) {
+  Path p = test::straight_path({0, 0}, 0.0, 100.0, 0.05);
+  SpeedProfile(limits(1.5, 4.0, 8, 40)).apply(p, 0, 40);
+  for (const auto& q : p.points) EXPECT_NEAR(q.v, std::sqrt(2 * 4.0 * q.s), 1e-6);  // v² = 2·a·s
+
+  // With 20 kW on 250 kg the traction limit of 4 m/s² holds up to v = P/(m·a) = 20 m/s, then a = P/(m·v):
+  // the kinetic energy grows by at most P·dt = P·ds/v, i.e. d(v²)/ds ≤ 2P/(m·v).
+  SpeedLimits l = limits(1.5, 4.0, 8, 40);
+  l.power_max = 20000;
+  l.mass = 250;
+  Path q = test::straight_path({0, 0}, 0.0, 200.0, 0.05);
+  SpeedProfile(l).apply(q, 0, 40);
+  for (std::size_t i = 1; i < q.points.size(); ++i) {
+    const double v = q.points[i - 1].v;
+    const double a_allowed = std::min(4.0, 20000.0 / (250.0 * std::max(v, 0.5)));
+    const double dv2 = q.points[i].v * q.points[i].v - v * v;
+    EXPECT_LE(dv2, 2 * a_allowed * 0.05 + 1e-9);
+  }
+  // Traction-limited to 20 m/s at s = 50 m, then constant power: d(v³)/ds = 3P/m, so at 200 m
+  // v = (20³ + 3·80·150)^(1/3) = 35.30 m/s, short of the traction-only √(2·4·200) = 40.
+  EXPECT_NEAR(q.points.back().v, std::cbrt(8000.0 + 240.0 * 150.0), 0.1);
+}
+
+TEST(SpeedProfile, FrictionCircleLeavesNoBrakingAtTheCorneringLimit) {
+  const SpeedProfile sp(limits(1.0, 5, 8, 30));
+  const double k = 0.1;
+  const double v = std::sqrt(9.81 / k);
+  EXPECT_NEAR(sp.max_deceleration(v, k), 0.0, 1e-6);
+  EXPECT_NEAR(sp.max_acceleration(0.5 * v, k), std::min(5.0, std::sqrt(9.81 * 9.81 - std::pow(0.25 * 9.81, 2))), 1e-9);
+  EXPECT_NEAR(sp.max_deceleration(0.5 * v, k), std::min(8.0, 9.81 * std::sqrt(1 - 0.0625)), 1e-9);
+}
+
+TEST(SpeedProfile, ClosedLapIsPeriodic) {
+  // A stadium: two straights of 50 m joined by half circles of 10 m.
+  Path p;
+  p.closed = true;
+  const double r = 10, ds = 0.25;
+  for (double s = 0; s < 50; s += ds) p.points.push_back({Vec2(s, -r), 0, 0, 0, 0});
+  for (double a = -std::numbers::pi / 2; a < std::numbers::pi / 2; a += ds / r)
+    p.points.push_back({Vec2(50 + r * std::cos(a), r * std::sin(a)), 0, 0, 0, 0});
+  for (double s = 50; s > 0; s -= ds) p.points.push_back({Vec2(s, r), 0, 0, 0, 0});
+  for (double a = std::numbers::pi / 2; a < 3 * std::numbers::pi / 2; a += ds / r)
+    p.points.push_back({Vec2(r * std::cos(a), r * std::sin(a)), 0, 0, 0, 0});
+  compute_geometry(p);
+  const double mu = 1.0, brake = 5.0, accel = 3.0;
+  SpeedProfile(limits(mu, accel, brake, 30)).apply(p, 0, 0);
+  const double vc = std::sqrt(mu * 9.81 * r);
+  // Middle of a straight: the lower of accelerating from the corner and braking into the next.
+  double vmax_straight = 0;
+  for (const auto& q : p.points)
+    if (std::abs(q.p.y() + r) < 1e-9) vmax_straight = std::max(vmax_straight, q.v);
+  // Accelerating at 3 for d1 and braking at 5 for d2 with d1 + d2 = 50: v² = vc² + 6·d1 = vc² + 10·d2.
+  const double d1 = 50.0 * 10.0 / 16.0;
+  EXPECT_NEAR(vmax_straight, std::sqrt(vc * vc + 2 * accel * d1), 0.1);
+  // Continuity across the seam.
+  EXPECT_NEAR(p.points.front().v, p.points.back().v, 0.05);
+}
+
+}  // namespace
+}  // namespace fsd
