@@ -70,7 +70,7 @@ struct PathSet {
 std::string paths_scene(Stamp t, const PathSet& paths, double min_spacing = 0.25);
 
 struct CloudOptions {
-  std::size_t max_points = 20000;  // uniform decimation beyond this
+  std::size_t max_points = 5000;  // uniform decimation beyond this (5000 points ≈ 110 kB of JSON)
 };
 // Points (in the frame whose pose in the map is `origin`) with fields x, y, z (float32), intensity (uint8) and
 // ground (uint8: 1 ground, 0 not), 16 bytes per point, base64 in "data".

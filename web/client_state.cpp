@@ -15,6 +15,7 @@ ClientState::SubscribeResult ClientState::subscribe(std::uint32_t subscription_i
   if (sub_of_channel_.count(channel)) return SubscribeResult::ChannelAlreadySubscribed;
   channel_of_sub_[subscription_id] = channel;
   sub_of_channel_[channel] = subscription_id;
+  if (channel >= 1 && channel <= kMaxChannels) subscribed_bits_[(channel - 1) / 64].fetch_or(1ull << ((channel - 1) % 64));
   return SubscribeResult::Ok;
 }
 
@@ -25,6 +26,7 @@ std::optional<ChannelId> ClientState::unsubscribe(std::uint32_t subscription_id)
   const ChannelId channel = it->second;
   channel_of_sub_.erase(it);
   sub_of_channel_.erase(channel);
+  if (channel >= 1 && channel <= kMaxChannels) subscribed_bits_[(channel - 1) / 64].fetch_and(~(1ull << ((channel - 1) % 64)));
   std::erase_if(telemetry_, [&](const OutMessage& m) { return m.header_size && m.subscription_id == subscription_id; });
   return channel;
 }
@@ -57,12 +59,21 @@ bool ClientState::wants_param(const std::string& name) const {
   return all_params_ || params_.count(name) > 0;
 }
 
+bool ClientState::subscribed(ChannelId channel) const {
+  if (channel < 1 || channel > kMaxChannels) return false;
+  return (subscribed_bits_[(channel - 1) / 64].load(std::memory_order_relaxed) >> ((channel - 1) % 64)) & 1u;
+}
+
+void ClientState::drop() {
+  dropped_.fetch_add(1, std::memory_order_relaxed);
+  if (drops_) drops_->inc();
+}
+
 bool ClientState::push_telemetry(OutMessage m) {
   if (closed_) return false;
   if (telemetry_.size() >= telemetry_capacity_) {
     telemetry_.pop_front();
-    dropped_.fetch_add(1, std::memory_order_relaxed);
-    if (drops_) drops_->inc();
+    drop();
   }
   telemetry_.push_back(std::move(m));
   const bool wake = !writing_;
@@ -71,8 +82,14 @@ bool ClientState::push_telemetry(OutMessage m) {
 }
 
 bool ClientState::offer(ChannelId channel, std::uint64_t timestamp_ns,
-                        const std::shared_ptr<const std::string>& payload) {
-  std::lock_guard lock(m_);
+                        const std::shared_ptr<const std::string>& payload, bool wait) {
+  if (!subscribed(channel)) return false;
+  std::unique_lock lock(m_, std::defer_lock);
+  if (wait) lock.lock();
+  else if (!lock.try_lock()) {
+    drop();
+    return false;
+  }
   const auto it = sub_of_channel_.find(channel);
   if (it == sub_of_channel_.end()) return false;
   OutMessage m;
@@ -86,7 +103,11 @@ bool ClientState::offer(ChannelId channel, std::uint64_t timestamp_ns,
 }
 
 bool ClientState::offer_binary(std::shared_ptr<const std::string> frame) {
-  std::lock_guard lock(m_);
+  std::unique_lock lock(m_, std::try_to_lock);
+  if (!lock) {
+    drop();
+    return false;
+  }
   OutMessage m;
   m.binary = true;
   m.body = std::move(frame);

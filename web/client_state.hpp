@@ -5,6 +5,7 @@
 // reads too slowly, so a publisher never waits; protocol replies go to a separate queue that is never dropped
 // from (a client that lets it overflow is disconnected). All operations take one short lock, never held
 // across I/O.
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -36,6 +37,8 @@ struct OutMessage {
 
 class ClientState {
  public:
+  static constexpr std::size_t kMaxChannels = 256;  // channel ids 1..kMaxChannels
+
   // `drops`, when given, counts the dropped telemetry of every client together (for /metrics).
   ClientState(std::size_t telemetry_capacity, std::size_t control_capacity, Counter* drops = nullptr);
 
@@ -50,8 +53,12 @@ class ClientState {
   bool wants_param(const std::string& name) const;
 
   // Each push returns true when the writer was idle: the caller must then wake it (exactly once).
-  // Telemetry of `channel` for this client's subscription to it; does nothing when not subscribed.
-  bool offer(ChannelId channel, std::uint64_t timestamp_ns, const std::shared_ptr<const std::string>& payload);
+  // Telemetry of `channel` for this client's subscription to it; does nothing when not subscribed. Never waits:
+  // the subscription is checked without a lock, and if the queue is locked at that instant (the writer is taking
+  // a message) this message is dropped for this client and counted, rather than waited for.
+  // `wait` (for the I/O thread's own pushes, such as a latched message on subscribing) takes the lock anyway.
+  bool offer(ChannelId channel, std::uint64_t timestamp_ns, const std::shared_ptr<const std::string>& payload,
+             bool wait = false);
   // A droppable binary frame that belongs to no subscription (time messages).
   bool offer_binary(std::shared_ptr<const std::string> frame);
   // A protocol reply (text). When the control queue is full the message is refused and overflowed() turns true.
@@ -68,10 +75,13 @@ class ClientState {
 
  private:
   bool push_telemetry(OutMessage m);  // with m_ held
+  bool subscribed(ChannelId channel) const;
+  void drop();
 
   const std::size_t telemetry_capacity_, control_capacity_;
   Counter* drops_;
   mutable std::mutex m_;
+  std::array<std::atomic<std::uint64_t>, kMaxChannels / 64> subscribed_bits_{};  // bit (id - 1), for offer()
   std::unordered_map<ChannelId, std::uint32_t> sub_of_channel_;
   std::unordered_map<std::uint32_t, ChannelId> channel_of_sub_;
   bool all_params_ = false;

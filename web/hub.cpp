@@ -48,18 +48,45 @@ void Hub::listen_to_params() {
   });
 }
 
+void Hub::set_poster(std::function<void(std::function<void()>)> post) { post_ = std::move(post); }
+
+// Publishers only mark the peers whose writer went idle and post a single pass to the I/O threads, so the cost
+// on the publishing thread (the control loop) does not grow with wake-ups per client.
+void Hub::schedule_wakes() {
+  if (!post_) {
+    wake_pass();
+    return;
+  }
+  if (!wake_scheduled_.exchange(true))
+    post_([weak = weak_from_this()] {
+      if (auto self = weak.lock()) self->wake_pass();
+    });
+}
+
+void Hub::wake_pass() {
+  wake_scheduled_.store(false);  // before the scan: a mark made after it posts a new pass
+  for (const auto& p : *peers())
+    if (p->wake_pending.exchange(false)) p->wake();
+}
+
 ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
                            ChannelOptions options) {
   foxglove::ChannelInfo info;
   {
-    std::lock_guard lock(channels_m_);
-    for (const auto& c : channels_)
-      if (c.info.topic == topic) throw std::logic_error("web: channel '" + topic + "' added twice");
-    info.id = static_cast<ChannelId>(channels_.size() + 1);
+    std::lock_guard lock(add_channel_m_);
+    const std::size_t n = channel_count_.load();
+    for (std::size_t i = 0; i < n; ++i)
+      if (channels_[i]->info.topic == topic) throw std::logic_error("web: channel '" + topic + "' added twice");
+    if (n == kMaxChannels) throw std::logic_error("web: more than " + std::to_string(kMaxChannels) + " channels");
+    info.id = static_cast<ChannelId>(n + 1);
     info.topic = topic;
     info.schema_name = schema_name;
     info.schema = json_schema;
-    channels_.push_back({info, options, nullptr, 0});
+    auto c = std::make_unique<Channel>();
+    c->info = info;
+    c->options = options;
+    channels_[n] = std::move(c);
+    channel_count_.store(n + 1);  // publishes the new slot
   }
   const std::string msg = foxglove::advertise({info});
   for (const auto& p : *peers()) push(*p, msg);
@@ -67,42 +94,41 @@ ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_n
 }
 
 std::vector<foxglove::ChannelInfo> Hub::channels() const {
-  std::lock_guard lock(channels_m_);
   std::vector<foxglove::ChannelInfo> out;
-  for (const auto& c : channels_) out.push_back(c.info);
+  const std::size_t n = channel_count_.load();
+  for (std::size_t i = 0; i < n; ++i) out.push_back(channels_[i]->info);
   return out;
 }
 
-std::shared_ptr<const Hub::PeerList> Hub::peers() const {
-  std::lock_guard lock(peers_m_);
-  return peers_;
+Hub::Channel* Hub::channel(ChannelId id) const {
+  return id >= 1 && id <= channel_count_.load() ? channels_[id - 1].get() : nullptr;
 }
+
+std::shared_ptr<const Hub::PeerList> Hub::peers() const { return peers_.load(); }
 
 void Hub::publish(ChannelId channel, Stamp t, std::string payload) {
   const std::uint64_t ns = foxglove::to_nanoseconds(t);
-  auto shared = std::make_shared<const std::string>(std::move(payload));
-  {
-    std::lock_guard lock(channels_m_);
-    if (channel == 0 || channel > channels_.size()) {
-      dropped_unknown_.inc();
-      return;
-    }
-    auto& c = channels_[channel - 1];
-    if (c.options.latched) {
-      c.last = shared;
-      c.last_ns = ns;
-    }
+  Channel* c = this->channel(channel);
+  if (!c) {
+    dropped_unknown_.inc();
+    return;
   }
+  auto shared = std::make_shared<const std::string>(std::move(payload));
+  if (c->options.latched) c->last.store(std::make_shared<const Latched>(Latched{shared, ns}));
   published_.inc();
+  bool any = false;
   for (const auto& p : *peers())
-    if (p->state->offer(channel, ns, shared)) p->wake();
+    if (p->state->offer(channel, ns, shared)) any = p->wake_pending = true;
+  if (any) schedule_wakes();
 }
 
 void Hub::publish_time(Stamp t) {
   const auto msg = foxglove::time_message(foxglove::to_nanoseconds(t));
   auto frame = std::make_shared<const std::string>(msg.begin(), msg.end());
+  bool any = false;
   for (const auto& p : *peers())
-    if (p->state->offer_binary(frame)) p->wake();
+    if (p->state->offer_binary(frame)) any = p->wake_pending = true;
+  if (any) schedule_wakes();
 }
 
 std::shared_ptr<ClientState> Hub::make_client_state() {
@@ -121,10 +147,10 @@ void Hub::release() { admitted_.fetch_sub(1); }
 
 void Hub::add_peer(const std::shared_ptr<Peer>& peer) {
   {
-    std::lock_guard lock(peers_m_);
-    auto next = std::make_shared<PeerList>(*peers_);
+    std::lock_guard lock(peers_write_m_);
+    auto next = std::make_shared<PeerList>(*peers_.load());
     next->push_back(peer);
-    peers_ = std::move(next);
+    peers_.store(std::move(next));
   }
   std::vector<std::string> caps{"parameters", "parametersSubscribe", "time"};
   json meta{{"tuning", tuning_enabled() ? (peer->token_ok ? "authorised" : "token required") : "disabled"}};
@@ -134,11 +160,11 @@ void Hub::add_peer(const std::shared_ptr<Peer>& peer) {
 }
 
 void Hub::remove_peer(const Peer* peer) {
-  std::lock_guard lock(peers_m_);
+  std::lock_guard lock(peers_write_m_);
   auto next = std::make_shared<PeerList>();
-  for (const auto& p : *peers_)
+  for (const auto& p : *peers_.load())
     if (p.get() != peer) next->push_back(p);
-  peers_ = std::move(next);
+  peers_.store(std::move(next));
 }
 
 std::size_t Hub::peer_count() const { return peers()->size(); }
@@ -174,17 +200,12 @@ bool Hub::on_text(Peer& peer, std::string_view text) {
 
 void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
   for (const auto& s : op.subscriptions) {
-    std::shared_ptr<const std::string> latched;
-    std::uint64_t latched_ns = 0;
-    {
-      std::lock_guard lock(channels_m_);
-      if (s.channel_id == 0 || s.channel_id > channels_.size()) {
-        send_status(peer, StatusLevel::Error, "subscribe: unknown channel " + std::to_string(s.channel_id));
-        continue;
-      }
-      latched = channels_[s.channel_id - 1].last;
-      latched_ns = channels_[s.channel_id - 1].last_ns;
+    const Channel* c = channel(s.channel_id);
+    if (!c) {
+      send_status(peer, StatusLevel::Error, "subscribe: unknown channel " + std::to_string(s.channel_id));
+      continue;
     }
+    const auto latched = c->last.load();
     switch (peer.state->subscribe(s.id, s.channel_id)) {
       case ClientState::SubscribeResult::IdInUse:
         send_status(peer, StatusLevel::Error, "subscribe: subscription id " + std::to_string(s.id) + " is in use");
@@ -195,7 +216,7 @@ void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
         continue;
       case ClientState::SubscribeResult::Ok: break;
     }
-    if (latched && peer.state->offer(s.channel_id, latched_ns, latched)) peer.wake();
+    if (latched && peer.state->offer(s.channel_id, latched->ns, latched->payload, /*wait=*/true)) peer.wake();
   }
 }
 

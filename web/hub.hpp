@@ -2,6 +2,7 @@
 // The socket-free heart of the server: the advertised channels, the connected clients, the fan-out of published
 // telemetry into each client's bounded queue, and the Foxglove protocol's replies to what a client sends
 // (subscriptions, parameters with authorisation). The Beast sessions only move bytes in and out of it.
+#include <array>
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -29,6 +30,7 @@ struct ChannelOptions {
 struct Peer {
   std::shared_ptr<ClientState> state;
   std::function<void()> wake;  // schedules the client's writer; called when a push reports the writer idle
+  std::atomic<bool> wake_pending{false};  // publish() marks it; the hub's wake pass on the I/O thread calls wake
   std::string address;         // "ip:port", for logs and the attribution of parameter changes
   bool token_ok = false;       // the WebSocket URL carried the right ?token=
 };
@@ -44,11 +46,15 @@ class Hub : public std::enable_shared_from_this<Hub> {
   Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits limits, std::string server_name);
   // Registers for parameter changes (call once after construction; the listener holds a weak reference).
   void listen_to_params();
+  // How publish() gets the clients' writers going without doing it on the publisher's thread: `post` runs a
+  // function on the I/O threads. Unset, publish() wakes the writers itself.
+  void set_poster(std::function<void(std::function<void()>)> post);
 
   ChannelId add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
                         ChannelOptions options = {});
   std::vector<foxglove::ChannelInfo> channels() const;
-  // Never blocks on a client: short locks only, the payload is shared, slow clients lose their oldest messages.
+  // Never waits: no blocking lock is taken; the payload is shared by every subscriber; a slow client loses its
+  // oldest messages, and a client whose queue is being worked on at that instant loses this one (counted).
   void publish(ChannelId channel, Stamp t, std::string payload);
   void publish_time(Stamp t);
 
@@ -76,15 +82,22 @@ class Hub : public std::enable_shared_from_this<Hub> {
   Metrics& metrics() { return metrics_; }
 
  private:
+  static constexpr std::size_t kMaxChannels = ClientState::kMaxChannels;
+  struct Latched {
+    std::shared_ptr<const std::string> payload;
+    std::uint64_t ns = 0;
+  };
   struct Channel {
     foxglove::ChannelInfo info;
     ChannelOptions options;
-    std::shared_ptr<const std::string> last;  // latched channels only
-    std::uint64_t last_ns = 0;
+    std::atomic<std::shared_ptr<const Latched>> last;  // latched channels only
   };
   using PeerList = std::vector<std::shared_ptr<Peer>>;
 
+  Channel* channel(ChannelId id) const;  // nullptr for an unknown id; lock-free
   std::shared_ptr<const PeerList> peers() const;
+  void schedule_wakes();  // one posted pass wakes every peer whose wake_pending is set
+  void wake_pass();
   void push(Peer& peer, std::string text);
   void on_param_change(const ParamChange& change);
   void handle(Peer& peer, const foxglove::SubscribeOp& op);
@@ -101,12 +114,18 @@ class Hub : public std::enable_shared_from_this<Hub> {
   const std::string name_;
   const std::string session_id_;
 
-  mutable std::mutex channels_m_;
-  std::vector<Channel> channels_;  // id = index + 1
+  // Channels are only ever appended: publishers index the array below the published count without a lock.
+  std::mutex add_channel_m_;
+  std::array<std::unique_ptr<Channel>, kMaxChannels> channels_;
+  std::atomic<std::size_t> channel_count_{0};
 
-  mutable std::mutex peers_m_;
-  std::shared_ptr<const PeerList> peers_;  // copy-on-write: publishers iterate a snapshot without the lock
+  // Copy-on-write list of peers: writers (connect, disconnect) serialise on peers_write_m_ and swap the
+  // pointer; publishers load it atomically.
+  std::mutex peers_write_m_;
+  std::atomic<std::shared_ptr<const PeerList>> peers_;
   std::atomic<int> admitted_{0};
+  std::function<void(std::function<void()>)> post_;
+  std::atomic<bool> wake_scheduled_{false};
 
   Counter& published_;
   Counter& dropped_;

@@ -14,7 +14,9 @@ constexpr auto kTimePeriod = std::chrono::milliseconds(100);  // Foxglove "time"
 
 struct WebServer::Impl {
   Impl(const WebConfig& cfg, ParamRegistry& params, Clock& clk)
-      : ctx(std::make_shared<ServerContext>(cfg, params)), clock(clk), time_timer(ioc) {}
+      : ctx(std::make_shared<ServerContext>(cfg, params)), clock(clk), time_timer(ioc) {
+    ctx->hub->set_poster([this](std::function<void()> fn) { net::post(ioc, std::move(fn)); });
+  }
 
   void tick_time() {
     time_timer.expires_after(kTimePeriod);

@@ -3,6 +3,10 @@
 
 #include "web/client_state.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
 namespace fsd::web {
 namespace {
 
@@ -98,6 +102,44 @@ TEST(ClientState, ClosedRefusesEverything) {
   EXPECT_FALSE(c.offer(1, 0, text("b")));
   EXPECT_FALSE(c.push_control("c"));
   EXPECT_FALSE(c.next());
+}
+
+}  // namespace
+}  // namespace fsd::web
+
+namespace fsd::web {
+namespace {
+
+TEST(ClientState, UnsubscribedAndOutOfRangeChannelsCostNoDrop) {
+  Counter drops;
+  ClientState c(8, 8, &drops);
+  EXPECT_FALSE(c.offer(2, 0, text("x")));
+  EXPECT_FALSE(c.offer(0, 0, text("x")));
+  EXPECT_FALSE(c.offer(ClientState::kMaxChannels + 1, 0, text("x")));
+  EXPECT_EQ(drops.value(), 0u);
+}
+
+// A publisher and a writer racing: every offered message is either delivered, in order, or counted as dropped.
+TEST(ClientState, ConcurrentOffersAreDeliveredInOrderOrCounted) {
+  Counter drops;
+  ClientState c(64, 8, &drops);
+  ASSERT_EQ(c.subscribe(1, 1), ClientState::SubscribeResult::Ok);
+  constexpr int kN = 50000;
+  std::atomic<bool> done{false};
+  std::vector<int> got;
+  std::thread writer([&] {
+    while (true) {
+      if (auto m = c.next()) got.push_back(std::stoi(*m->body));
+      else if (done) break;
+    }
+    while (auto m = c.next()) got.push_back(std::stoi(*m->body));
+  });
+  for (int i = 0; i < kN; ++i) c.offer(1, 0, text(std::to_string(i)));
+  done = true;
+  writer.join();
+  EXPECT_EQ(got.size() + drops.value(), static_cast<std::size_t>(kN));
+  EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
+  EXPECT_EQ(std::adjacent_find(got.begin(), got.end()), got.end());  // no duplicates
 }
 
 }  // namespace
