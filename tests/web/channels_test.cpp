@@ -1,0 +1,232 @@
+// Payload builders against hand-computed values: geometry, colours, packed point bytes, timestamps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "web/base64.hpp"
+#include "web/channels.hpp"
+
+namespace fsd::web {
+namespace {
+
+using nlohmann::json;
+
+// An independent decoder for the test.
+std::vector<std::uint8_t> unbase64(const std::string& s) {
+  auto val = [](char c) -> int {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    return c == '+' ? 62 : 63;
+  };
+  std::vector<std::uint8_t> out;
+  for (std::size_t i = 0; i + 4 <= s.size(); i += 4) {
+    const int n = (val(s[i]) << 18) | (val(s[i + 1]) << 12) | ((s[i + 2] == '=' ? 0 : val(s[i + 2])) << 6) |
+                  (s[i + 3] == '=' ? 0 : val(s[i + 3]));
+    out.push_back(static_cast<std::uint8_t>(n >> 16));
+    if (s[i + 2] != '=') out.push_back(static_cast<std::uint8_t>(n >> 8));
+    if (s[i + 3] != '=') out.push_back(static_cast<std::uint8_t>(n));
+  }
+  return out;
+}
+
+std::vector<std::uint8_t> bytes(const std::string& s) { return {s.begin(), s.end()}; }
+
+TEST(Base64, Rfc4648Vectors) {
+  EXPECT_EQ(base64_encode(bytes("")), "");
+  EXPECT_EQ(base64_encode(bytes("f")), "Zg==");
+  EXPECT_EQ(base64_encode(bytes("fo")), "Zm8=");
+  EXPECT_EQ(base64_encode(bytes("foo")), "Zm9v");
+  EXPECT_EQ(base64_encode(bytes("foob")), "Zm9vYg==");
+  EXPECT_EQ(base64_encode(bytes("fooba")), "Zm9vYmE=");
+  EXPECT_EQ(base64_encode(bytes("foobar")), "Zm9vYmFy");
+  const std::vector<std::uint8_t> high{0xff, 0xfe, 0xfd};
+  EXPECT_EQ(base64_encode(high), "//79");
+}
+
+Cone cone(double x, double y, ConeColour c) {
+  Cone k;
+  k.position = Vec3(x, y, 0);
+  k.colour = c;
+  return k;
+}
+
+TEST(Channels, ConeMapAsColouredTruncatedCylinders) {
+  const auto j = json::parse(cone_map_scene(12.25, {cone(1, 2, ConeColour::Blue), cone(3, -2, ConeColour::Yellow),
+                                                    cone(0, 0, ConeColour::BigOrange)}));
+  ASSERT_EQ(j["entities"].size(), 1u);
+  const auto& e = j["entities"][0];
+  EXPECT_EQ(e["frame_id"], "map");
+  EXPECT_EQ(e["id"], "cone_map");
+  EXPECT_EQ(e["timestamp"], (json{{"sec", 12}, {"nsec", 250000000}}));
+  ASSERT_EQ(e["cylinders"].size(), 3u);
+  const auto& blue = e["cylinders"][0];
+  EXPECT_DOUBLE_EQ(blue["pose"]["position"]["x"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(blue["pose"]["position"]["z"].get<double>(), 0.325 / 2);  // centre of a 325 mm cone
+  EXPECT_DOUBLE_EQ(blue["size"]["x"].get<double>(), 0.228);
+  EXPECT_GT(blue["color"]["b"].get<double>(), blue["color"]["r"].get<double>());
+  const auto& yellow = e["cylinders"][1]["color"];
+  EXPECT_GT(yellow["r"].get<double>(), yellow["b"].get<double>());
+  EXPECT_GT(yellow["g"].get<double>(), yellow["b"].get<double>());
+  EXPECT_DOUBLE_EQ(e["cylinders"][2]["size"]["z"].get<double>(), 0.505);  // big orange
+  EXPECT_LT(e["cylinders"][2]["top_scale"].get<double>(), 1.0);
+  for (const char* list : {"arrows", "cubes", "spheres", "lines", "triangles", "texts", "models"})
+    EXPECT_TRUE(e[list].is_array()) << list;
+}
+
+TEST(Channels, DetectionsArePlacedInTheMapByTheCarPose) {
+  ConeDetections d;
+  d.cones = {cone(2, 0, ConeColour::Blue), cone(1, 1, ConeColour::Yellow)};
+  const auto j = json::parse(detections_scene(1.0, d, Pose2{10, 5, std::numbers::pi / 2}));
+  const auto& e = j["entities"][0];
+  EXPECT_EQ(e["lifetime"], (json{{"sec", 0}, {"nsec", 500000000}}));
+  ASSERT_EQ(e["cubes"].size(), 2u);
+  EXPECT_NEAR(e["cubes"][0]["pose"]["position"]["x"].get<double>(), 10.0, 1e-9);  // 2 m ahead = +y in the map
+  EXPECT_NEAR(e["cubes"][0]["pose"]["position"]["y"].get<double>(), 7.0, 1e-9);
+  EXPECT_NEAR(e["cubes"][1]["pose"]["position"]["x"].get<double>(), 9.0, 1e-9);   // 1 m left = −x
+  EXPECT_NEAR(e["cubes"][1]["pose"]["position"]["y"].get<double>(), 6.0, 1e-9);
+}
+
+TEST(Channels, CarBoxSitsAheadOfTheRearAxle) {
+  CarShape shape;  // 2.9 m long, 0.6 m behind the rear axle: centre 0.85 m ahead
+  const auto j = json::parse(car_scene(0, Pose2{10, 5, std::numbers::pi / 2}, shape));
+  const auto& cube = j["entities"][0]["cubes"][0];
+  EXPECT_NEAR(cube["pose"]["position"]["x"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(cube["pose"]["position"]["y"].get<double>(), 5.85, 1e-9);
+  EXPECT_NEAR(cube["pose"]["orientation"]["z"].get<double>(), std::sin(std::numbers::pi / 4), 1e-12);
+  EXPECT_NEAR(cube["pose"]["orientation"]["w"].get<double>(), std::cos(std::numbers::pi / 4), 1e-12);
+  EXPECT_DOUBLE_EQ(cube["size"]["x"].get<double>(), 2.9);
+}
+
+TEST(Channels, PathsAreDecimatedLineStripsKeepingTheEnds) {
+  PathSet p;
+  for (int i = 0; i <= 10; ++i) p.lap1_trajectory.emplace_back(0.1 * i, 0.0);
+  p.planned = {{0, 0}, {5, 5}};
+  const auto j = json::parse(paths_scene(0, p, 0.25));
+  ASSERT_EQ(j["entities"].size(), 3u);
+  EXPECT_EQ(j["entities"][0]["id"], "lap1_trajectory");
+  const auto& pts = j["entities"][0]["lines"][0]["points"];
+  ASSERT_EQ(pts.size(), 5u);  // 0, 0.3, 0.6, 0.9 and the end 1.0
+  EXPECT_NEAR(pts[1]["x"].get<double>(), 0.3, 1e-12);
+  EXPECT_NEAR(pts[4]["x"].get<double>(), 1.0, 1e-12);
+  EXPECT_EQ(j["entities"][0]["lines"][0]["type"], 0);  // LINE_STRIP
+  EXPECT_EQ(j["entities"][1]["lines"][0]["points"].size(), 0u);
+  EXPECT_EQ(j["entities"][2]["lines"][0]["points"].size(), 2u);
+}
+
+TEST(Channels, PointCloudPacksSixteenBytesPerPoint) {
+  std::vector<Point> ground(2), objects(3);
+  ground[0] = {1.5f, -2.0f, 0.0f, 7.0f};
+  ground[1] = {2.5f, 0.0f, 0.01f, 300.0f};  // intensity clamps to 255
+  objects[0] = {4.0f, 1.0f, 0.3f, 40.0f};
+  objects[1] = {5.0f, 1.0f, 0.3f, 0.0f};
+  objects[2] = {6.0f, 1.0f, 0.3f, 0.0f};
+  Pose3 origin = Pose3::Identity();
+  origin.translation() = Vec3(10, 20, 0.5);
+  auto j = json::parse(point_cloud(3.0, origin, ground, objects));
+  EXPECT_EQ(j["frame_id"], "map");
+  EXPECT_EQ(j["point_stride"], 16);
+  EXPECT_DOUBLE_EQ(j["pose"]["position"]["y"].get<double>(), 20.0);
+  EXPECT_DOUBLE_EQ(j["pose"]["orientation"]["w"].get<double>(), 1.0);
+  std::set<std::string> names;
+  for (const auto& f : j["fields"]) names.insert(f["name"]);
+  EXPECT_EQ(names, (std::set<std::string>{"x", "y", "z", "intensity", "ground"}));
+  const auto data = unbase64(j["data"]);
+  ASSERT_EQ(data.size(), 5u * 16u);
+  float x, y;
+  std::memcpy(&x, &data[0], 4);
+  std::memcpy(&y, &data[4], 4);
+  EXPECT_EQ(x, 1.5f);
+  EXPECT_EQ(y, -2.0f);
+  EXPECT_EQ(data[12], 7);
+  EXPECT_EQ(data[13], 1);          // ground
+  EXPECT_EQ(data[16 + 12], 255);
+  std::memcpy(&x, &data[32], 4);
+  EXPECT_EQ(x, 4.0f);
+  EXPECT_EQ(data[32 + 13], 0);     // not ground
+
+  CloudOptions few;
+  few.max_points = 2;  // every 3rd point of each set: ground[0], objects[0]
+  j = json::parse(point_cloud(3.0, origin, ground, objects, few));
+  const auto small = unbase64(j["data"]);
+  ASSERT_EQ(small.size(), 2u * 16u);
+  std::memcpy(&x, &small[16], 4);
+  EXPECT_EQ(x, 4.0f);
+}
+
+TEST(Channels, VehicleStateInSiUnits) {
+  VehicleState s;
+  s.stamp = 1.9999999999;  // rounds up into the next second
+  s.vx = 3;
+  s.vy = 4;
+  s.yaw_rate = 0.5;
+  s.ay = 2.25;
+  s.steering = -0.1;
+  const auto j = json::parse(vehicle_state_json(s, 6.0));
+  EXPECT_EQ(j["timestamp"], (json{{"sec", 2}, {"nsec", 0}}));
+  EXPECT_DOUBLE_EQ(j["speed"].get<double>(), 5.0);
+  EXPECT_NEAR(j["sideslip"].get<double>(), std::atan2(4.0, 3.0), 1e-12);
+  EXPECT_DOUBLE_EQ(j["lateral_acceleration"].get<double>(), 2.25);
+  EXPECT_DOUBLE_EQ(j["yaw_rate"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["steering"].get<double>(), -0.1);
+  EXPECT_DOUBLE_EQ(j["target_speed"].get<double>(), 6.0);
+}
+
+TEST(Channels, StatusFaultsLogAndImageAnnotations) {
+  AsStatusView v;
+  v.as_state = AsState::Driving;
+  v.mission = Mission::Trackdrive;
+  v.lap = 1;
+  v.lap_times = {52.3};
+  auto j = json::parse(as_status_json(5, v));
+  EXPECT_EQ(j["as_state"], "Driving");
+  EXPECT_EQ(j["mission"], "trackdrive");
+  EXPECT_EQ(j["lap_times"], json::array({52.3}));
+
+  std::vector<FaultEvent> faults;
+  for (int i = 0; i < 60; ++i) faults.push_back({double(i), "gnss", "fix lost " + std::to_string(i), "fallback", true});
+  j = json::parse(faults_json(60, faults, 50));
+  ASSERT_EQ(j["faults"].size(), 50u);
+  EXPECT_EQ(j["faults"][49]["what"], "fix lost 59");
+  EXPECT_EQ(j["faults"][0]["what"], "fix lost 10");
+
+  j = json::parse(log_json(1, LogLevel::Warning, "vcu", "heartbeat late"));
+  EXPECT_EQ(j["level"], 3);
+  EXPECT_EQ(j["name"], "vcu");
+
+  j = json::parse(image_annotations(1, {ImageBox{10, 20, 30, 40, ConeColour::Blue, "blue 0.9"}}));
+  ASSERT_EQ(j["points"].size(), 1u);
+  EXPECT_EQ(j["points"][0]["type"], 2);  // LINE_LOOP
+  EXPECT_EQ(j["points"][0]["points"][2], (json{{"x", 40.0}, {"y", 60.0}}));
+  EXPECT_EQ(j["texts"][0]["text"], "blue 0.9");
+
+  const std::vector<std::uint8_t> jpeg{0xff, 0xd8, 0xff};
+  j = json::parse(compressed_image(1, jpeg, "jpeg"));
+  EXPECT_EQ(j["data"], "/9j/");
+  EXPECT_EQ(j["format"], "jpeg");
+}
+
+TEST(Channels, StandardChannelsHaveUniqueTopicsAndValidSchemas) {
+  const auto specs = standard_channels();
+  ASSERT_EQ(specs.size(), 11u);
+  std::set<std::string> topics;
+  for (const auto& s : specs) {
+    topics.insert(s.topic);
+    const auto schema = json::parse(s.schema);
+    EXPECT_EQ(schema["title"], s.schema_name) << s.topic;
+    EXPECT_EQ(schema["type"], "object");
+  }
+  EXPECT_EQ(topics.size(), specs.size());
+  EXPECT_EQ(specs[0].schema_name, "foxglove.SceneUpdate");
+  EXPECT_TRUE(specs[0].options.latched);
+  // Bytes are marked base64 so Foxglove Studio decodes them.
+  EXPECT_EQ(json::parse(specs[4].schema)["properties"]["data"]["contentEncoding"], "base64");
+}
+
+}  // namespace
+}  // namespace fsd::web

@@ -1,0 +1,201 @@
+// JSON schemas of the standard channels. The foxglove.* ones describe the fields our builders fill, with the
+// names and types of the Foxglove schemas so that Foxglove Studio's panels understand them (bytes are base64
+// strings marked contentEncoding "base64", times are {sec, nsec} objects titled "time").
+#include <nlohmann/json.hpp>
+
+#include "web/channels.hpp"
+
+namespace fsd::web {
+
+using nlohmann::json;
+
+namespace {
+
+json num(const std::string& description) { return {{"type", "number"}, {"description", description}}; }
+json integer(const std::string& description) { return {{"type", "integer"}, {"description", description}}; }
+json str(const std::string& description) { return {{"type", "string"}, {"description", description}}; }
+json boolean(const std::string& description) { return {{"type", "boolean"}, {"description", description}}; }
+json bytes(const std::string& description) {
+  return {{"type", "string"}, {"contentEncoding", "base64"}, {"description", description}};
+}
+json array_of(const json& items, const std::string& description) {
+  return {{"type", "array"}, {"items", items}, {"description", description}};
+}
+json object(const std::string& title, json properties) {
+  return {{"title", title}, {"type", "object"}, {"properties", std::move(properties)}};
+}
+json time_type(const char* title = "time") {
+  return {{"type", "object"},
+          {"title", title},
+          {"properties",
+           {{"sec", {{"type", "integer"}, {"minimum", 0}}},
+            {"nsec", {{"type", "integer"}, {"minimum", 0}, {"maximum", 999999999}}}}}};
+}
+json xyz(const char* title) { return object(title, {{"x", num("x")}, {"y", num("y")}, {"z", num("z")}}); }
+json xy() { return object("foxglove.Point2", {{"x", num("x, pixels")}, {"y", num("y, pixels")}}); }
+json quaternion() {
+  return object("foxglove.Quaternion", {{"x", num("x")}, {"y", num("y")}, {"z", num("z")}, {"w", num("w")}});
+}
+json pose() { return object("foxglove.Pose", {{"position", xyz("foxglove.Vector3")}, {"orientation", quaternion()}}); }
+json colour() {
+  return object("foxglove.Color", {{"r", num("red 0..1")}, {"g", num("green 0..1")}, {"b", num("blue 0..1")}, {"a", num("alpha 0..1")}});
+}
+json with_schema(json schema, const std::string& description) {
+  schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
+  schema["description"] = description;
+  return schema;
+}
+
+json scene_update() {
+  const json primitive_sized = object("foxglove.CubePrimitive", {{"pose", pose()}, {"size", xyz("foxglove.Vector3")}, {"color", colour()}});
+  const json cylinder = object("foxglove.CylinderPrimitive", {{"pose", pose()},
+                                                              {"size", xyz("foxglove.Vector3")},
+                                                              {"bottom_scale", num("bottom face scale 0..1")},
+                                                              {"top_scale", num("top face scale 0..1")},
+                                                              {"color", colour()}});
+  const json arrow = object("foxglove.ArrowPrimitive", {{"pose", pose()},
+                                                        {"shaft_length", num("m")},
+                                                        {"shaft_diameter", num("m")},
+                                                        {"head_length", num("m")},
+                                                        {"head_diameter", num("m")},
+                                                        {"color", colour()}});
+  const json line = object("foxglove.LinePrimitive", {{"type", integer("0 LINE_STRIP, 1 LINE_LOOP, 2 LINE_LIST")},
+                                                      {"pose", pose()},
+                                                      {"thickness", num("m, or pixels when scale_invariant")},
+                                                      {"scale_invariant", boolean("thickness in pixels")},
+                                                      {"points", array_of(xyz("foxglove.Point3"), "vertices")},
+                                                      {"color", colour()},
+                                                      {"colors", array_of(colour(), "per-vertex colours (unused)")},
+                                                      {"indices", array_of(json{{"type", "integer"}}, "unused")}});
+  const json unused = array_of(json{{"type", "object"}}, "not used by fsd");
+  const json entity = object("foxglove.SceneEntity",
+                             {{"timestamp", time_type()},
+                              {"frame_id", str("frame of reference: map")},
+                              {"id", str("entity id; replaces the previous entity of the same id")},
+                              {"lifetime", time_type("duration")},
+                              {"frame_locked", boolean("follow frame_id")},
+                              {"metadata", array_of(object("foxglove.KeyValuePair", {{"key", str("key")}, {"value", str("value")}}), "metadata")},
+                              {"arrows", array_of(arrow, "arrows")},
+                              {"cubes", array_of(primitive_sized, "boxes")},
+                              {"spheres", unused},
+                              {"cylinders", array_of(cylinder, "cylinders and cones")},
+                              {"lines", array_of(line, "line strips")},
+                              {"triangles", unused},
+                              {"texts", unused},
+                              {"models", unused}});
+  const json deletion = object("foxglove.SceneEntityDeletion", {{"timestamp", time_type()},
+                                                                {"type", integer("0 MATCHING_ID, 1 ALL")},
+                                                                {"id", str("entity id")}});
+  return object("foxglove.SceneUpdate", {{"deletions", array_of(deletion, "deletions")}, {"entities", array_of(entity, "entities")}});
+}
+
+json point_cloud() {
+  const json field = object("foxglove.PackedElementField", {{"name", str("field name")},
+                                                            {"offset", integer("byte offset in a point")},
+                                                            {"type", integer("1 UINT8, 7 FLOAT32 (foxglove.NumericType)")}});
+  return object("foxglove.PointCloud", {{"timestamp", time_type()},
+                                        {"frame_id", str("map")},
+                                        {"pose", pose()},
+                                        {"point_stride", integer("bytes per point")},
+                                        {"fields", array_of(field, "x, y, z, intensity, ground")},
+                                        {"data", bytes("packed points, little-endian")}});
+}
+
+json compressed_image() {
+  return object("foxglove.CompressedImage", {{"timestamp", time_type()},
+                                             {"frame_id", str("camera")},
+                                             {"data", bytes("encoded image")},
+                                             {"format", str("jpeg, png or webp")}});
+}
+
+json image_annotations() {
+  const json points = object("foxglove.PointsAnnotation", {{"timestamp", time_type()},
+                                                           {"type", integer("2 LINE_LOOP")},
+                                                           {"points", array_of(xy(), "corners")},
+                                                           {"outline_color", colour()},
+                                                           {"outline_colors", array_of(colour(), "unused")},
+                                                           {"fill_color", colour()},
+                                                           {"thickness", num("pixels")}});
+  const json text = object("foxglove.TextAnnotation", {{"timestamp", time_type()},
+                                                       {"position", xy()},
+                                                       {"text", str("label")},
+                                                       {"font_size", num("pixels")},
+                                                       {"text_color", colour()},
+                                                       {"background_color", colour()}});
+  return object("foxglove.ImageAnnotations", {{"circles", array_of(json{{"type", "object"}}, "unused")},
+                                              {"points", array_of(points, "boxes")},
+                                              {"texts", array_of(text, "labels")}});
+}
+
+json log() {
+  return object("foxglove.Log", {{"timestamp", time_type()},
+                                 {"level", integer("0 UNKNOWN, 1 DEBUG, 2 INFO, 3 WARNING, 4 ERROR, 5 FATAL")},
+                                 {"message", str("text")},
+                                 {"name", str("component")},
+                                 {"file", str("source file")},
+                                 {"line", integer("source line")}});
+}
+
+json vehicle_state() {
+  return object("fsd.VehicleState", {{"timestamp", time_type()},
+                                     {"x", num("m, rear-axle centre in the map (local ENU)")},
+                                     {"y", num("m")},
+                                     {"yaw", num("rad, ENU")},
+                                     {"speed", num("m/s")},
+                                     {"vx", num("m/s, body frame")},
+                                     {"vy", num("m/s, body frame")},
+                                     {"yaw_rate", num("rad/s")},
+                                     {"lateral_acceleration", num("m/s², body frame")},
+                                     {"longitudinal_acceleration", num("m/s², body frame")},
+                                     {"sideslip", num("rad, atan2(vy, vx)")},
+                                     {"steering", num("rad, front wheel angle, left positive")},
+                                     {"target_speed", num("m/s, commanded")}});
+}
+
+json as_status() {
+  return object("fsd.AsStatus", {{"timestamp", time_type()},
+                                 {"as_state", str("Off, Ready, Driving, Emergency, Finished")},
+                                 {"mission", str("mission name")},
+                                 {"lap", integer("laps completed")},
+                                 {"laps_total", integer("laps of the mission")},
+                                 {"lap_times", array_of(json{{"type", "number"}}, "s, completed laps")},
+                                 {"lap_time", num("s, the lap in progress")},
+                                 {"control_mode", str("what steers the car now")},
+                                 {"res_go", boolean("RES go received")},
+                                 {"res_emergency", boolean("RES emergency pressed")},
+                                 {"ebs_active", boolean("emergency brake engaged")},
+                                 {"finished", boolean("mission finished")}});
+}
+
+json faults() {
+  const json fault = object("fsd.Fault", {{"t", num("s, run clock")},
+                                          {"source", str("component")},
+                                          {"what", str("what went wrong")},
+                                          {"action", str("what the stack did")},
+                                          {"active", boolean("still present")}});
+  return object("fsd.Faults", {{"timestamp", time_type()}, {"faults", array_of(fault, "recent faults, newest last")}});
+}
+
+ChannelSpec spec(const char* topic, const json& schema, const std::string& description, bool latched = false) {
+  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(), ChannelOptions{latched}};
+}
+
+}  // namespace
+
+std::vector<ChannelSpec> standard_channels() {
+  return {
+      spec(topics::kConeMap, scene_update(), "Cone map in the map frame", true),
+      spec(topics::kDetections, scene_update(), "Cone detections of the latest LiDAR frame"),
+      spec(topics::kCar, scene_update(), "The car"),
+      spec(topics::kPaths, scene_update(), "Lap-1 trajectory, lap-2 tracking and the planned path", true),
+      spec(topics::kPointCloud, point_cloud(), "LiDAR points, downsampled, ground flagged"),
+      spec(topics::kCameraImage, compressed_image(), "Camera image"),
+      spec(topics::kCameraDetections, image_annotations(), "Cone boxes in the camera image"),
+      spec(topics::kVehicleState, vehicle_state(), "Motion state of the car (SI units)"),
+      spec(topics::kAsStatus, as_status(), "Autonomous-system state, mission, laps", true),
+      spec(topics::kFaults, faults(), "Recent faults", true),
+      spec(topics::kLog, log(), "Log lines"),
+  };
+}
+
+}  // namespace fsd::web

@@ -1,0 +1,289 @@
+#include "web/channels.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "web/base64.hpp"
+#include "web/server.hpp"
+
+namespace fsd::web {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kMapFrame = "map";
+
+json stamp(Stamp t) {
+  if (!std::isfinite(t) || t < 0) t = 0;
+  auto sec = static_cast<std::int64_t>(std::floor(t));
+  auto nsec = static_cast<std::int64_t>(std::llround((t - static_cast<double>(sec)) * 1e9));
+  if (nsec >= 1000000000) {
+    ++sec;
+    nsec -= 1000000000;
+  }
+  return {{"sec", sec}, {"nsec", nsec}};
+}
+
+json duration(double s) { return stamp(s); }
+json vec3(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
+json rgba(double r, double g, double b, double a = 1.0) { return {{"r", r}, {"g", g}, {"b", b}, {"a", a}}; }
+json yaw_pose(double x, double y, double z, double yaw) {
+  return {{"position", vec3(x, y, z)},
+          {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(yaw / 2)}, {"w", std::cos(yaw / 2)}}}};
+}
+json pose3(const Pose3& p) {
+  const Eigen::Quaterniond q(p.linear());
+  const auto& t = p.translation();
+  return {{"position", vec3(t.x(), t.y(), t.z())},
+          {"orientation", {{"x", q.x()}, {"y", q.y()}, {"z", q.z()}, {"w", q.w()}}}};
+}
+
+json colour_of(ConeColour c, double alpha = 1.0) {
+  switch (c) {
+    case ConeColour::Blue: return rgba(0.10, 0.35, 0.95, alpha);
+    case ConeColour::Yellow: return rgba(1.00, 0.85, 0.05, alpha);
+    case ConeColour::Orange: return rgba(1.00, 0.50, 0.00, alpha);
+    case ConeColour::BigOrange: return rgba(1.00, 0.35, 0.00, alpha);
+    case ConeColour::Red: return rgba(0.90, 0.10, 0.10, alpha);
+    case ConeColour::Unknown: break;
+  }
+  return rgba(0.60, 0.60, 0.60, alpha);
+}
+
+// An entity with every primitive list present, as Foxglove's own messages have them.
+json entity(Stamp t, const std::string& id, double lifetime_s = 0.0) {
+  return {{"timestamp", stamp(t)},   {"frame_id", kMapFrame}, {"id", id},
+          {"lifetime", duration(lifetime_s)}, {"frame_locked", false}, {"metadata", json::array()},
+          {"arrows", json::array()}, {"cubes", json::array()},    {"spheres", json::array()},
+          {"cylinders", json::array()}, {"lines", json::array()}, {"triangles", json::array()},
+          {"texts", json::array()},  {"models", json::array()}};
+}
+
+std::string scene(const json& entities) {
+  return json{{"deletions", json::array()}, {"entities", entities}}.dump();
+}
+
+json cone_cylinder(const Vec3& p, ConeColour c) {
+  const bool big = c == ConeColour::BigOrange;
+  const double d = big ? 0.285 : 0.228, h = big ? 0.505 : 0.325;  // FS cone sizes
+  return {{"pose", yaw_pose(p.x(), p.y(), p.z() + h / 2, 0.0)},
+          {"size", vec3(d, d, h)},
+          {"bottom_scale", 1.0},
+          {"top_scale", 0.15},
+          {"color", colour_of(c)}};
+}
+
+std::vector<Vec2> decimate(const std::vector<Vec2>& pts, double min_spacing) {
+  std::vector<Vec2> out;
+  for (const auto& p : pts) {
+    if (!p.allFinite()) continue;
+    if (out.empty() || (p - out.back()).norm() >= min_spacing) out.push_back(p);
+  }
+  if (!pts.empty() && pts.back().allFinite() && !out.empty() && out.back() != pts.back()) out.push_back(pts.back());
+  return out;
+}
+
+json line_strip(const std::vector<Vec2>& pts, double thickness, const json& colour, double z) {
+  json points = json::array();
+  for (const auto& p : pts) points.push_back(vec3(p.x(), p.y(), z));
+  return {{"type", 0},
+          {"pose", yaw_pose(0, 0, 0, 0)},
+          {"thickness", thickness},
+          {"scale_invariant", false},
+          {"points", std::move(points)},
+          {"color", colour},
+          {"colors", json::array()},
+          {"indices", json::array()}};
+}
+
+void put_point(std::uint8_t* out, const Point& p, bool ground) {
+  std::memcpy(out, &p.x, 4);
+  std::memcpy(out + 4, &p.y, 4);
+  std::memcpy(out + 8, &p.z, 4);
+  out[12] = static_cast<std::uint8_t>(std::clamp(p.intensity, 0.0f, 255.0f));
+  out[13] = ground ? 1 : 0;
+  out[14] = out[15] = 0;
+}
+
+}  // namespace
+
+StandardChannels add_standard_channels(WebServer& server) {
+  std::vector<ChannelId> ids;
+  for (const auto& s : standard_channels()) ids.push_back(server.add_channel(s.topic, s.schema_name, s.schema, s.options));
+  StandardChannels c;
+  c.cone_map = ids[0];
+  c.detections = ids[1];
+  c.car = ids[2];
+  c.paths = ids[3];
+  c.point_cloud = ids[4];
+  c.camera_image = ids[5];
+  c.camera_detections = ids[6];
+  c.vehicle_state = ids[7];
+  c.as_status = ids[8];
+  c.faults = ids[9];
+  c.log = ids[10];
+  return c;
+}
+
+std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones) {
+  json e = entity(t, "cone_map");
+  for (const auto& c : cones)
+    if (c.position.allFinite()) e["cylinders"].push_back(cone_cylinder(c.position, c.colour));
+  e["metadata"].push_back({{"key", "count"}, {"value", std::to_string(e["cylinders"].size())}});
+  return scene(json::array({e}));
+}
+
+std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose) {
+  json e = entity(t, "detections", 0.5);
+  for (const auto& c : detections.cones) {
+    if (!c.position.allFinite()) continue;
+    const Vec2 m = car_pose.transform(c.position.head<2>());
+    e["cubes"].push_back({{"pose", yaw_pose(m.x(), m.y(), 0.2, car_pose.yaw)},
+                          {"size", vec3(0.35, 0.35, 0.4)},
+                          {"color", colour_of(c.colour, 0.35)}});
+  }
+  return scene(json::array({e}));
+}
+
+std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
+  json e = entity(t, "car");
+  const double ahead = shape.length / 2 - shape.rear_overhang;  // box centre ahead of the rear axle
+  const Vec2 centre = pose.transform({ahead, 0.0});
+  e["cubes"].push_back({{"pose", yaw_pose(centre.x(), centre.y(), shape.height / 2, pose.yaw)},
+                        {"size", vec3(shape.length, shape.width, shape.height)},
+                        {"color", rgba(0.85, 0.1, 0.1, 0.9)}});
+  e["arrows"].push_back({{"pose", yaw_pose(pose.x, pose.y, shape.height + 0.1, pose.yaw)},
+                         {"shaft_length", shape.length * 0.8},
+                         {"shaft_diameter", 0.08},
+                         {"head_length", 0.4},
+                         {"head_diameter", 0.25},
+                         {"color", rgba(1, 1, 1, 1)}});
+  return scene(json::array({e}));
+}
+
+std::string paths_scene(Stamp t, const PathSet& paths, double min_spacing) {
+  json lap1 = entity(t, "lap1_trajectory"), lap2 = entity(t, "lap2_tracking"), planned = entity(t, "planned_path");
+  lap1["lines"].push_back(line_strip(decimate(paths.lap1_trajectory, min_spacing), 0.10, rgba(0.2, 0.9, 0.3, 1.0), 0.02));
+  lap2["lines"].push_back(line_strip(decimate(paths.lap2_tracking, min_spacing), 0.10, rgba(0.95, 0.2, 0.9, 1.0), 0.04));
+  planned["lines"].push_back(line_strip(decimate(paths.planned, min_spacing), 0.14, rgba(0.1, 0.9, 0.95, 1.0), 0.06));
+  return scene(json::array({lap1, lap2, planned}));
+}
+
+std::string point_cloud(Stamp t, const Pose3& origin, std::span<const Point> ground, std::span<const Point> non_ground,
+                        const CloudOptions& options) {
+  constexpr std::size_t kStride = 16;
+  const std::size_t total = ground.size() + non_ground.size();
+  // Keep every k-th point of both sets so that their proportions stay.
+  const std::size_t step = total > options.max_points && options.max_points > 0
+                               ? (total + options.max_points - 1) / options.max_points
+                               : 1;
+  std::vector<std::uint8_t> data;
+  data.reserve((total / step + 2) * kStride);
+  for (const auto& [points, is_ground] : {std::pair{ground, true}, std::pair{non_ground, false}}) {
+    for (std::size_t i = 0; i < points.size(); i += step) {
+      const Point& p = points[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+      data.resize(data.size() + kStride);
+      put_point(data.data() + data.size() - kStride, p, is_ground);
+    }
+  }
+  json fields = json::array({{{"name", "x"}, {"offset", 0}, {"type", 7}},
+                             {{"name", "y"}, {"offset", 4}, {"type", 7}},
+                             {{"name", "z"}, {"offset", 8}, {"type", 7}},
+                             {{"name", "intensity"}, {"offset", 12}, {"type", 1}},
+                             {{"name", "ground"}, {"offset", 13}, {"type", 1}}});
+  return json{{"timestamp", stamp(t)},
+              {"frame_id", kMapFrame},
+              {"pose", pose3(origin)},
+              {"point_stride", kStride},
+              {"fields", std::move(fields)},
+              {"data", base64_encode(data)}}
+      .dump();
+}
+
+std::string compressed_image(Stamp t, std::span<const std::uint8_t> data, const std::string& format,
+                             const std::string& frame_id) {
+  return json{{"timestamp", stamp(t)}, {"frame_id", frame_id}, {"data", base64_encode(data)}, {"format", format}}.dump();
+}
+
+std::string image_annotations(Stamp t, const std::vector<ImageBox>& boxes) {
+  json points = json::array(), texts = json::array();
+  for (const auto& b : boxes) {
+    const double x0 = b.x, y0 = b.y, x1 = b.x + b.width, y1 = b.y + b.height;
+    points.push_back({{"timestamp", stamp(t)},
+                      {"type", 2},
+                      {"points", json::array({{{"x", x0}, {"y", y0}}, {{"x", x1}, {"y", y0}}, {{"x", x1}, {"y", y1}}, {{"x", x0}, {"y", y1}}})},
+                      {"outline_color", colour_of(b.colour)},
+                      {"outline_colors", json::array()},
+                      {"fill_color", rgba(0, 0, 0, 0)},
+                      {"thickness", 2.0}});
+    if (!b.label.empty())
+      texts.push_back({{"timestamp", stamp(t)},
+                       {"position", {{"x", x0}, {"y", y0 - 4}}},
+                       {"text", b.label},
+                       {"font_size", 14.0},
+                       {"text_color", rgba(1, 1, 1, 1)},
+                       {"background_color", rgba(0, 0, 0, 0.6)}});
+  }
+  return json{{"circles", json::array()}, {"points", std::move(points)}, {"texts", std::move(texts)}}.dump(
+      -1, ' ', false, json::error_handler_t::replace);
+}
+
+std::string vehicle_state_json(const VehicleState& s, double target_speed) {
+  return json{{"timestamp", stamp(s.stamp)},
+              {"x", s.pose.x},
+              {"y", s.pose.y},
+              {"yaw", s.pose.yaw},
+              {"speed", s.speed()},
+              {"vx", s.vx},
+              {"vy", s.vy},
+              {"yaw_rate", s.yaw_rate},
+              {"lateral_acceleration", s.ay},
+              {"longitudinal_acceleration", s.ax},
+              {"sideslip", s.sideslip()},
+              {"steering", s.steering},
+              {"target_speed", target_speed}}
+      .dump();
+}
+
+std::string as_status_json(Stamp t, const AsStatusView& s) {
+  return json{{"timestamp", stamp(t)},
+              {"as_state", std::string(to_string(s.as_state))},
+              {"mission", std::string(to_string(s.mission))},
+              {"lap", s.lap},
+              {"laps_total", s.laps_total},
+              {"lap_times", s.lap_times},
+              {"lap_time", s.lap_time},
+              {"control_mode", s.control_mode},
+              {"res_go", s.res_go},
+              {"res_emergency", s.res_emergency},
+              {"ebs_active", s.ebs_active},
+              {"finished", s.finished}}
+      .dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+std::string faults_json(Stamp t, const std::vector<FaultEvent>& faults, std::size_t max_items) {
+  json list = json::array();
+  const std::size_t first = faults.size() > max_items ? faults.size() - max_items : 0;
+  for (std::size_t i = first; i < faults.size(); ++i) {
+    const auto& f = faults[i];
+    list.push_back({{"t", f.t}, {"source", f.source}, {"what", f.what}, {"action", f.action}, {"active", f.active}});
+  }
+  return json{{"timestamp", stamp(t)}, {"faults", std::move(list)}}.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+std::string log_json(Stamp t, LogLevel level, const std::string& name, const std::string& message) {
+  return json{{"timestamp", stamp(t)},
+              {"level", static_cast<int>(level)},
+              {"message", message},
+              {"name", name},
+              {"file", ""},
+              {"line", 0}}
+      .dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+}  // namespace fsd::web

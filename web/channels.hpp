@@ -1,0 +1,118 @@
+#pragma once
+// The telemetry channels of the dashboard and of Foxglove Studio: topic names, schema names, JSON schemas, and
+// builders that turn common/ types into the JSON payloads. The daemon adds the channels once
+// (add_standard_channels) and publishes a builder's output on each; see docs/dashboard.md for rates.
+// Everything 3D is in the map frame ("map"), so no transforms are needed to view it.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/geometry.hpp"
+#include "common/time.hpp"
+#include "common/types.hpp"
+#include "web/hub.hpp"
+
+namespace fsd::web {
+
+class WebServer;
+
+namespace topics {
+inline constexpr const char* kConeMap = "/map/cones";                    // foxglove.SceneUpdate, latched
+inline constexpr const char* kDetections = "/perception/cones";          // foxglove.SceneUpdate
+inline constexpr const char* kCar = "/vehicle/car";                      // foxglove.SceneUpdate
+inline constexpr const char* kPaths = "/planning/paths";                 // foxglove.SceneUpdate, latched
+inline constexpr const char* kPointCloud = "/lidar/points";              // foxglove.PointCloud
+inline constexpr const char* kCameraImage = "/camera/image";             // foxglove.CompressedImage
+inline constexpr const char* kCameraDetections = "/camera/detections";   // foxglove.ImageAnnotations
+inline constexpr const char* kVehicleState = "/vehicle/state";           // fsd.VehicleState
+inline constexpr const char* kAsStatus = "/as/status";                   // fsd.AsStatus, latched
+inline constexpr const char* kFaults = "/faults";                        // fsd.Faults, latched
+inline constexpr const char* kLog = "/log";                              // foxglove.Log
+}  // namespace topics
+
+struct ChannelSpec {
+  std::string topic;
+  std::string schema_name;
+  std::string schema;  // JSON schema text
+  ChannelOptions options;
+};
+// Every channel above, in that order.
+std::vector<ChannelSpec> standard_channels();
+
+struct StandardChannels {
+  ChannelId cone_map = 0, detections = 0, car = 0, paths = 0, point_cloud = 0, camera_image = 0,
+            camera_detections = 0, vehicle_state = 0, as_status = 0, faults = 0, log = 0;
+};
+StandardChannels add_standard_channels(WebServer& server);
+
+// ---- payload builders (each returns the JSON text of one message)
+
+// The cone map (map frame) as truncated cylinders in the cone colours, one entity "cone_map".
+std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones);
+// Detections (vehicle frame) placed in the map by the car's pose; translucent boxes that expire after 0.5 s.
+std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose);
+
+struct CarShape {
+  double length = 2.9, width = 1.4, height = 1.0;  // m
+  double rear_overhang = 0.6;                       // m behind the rear axle (the vehicle frame's origin)
+};
+// The car as a box plus a heading arrow, entity "car".
+std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape = {});
+
+struct PathSet {
+  std::vector<Vec2> lap1_trajectory;  // driven in lap 1 (the recorded path of lap 2)
+  std::vector<Vec2> lap2_tracking;    // driven while tracking in lap 2
+  std::vector<Vec2> planned;          // what the planner asks for now
+};
+// Three line strips, entities "lap1_trajectory", "lap2_tracking", "planned_path"; decimated to points at least
+// `min_spacing` apart (ends kept).
+std::string paths_scene(Stamp t, const PathSet& paths, double min_spacing = 0.25);
+
+struct CloudOptions {
+  std::size_t max_points = 5000;  // uniform decimation beyond this (5000 points ≈ 110 kB of JSON)
+};
+// Points (in the frame whose pose in the map is `origin`) with fields x, y, z (float32), intensity (uint8) and
+// ground (uint8: 1 ground, 0 not), 16 bytes per point, base64 in "data".
+std::string point_cloud(Stamp t, const Pose3& origin, std::span<const Point> ground, std::span<const Point> non_ground,
+                        const CloudOptions& options = {});
+
+// An already encoded image ("jpeg", "png" or "webp").
+std::string compressed_image(Stamp t, std::span<const std::uint8_t> data, const std::string& format,
+                             const std::string& frame_id = "camera");
+
+struct ImageBox {
+  double x = 0, y = 0, width = 0, height = 0;  // pixels, top-left origin
+  ConeColour colour = ConeColour::Unknown;
+  std::string label;                          // e.g. "blue 0.93"
+};
+std::string image_annotations(Stamp t, const std::vector<ImageBox>& boxes);
+
+// Speed, yaw rate, lateral acceleration, sideslip, steering and the target speed: the plots of the dashboard.
+std::string vehicle_state_json(const VehicleState& state, double target_speed);
+
+struct AsStatusView {
+  AsState as_state = AsState::Off;
+  Mission mission = Mission::None;
+  int lap = 0;                    // laps completed
+  int laps_total = 0;
+  std::vector<double> lap_times;  // s, completed laps
+  double lap_time = 0;            // s, the lap in progress
+  std::string control_mode;       // e.g. "lap 1: midline", "lap 2: stored trajectory"
+  bool res_go = false, res_emergency = false, ebs_active = false;
+  bool finished = false;
+};
+std::string as_status_json(Stamp t, const AsStatusView& status);
+
+struct FaultEvent {
+  Stamp t = 0;
+  std::string source, what, action;
+  bool active = true;
+};
+// The recent faults (the latest `max_items`), newest last.
+std::string faults_json(Stamp t, const std::vector<FaultEvent>& faults, std::size_t max_items = 50);
+
+enum class LogLevel : int { Unknown = 0, Debug = 1, Info = 2, Warning = 3, Error = 4, Fatal = 5 };  // foxglove.Log
+std::string log_json(Stamp t, LogLevel level, const std::string& name, const std::string& message);
+
+}  // namespace fsd::web

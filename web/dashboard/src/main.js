@@ -1,0 +1,197 @@
+// The pit-lane dashboard: one Foxglove WebSocket connection to the daemon (same host and port as this page),
+// a 3D view, live plots, the AS state banner, laps, faults, log, camera and the parameter panel.
+import './style.css';
+import { FoxgloveClient, seconds, fromBase64 } from './foxglove.js';
+import { Scene3D } from './scene3d.js';
+import { TimePlot } from './plots.js';
+import { ParamPanel } from './params.js';
+
+const $ = (id) => document.getElementById(id);
+const RAD2DEG = 180 / Math.PI;
+
+const TOPICS = {
+  cones: '/map/cones',
+  detections: '/perception/cones',
+  car: '/vehicle/car',
+  paths: '/planning/paths',
+  cloud: '/lidar/points',
+  image: '/camera/image',
+  imageBoxes: '/camera/detections',
+  state: '/vehicle/state',
+  as: '/as/status',
+  faults: '/faults',
+  log: '/log',
+};
+
+// ?ws=ws://car:8080/ connects elsewhere (development with `npm run dev`); by default the page's own server.
+const wsUrl = new URLSearchParams(location.search).get('ws') ??
+  `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
+
+const scene = new Scene3D($('view3d'));
+const plots = {
+  speed: new TimePlot($('plot-speed'), {
+    title: 'Speed', unit: 'km/h', minRange: 5,
+    series: [{ label: 'v', color: '#4fc3f7' }, { label: 'target', color: '#ffb74d', dash: [6, 4] }],
+  }),
+  yaw: new TimePlot($('plot-yaw'), { title: 'Yaw rate', unit: '°/s', minRange: 5, series: [{ label: 'r', color: '#81c784' }] }),
+  ay: new TimePlot($('plot-ay'), { title: 'Lateral acceleration', unit: 'm/s²', minRange: 1, series: [{ label: 'ay', color: '#e57373' }] }),
+  beta: new TimePlot($('plot-beta'), { title: 'Sideslip', unit: '°', minRange: 1, series: [{ label: 'β', color: '#ba68c8' }] }),
+};
+
+const hook = (window.__fsd = { connected: false, topics: {}, status: [], scene: () => scene.counts(), plots: {} });
+
+function onVehicleState(m) {
+  const t = seconds(m.timestamp);
+  plots.speed.push(t, m.speed * 3.6, m.target_speed * 3.6);
+  plots.yaw.push(t, m.yaw_rate * RAD2DEG);
+  plots.ay.push(t, m.lateral_acceleration);
+  plots.beta.push(t, m.sideslip * RAD2DEG);
+  for (const [k, p] of Object.entries(plots)) hook.plots[k] = { samples: p.count, t: p.last?.t, values: p.last?.values };
+  scene.setCar(m.x, m.y);
+}
+
+const AS_CLASS = { Off: 'as-off', Ready: 'as-ready', Driving: 'as-driving', Emergency: 'as-emergency', Finished: 'as-finished' };
+const fmtTime = (s) => (Number.isFinite(s) ? `${Math.floor(s / 60)}:${(s % 60).toFixed(2).padStart(5, '0')}` : '–');
+
+function onAsStatus(m) {
+  const banner = $('banner');
+  banner.className = `banner ${AS_CLASS[m.as_state] ?? 'as-off'}`;
+  $('as-state').textContent = m.as_state.toUpperCase();
+  $('mission').textContent = m.mission;
+  const lap = m.finished ? m.lap : m.lap + 1;
+  $('lap').textContent = m.laps_total > 0 ? `lap ${Math.min(lap, m.laps_total)}/${m.laps_total}` : `lap ${lap}`;
+  $('lap-time').textContent = fmtTime(m.lap_time);
+  $('control-mode').textContent = m.control_mode || '–';
+  $('res-ebs').textContent = `${m.res_emergency ? 'RES EMERGENCY' : m.res_go ? 'GO' : '–'} / ${m.ebs_active ? 'EBS ACTIVE' : 'released'}`;
+  const list = $('lap-times');
+  list.replaceChildren(...m.lap_times.map((t, i) => {
+    const li = document.createElement('li');
+    li.textContent = `lap ${i + 1}: ${fmtTime(t)}`;
+    return li;
+  }));
+  hook.as = m;
+}
+
+function onFaults(m) {
+  const list = $('faults');
+  const items = [...m.faults].reverse().map((f) => {
+    const li = document.createElement('li');
+    li.className = f.active ? 'active' : '';
+    li.textContent = `${f.t.toFixed(1)} s  ${f.source}: ${f.what}${f.action ? ` → ${f.action}` : ''}`;
+    return li;
+  });
+  if (!items.length) {
+    const li = document.createElement('li');
+    li.className = 'none';
+    li.textContent = 'none';
+    items.push(li);
+  }
+  list.replaceChildren(...items);
+  $('fault-count').textContent = m.faults.filter((f) => f.active).length;
+}
+
+const LOG_LEVEL = ['?', 'debug', 'info', 'warn', 'error', 'fatal'];
+function addLog(level, name, text) {
+  const list = $('log');
+  const li = document.createElement('li');
+  li.className = `l${level}`;
+  li.textContent = `${LOG_LEVEL[level] ?? '?'} [${name}] ${text}`;
+  list.prepend(li);
+  while (list.children.length > 60) list.lastChild.remove();
+}
+
+let imageUrl = null;
+function onImage(m) {
+  $('camera-panel').hidden = false;
+  const blob = new Blob([fromBase64(m.data)], { type: `image/${m.format === 'jpg' ? 'jpeg' : m.format}` });
+  if (imageUrl) URL.revokeObjectURL(imageUrl);
+  imageUrl = URL.createObjectURL(blob);
+  $('camera').src = imageUrl;
+}
+
+function onImageBoxes(m) {
+  const img = $('camera'), c = $('camera-overlay');
+  if (!img.naturalWidth) return;
+  c.width = img.naturalWidth;
+  c.height = img.naturalHeight;
+  const g = c.getContext('2d');
+  g.clearRect(0, 0, c.width, c.height);
+  const css = (k) => `rgba(${k.r * 255},${k.g * 255},${k.b * 255},${k.a})`;
+  for (const p of m.points ?? []) {
+    g.strokeStyle = css(p.outline_color);
+    g.lineWidth = p.thickness || 2;
+    g.beginPath();
+    p.points.forEach((q, i) => (i ? g.lineTo(q.x, q.y) : g.moveTo(q.x, q.y)));
+    g.closePath();
+    g.stroke();
+  }
+  g.font = '14px system-ui, sans-serif';
+  for (const t of m.texts ?? []) {
+    g.fillStyle = css(t.text_color);
+    g.fillText(t.text, t.position.x, t.position.y);
+  }
+}
+
+const handlers = {
+  [TOPICS.cones]: (m) => scene.applySceneUpdate(TOPICS.cones, m),
+  [TOPICS.detections]: (m) => scene.applySceneUpdate(TOPICS.detections, m),
+  [TOPICS.car]: (m) => scene.applySceneUpdate(TOPICS.car, m),
+  [TOPICS.paths]: (m) => scene.applySceneUpdate(TOPICS.paths, m),
+  [TOPICS.cloud]: (m) => scene.applyPointCloud(m),
+  [TOPICS.state]: onVehicleState,
+  [TOPICS.as]: onAsStatus,
+  [TOPICS.faults]: onFaults,
+  [TOPICS.log]: (m) => addLog(m.level, m.name, m.message),
+  [TOPICS.image]: onImage,
+  [TOPICS.imageBoxes]: onImageBoxes,
+};
+
+function setLink(state, detail) {
+  const link = $('link');
+  link.className = `link ${state}`;
+  $('link-text').textContent =
+    state === 'connected' ? 'connected' : state === 'reconnecting' ? `reconnecting in ${(detail.delay / 1000).toFixed(1)} s` : 'connecting…';
+  hook.connected = state === 'connected';
+  if (state !== 'connected') {
+    $('banner').className = 'banner as-off';
+    $('as-state').textContent = 'NO LINK';
+  }
+}
+
+let panel;
+const client = new FoxgloveClient(wsUrl, Object.values(TOPICS), {
+  onState: setLink,
+  onServerInfo: () => panel.load(),
+  onStatus: (msg) => {
+    hook.status.push(msg);
+    panel.onStatus(msg);
+    if (msg.level >= 1) addLog(msg.level === 2 ? 4 : 3, 'server', msg.message);
+  },
+  onParameterValues: (params, id) => panel.onValues(params, id),
+  onMessage: (topic, tNs, payload) => {
+    hook.topics[topic] = (hook.topics[topic] ?? 0) + 1;
+    try {
+      handlers[topic]?.(payload);
+    } catch (e) {
+      console.error(topic, e);
+    }
+  },
+});
+panel = new ParamPanel({ table: $('params'), tokenInput: $('token'), applyButton: $('apply'), feedback: $('params-feedback'), client });
+hook.params = panel;
+client.connect();
+
+// Message rate in the connection indicator.
+let lastCount = 0;
+setInterval(() => {
+  if (!hook.connected) return;
+  const n = client.stats.messages;
+  $('link-text').textContent = `connected · ${n - lastCount} msg/s`;
+  lastCount = n;
+}, 1000);
+
+$('follow').addEventListener('click', (e) => {
+  scene.follow = !scene.follow;
+  e.currentTarget.classList.toggle('on', scene.follow);
+});
+$('topdown').addEventListener('click', () => scene.topDown());

@@ -1,0 +1,287 @@
+#include "web/hub.hpp"
+
+#include <chrono>
+
+#include "common/logging.hpp"
+#include "web/auth.hpp"
+#include "web/params_json.hpp"
+
+namespace fsd::web {
+
+using foxglove::StatusLevel;
+using nlohmann::json;
+
+namespace {
+std::string join(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+}  // namespace
+
+Hub::Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits limits, std::string server_name)
+    : params_(params),
+      token_(std::move(token)),
+      metrics_(metrics),
+      limits_(limits),
+      name_(std::move(server_name)),
+      session_id_(std::to_string(std::chrono::system_clock::now().time_since_epoch().count())),
+      peers_(std::make_shared<const PeerList>()),
+      published_(metrics.counter("fsd_web_published_total", "Messages handed to the web server by publishers")),
+      dropped_(metrics.counter("fsd_web_messages_dropped_total", "Telemetry messages dropped because a client read too slowly")),
+      dropped_unknown_(metrics.counter("fsd_web_publish_unknown_channel_total", "Publishes to a channel id never added")),
+      protocol_errors_(metrics.counter("fsd_web_protocol_errors_total", "Client messages refused as malformed or not allowed")),
+      param_changes_(metrics.counter("fsd_web_param_changes_total", "Parameter changes made over the web")),
+      param_refusals_(metrics.counter("fsd_web_param_refusals_total", "Parameter changes refused (no valid token or invalid value)")),
+      refused_clients_(metrics.counter("fsd_web_clients_refused_total", "WebSocket clients refused because max_clients were connected")) {
+  metrics.gauge_callback("fsd_web_clients", "Connected WebSocket clients", [this] { return static_cast<double>(peer_count()); });
+  metrics.gauge_callback("fsd_web_send_queue_depth_max", "Deepest send queue of any client (messages)", [this] {
+    std::size_t deepest = 0;
+    for (const auto& p : *peers()) deepest = std::max(deepest, p->state->depth());
+    return static_cast<double>(deepest);
+  });
+}
+
+void Hub::listen_to_params() {
+  params_.subscribe([weak = weak_from_this()](const ParamChange& c) {
+    if (auto self = weak.lock()) self->on_param_change(c);
+  });
+}
+
+void Hub::set_poster(std::function<void(std::function<void()>)> post) { post_ = std::move(post); }
+
+// Publishers only mark the peers whose writer went idle and post a single pass to the I/O threads, so the cost
+// on the publishing thread (the control loop) does not grow with wake-ups per client.
+void Hub::schedule_wakes() {
+  if (!post_) {
+    wake_pass();
+    return;
+  }
+  if (!wake_scheduled_.exchange(true))
+    post_([weak = weak_from_this()] {
+      if (auto self = weak.lock()) self->wake_pass();
+    });
+}
+
+void Hub::wake_pass() {
+  wake_scheduled_.store(false);  // before the scan: a mark made after it posts a new pass
+  for (const auto& p : *peers())
+    if (p->wake_pending.exchange(false)) p->wake();
+}
+
+ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
+                           ChannelOptions options) {
+  foxglove::ChannelInfo info;
+  {
+    std::lock_guard lock(add_channel_m_);
+    const std::size_t n = channel_count_.load();
+    for (std::size_t i = 0; i < n; ++i)
+      if (channels_[i]->info.topic == topic) throw std::logic_error("web: channel '" + topic + "' added twice");
+    if (n == kMaxChannels) throw std::logic_error("web: more than " + std::to_string(kMaxChannels) + " channels");
+    info.id = static_cast<ChannelId>(n + 1);
+    info.topic = topic;
+    info.schema_name = schema_name;
+    info.schema = json_schema;
+    auto c = std::make_unique<Channel>();
+    c->info = info;
+    c->options = options;
+    channels_[n] = std::move(c);
+    channel_count_.store(n + 1);  // publishes the new slot
+  }
+  const std::string msg = foxglove::advertise({info});
+  for (const auto& p : *peers()) push(*p, msg);
+  return info.id;
+}
+
+std::vector<foxglove::ChannelInfo> Hub::channels() const {
+  std::vector<foxglove::ChannelInfo> out;
+  const std::size_t n = channel_count_.load();
+  for (std::size_t i = 0; i < n; ++i) out.push_back(channels_[i]->info);
+  return out;
+}
+
+Hub::Channel* Hub::channel(ChannelId id) const {
+  return id >= 1 && id <= channel_count_.load() ? channels_[id - 1].get() : nullptr;
+}
+
+std::shared_ptr<const Hub::PeerList> Hub::peers() const { return peers_.load(); }
+
+void Hub::publish(ChannelId channel, Stamp t, std::string payload) {
+  const std::uint64_t ns = foxglove::to_nanoseconds(t);
+  Channel* c = this->channel(channel);
+  if (!c) {
+    dropped_unknown_.inc();
+    return;
+  }
+  auto shared = std::make_shared<const std::string>(std::move(payload));
+  if (c->options.latched) c->last.store(std::make_shared<const Latched>(Latched{shared, ns}));
+  published_.inc();
+  bool any = false;
+  for (const auto& p : *peers())
+    if (p->state->offer(channel, ns, shared)) any = p->wake_pending = true;
+  if (any) schedule_wakes();
+}
+
+void Hub::publish_time(Stamp t) {
+  const auto msg = foxglove::time_message(foxglove::to_nanoseconds(t));
+  auto frame = std::make_shared<const std::string>(msg.begin(), msg.end());
+  bool any = false;
+  for (const auto& p : *peers())
+    if (p->state->offer_binary(frame)) any = p->wake_pending = true;
+  if (any) schedule_wakes();
+}
+
+std::shared_ptr<ClientState> Hub::make_client_state() {
+  return std::make_shared<ClientState>(limits_.telemetry_queue, limits_.control_queue, &dropped_);
+}
+
+bool Hub::try_admit() {
+  int n = admitted_.load();
+  while (n < limits_.max_clients)
+    if (admitted_.compare_exchange_weak(n, n + 1)) return true;
+  refused_clients_.inc();
+  return false;
+}
+
+void Hub::release() { admitted_.fetch_sub(1); }
+
+void Hub::add_peer(const std::shared_ptr<Peer>& peer) {
+  {
+    std::lock_guard lock(peers_write_m_);
+    auto next = std::make_shared<PeerList>(*peers_.load());
+    next->push_back(peer);
+    peers_.store(std::move(next));
+  }
+  std::vector<std::string> caps{"parameters", "parametersSubscribe", "time"};
+  json meta{{"tuning", tuning_enabled() ? (peer->token_ok ? "authorised" : "token required") : "disabled"}};
+  push(*peer, foxglove::server_info(name_, caps, meta, session_id_));
+  push(*peer, foxglove::advertise(channels()));
+  logger("web")->info("client {} connected{}", peer->address, peer->token_ok ? " (token ok)" : "");
+}
+
+void Hub::remove_peer(const Peer* peer) {
+  std::lock_guard lock(peers_write_m_);
+  auto next = std::make_shared<PeerList>();
+  for (const auto& p : *peers_.load())
+    if (p.get() != peer) next->push_back(p);
+  peers_.store(std::move(next));
+}
+
+std::size_t Hub::peer_count() const { return peers()->size(); }
+
+void Hub::push(Peer& peer, std::string text) {
+  if (peer.state->push_control(std::move(text))) peer.wake();
+}
+
+void Hub::send_status(Peer& peer, StatusLevel level, const std::string& message) {
+  push(peer, foxglove::status(level, message));
+}
+
+bool Hub::authorised(std::string_view given) const { return token_matches(given, token_); }
+
+bool Hub::on_text(Peer& peer, std::string_view text) {
+  auto parsed = foxglove::parse_client_message(text);
+  if (!parsed.op) {
+    protocol_errors_.inc();
+    send_status(peer, StatusLevel::Error, parsed.error);
+    return false;
+  }
+  return std::visit(
+      [&](const auto& op) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(op)>, foxglove::SetParametersOp>) {
+          return handle(peer, op);
+        } else {
+          handle(peer, op);
+          return true;
+        }
+      },
+      *parsed.op);
+}
+
+void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
+  for (const auto& s : op.subscriptions) {
+    const Channel* c = channel(s.channel_id);
+    if (!c) {
+      send_status(peer, StatusLevel::Error, "subscribe: unknown channel " + std::to_string(s.channel_id));
+      continue;
+    }
+    const auto latched = c->last.load();
+    switch (peer.state->subscribe(s.id, s.channel_id)) {
+      case ClientState::SubscribeResult::IdInUse:
+        send_status(peer, StatusLevel::Error, "subscribe: subscription id " + std::to_string(s.id) + " is in use");
+        continue;
+      case ClientState::SubscribeResult::ChannelAlreadySubscribed:
+        send_status(peer, StatusLevel::Error,
+                    "subscribe: channel " + std::to_string(s.channel_id) + " is already subscribed");
+        continue;
+      case ClientState::SubscribeResult::Ok: break;
+    }
+    if (latched && peer.state->offer(s.channel_id, latched->ns, latched->payload, /*wait=*/true)) peer.wake();
+  }
+}
+
+void Hub::handle(Peer& peer, const foxglove::UnsubscribeOp& op) {
+  for (const auto id : op.subscription_ids)
+    if (!peer.state->unsubscribe(id))
+      send_status(peer, StatusLevel::Warning, "unsubscribe: no subscription " + std::to_string(id));
+}
+
+void Hub::handle(Peer& peer, const foxglove::GetParametersOp& op) {
+  std::vector<std::string> unknown;
+  auto values = parameters_json(params_, op.names, &unknown);
+  if (!unknown.empty()) send_status(peer, StatusLevel::Warning, "getParameters: unknown parameters: " + join(unknown));
+  push(peer, foxglove::parameter_values(values, op.id));
+}
+
+bool Hub::handle(Peer& peer, const foxglove::SetParametersOp& op) {
+  std::vector<std::string> names;
+  for (const auto& p : op.parameters) names.push_back(p.name);
+  const auto reply_current = [&] {
+    if (!names.empty()) push(peer, foxglove::parameter_values(parameters_json(params_, names), op.id));
+  };
+  const bool ok_token = peer.token_ok || (op.token && authorised(*op.token));
+  if (!ok_token) {
+    param_refusals_.inc();
+    protocol_errors_.inc();
+    const std::string why = !tuning_enabled() ? "parameter tuning is disabled on this car (no web token configured)"
+                                              : "setParameters refused: no valid token";
+    logger("web")->warn("{} tried to set [{}]: {}", peer.address, join(names), why);
+    send_status(peer, StatusLevel::Error, why);
+    reply_current();
+    return false;
+  }
+  std::vector<std::pair<std::string, json>> changes;
+  for (const auto& p : op.parameters) changes.emplace_back(p.name, p.value);
+  const auto result = apply_parameters(params_, changes, "web " + peer.address + " (token ok)");
+  if (!result.ok) {
+    param_refusals_.inc();
+    send_status(peer, StatusLevel::Error, "setParameters refused, nothing changed: " + join(result.errors));
+  } else {
+    param_changes_.inc(result.applied.size());
+  }
+  reply_current();
+  return true;
+}
+
+void Hub::handle(Peer& peer, const foxglove::SubscribeParameterUpdatesOp& op) {
+  std::vector<std::string> unknown;
+  parameters_json(params_, op.names, &unknown);
+  if (!unknown.empty())
+    send_status(peer, StatusLevel::Warning, "subscribeParameterUpdates: unknown parameters: " + join(unknown));
+  peer.state->subscribe_params(op.names);
+}
+
+void Hub::handle(Peer& peer, const foxglove::UnsubscribeParameterUpdatesOp& op) {
+  peer.state->unsubscribe_params(op.names);
+}
+
+void Hub::on_param_change(const ParamChange& change) {
+  std::string msg;
+  for (const auto& p : *peers()) {
+    if (!p->state->wants_param(change.key)) continue;
+    if (msg.empty()) msg = foxglove::parameter_values(parameters_json(params_, {change.key}), std::nullopt);
+    push(*p, msg);
+  }
+}
+
+}  // namespace fsd::web

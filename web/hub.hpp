@@ -1,0 +1,139 @@
+#pragma once
+// The socket-free heart of the server: the advertised channels, the connected clients, the fan-out of published
+// telemetry into each client's bounded queue, and the Foxglove protocol's replies to what a client sends
+// (subscriptions, parameters with authorisation). The Beast sessions only move bytes in and out of it.
+#include <array>
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/params.hpp"
+#include "common/time.hpp"
+#include "web/client_state.hpp"
+#include "web/metrics.hpp"
+#include "web/protocol.hpp"
+
+namespace fsd::web {
+
+struct ChannelOptions {
+  // The last message is kept and sent to each new subscriber at once (maps, paths, AS state: things that
+  // change rarely but that a client connecting late must see).
+  bool latched = false;
+};
+
+// One connected WebSocket client as the hub sees it.
+struct Peer {
+  std::shared_ptr<ClientState> state;
+  std::function<void()> wake;  // schedules the client's writer; called when a push reports the writer idle
+  std::atomic<bool> wake_pending{false};  // publish() marks it; the hub's wake pass on the I/O thread calls wake
+  std::string address;         // "ip:port", for logs and the attribution of parameter changes
+  bool token_ok = false;       // the WebSocket URL carried the right ?token=
+};
+
+struct HubLimits {
+  int max_clients = 32;
+  std::size_t telemetry_queue = 256;
+  std::size_t control_queue = 1024;
+};
+
+class Hub : public std::enable_shared_from_this<Hub> {
+ public:
+  Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits limits, std::string server_name);
+  // Registers for parameter changes (call once after construction; the listener holds a weak reference).
+  void listen_to_params();
+  // How publish() gets the clients' writers going without doing it on the publisher's thread: `post` runs a
+  // function on the I/O threads. Unset, publish() wakes the writers itself.
+  void set_poster(std::function<void(std::function<void()>)> post);
+
+  ChannelId add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
+                        ChannelOptions options = {});
+  std::vector<foxglove::ChannelInfo> channels() const;
+  // Never waits: no blocking lock is taken; the payload is shared by every subscriber; a slow client loses its
+  // oldest messages, and a client whose queue is being worked on at that instant loses this one (counted).
+  void publish(ChannelId channel, Stamp t, std::string payload);
+  void publish_time(Stamp t);
+
+  // The state of a new client, with the configured queue sizes.
+  std::shared_ptr<ClientState> make_client_state();
+
+  // Admission: try_admit() takes a client slot (false when all max_clients are taken); release() gives it back.
+  bool try_admit();
+  void release();
+  void add_peer(const std::shared_ptr<Peer>& peer);  // sends serverInfo and advertise
+  void remove_peer(const Peer* peer);
+  std::size_t peer_count() const;
+
+  // Handles one text message of `peer`. Returns false when it was a protocol violation (malformed, unknown op,
+  // refused parameter change); the session counts those and disconnects an abusive client.
+  bool on_text(Peer& peer, std::string_view text);
+  void send_status(Peer& peer, foxglove::StatusLevel level, const std::string& message);
+
+  bool tuning_enabled() const { return !token_.empty(); }
+  bool authorised(std::string_view given) const;
+  void note_protocol_error() { protocol_errors_.inc(); }
+  void note_param_refusal() { param_refusals_.inc(); }
+  void note_param_changes(std::size_t n) { param_changes_.inc(n); }
+  ParamRegistry& params() { return params_; }
+  Metrics& metrics() { return metrics_; }
+
+ private:
+  static constexpr std::size_t kMaxChannels = ClientState::kMaxChannels;
+  struct Latched {
+    std::shared_ptr<const std::string> payload;
+    std::uint64_t ns = 0;
+  };
+  struct Channel {
+    foxglove::ChannelInfo info;
+    ChannelOptions options;
+    std::atomic<std::shared_ptr<const Latched>> last;  // latched channels only
+  };
+  using PeerList = std::vector<std::shared_ptr<Peer>>;
+
+  Channel* channel(ChannelId id) const;  // nullptr for an unknown id; lock-free
+  std::shared_ptr<const PeerList> peers() const;
+  void schedule_wakes();  // one posted pass wakes every peer whose wake_pending is set
+  void wake_pass();
+  void push(Peer& peer, std::string text);
+  void on_param_change(const ParamChange& change);
+  void handle(Peer& peer, const foxglove::SubscribeOp& op);
+  void handle(Peer& peer, const foxglove::UnsubscribeOp& op);
+  void handle(Peer& peer, const foxglove::GetParametersOp& op);
+  bool handle(Peer& peer, const foxglove::SetParametersOp& op);
+  void handle(Peer& peer, const foxglove::SubscribeParameterUpdatesOp& op);
+  void handle(Peer& peer, const foxglove::UnsubscribeParameterUpdatesOp& op);
+
+  ParamRegistry& params_;
+  const std::string token_;
+  Metrics& metrics_;
+  const HubLimits limits_;
+  const std::string name_;
+  const std::string session_id_;
+
+  // Channels are only ever appended: publishers index the array below the published count without a lock.
+  std::mutex add_channel_m_;
+  std::array<std::unique_ptr<Channel>, kMaxChannels> channels_;
+  std::atomic<std::size_t> channel_count_{0};
+
+  // Copy-on-write list of peers: writers (connect, disconnect) serialise on peers_write_m_ and swap the
+  // pointer; publishers load it atomically.
+  std::mutex peers_write_m_;
+  std::atomic<std::shared_ptr<const PeerList>> peers_;
+  std::atomic<int> admitted_{0};
+  std::function<void(std::function<void()>)> post_;
+  std::atomic<bool> wake_scheduled_{false};
+
+  Counter& published_;
+  Counter& dropped_;
+  Counter& dropped_unknown_;
+  Counter& protocol_errors_;
+  Counter& param_changes_;
+  Counter& param_refusals_;
+  Counter& refused_clients_;
+};
+
+}  // namespace fsd::web

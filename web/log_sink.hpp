@@ -1,0 +1,23 @@
+#pragma once
+// An spdlog sink that publishes log lines on the /log channel (foxglove.Log), so the dashboard and Foxglove
+// Studio show them. Publishing never blocks, so logging from the control thread stays cheap.
+#include <memory>
+
+#include <spdlog/sinks/sink.h>
+
+#include "web/hub.hpp"
+
+namespace fsd {
+class Clock;
+}
+
+namespace fsd::web {
+
+class WebServer;
+
+// The sink keeps references to `server` and `clock`: remove it from the loggers before the server goes away.
+// Lines below `level` (default info) are not published.
+std::shared_ptr<spdlog::sinks::sink> make_log_sink(WebServer& server, ChannelId log_channel, const Clock& clock,
+                                                   spdlog::level::level_enum level = spdlog::level::info);
+
+}  // namespace fsd::web
