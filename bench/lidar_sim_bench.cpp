@@ -91,9 +91,11 @@ void BM_RaycastVsObjectCount(benchmark::State& state) {
   wc.tyre_stacks = static_cast<int>(state.range(0));
   const World world(bench_track(), wc, 1);
   const Drive drive(centre_line(bench_track()), 10.0);
+  std::vector<Pose3> poses;
+  for (int i = 0; i < 1000; ++i) poses.push_back(drive(i * 0.1));
   std::size_t k = 0, hits = 0;
   for (auto _ : state) {
-    const Pose3 pose = drive(static_cast<double>(k % 1000) * 0.1);
+    const Pose3& pose = poses[k % poses.size()];
     const double a = static_cast<double>(k % 1800) * 0.2 * std::numbers::pi / 180.0;
     const double e = deg2rad(-15.0 + 2.0 * static_cast<double>(k % 16));
     const Vec3 dir = pose.linear() * Vec3(std::cos(e) * std::cos(a), -std::cos(e) * std::sin(a), std::sin(e));
