@@ -1,5 +1,6 @@
 #include "drivers/sim/distractors.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -67,7 +68,8 @@ class Placer {
       for (int attempt = 0; attempt < kAttempts; ++attempt) {
         Distractor d = make();
         const double r = d.footprint_radius();
-        const auto anchor = anchor_point(cfg_.distractor_min_offset + r, cfg_.distractor_max_offset + r);
+        const double max_offset = std::max(cfg_.distractor_max_offset, cfg_.distractor_min_offset);
+        const auto anchor = anchor_point(cfg_.distractor_min_offset + r, max_offset + r);
         if (!anchor) continue;
         d.position = anchor->first;
         if (clear_of_track(d.position, r, cfg_.distractor_min_offset) && clear_of_others(d.position, r)) {

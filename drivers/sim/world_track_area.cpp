@@ -107,7 +107,8 @@ bool TrackArea::on_track(const Vec2& p) const {
   const auto left = nearest_on_side(p, Side::Left);
   const auto right = nearest_on_side(p, Side::Right);
   if (!left || !right) return false;
-  return (*left - p).dot(*right - p) < 0.0;
+  // Between the two boundaries, and they are no farther apart than a track is wide (not across an infield).
+  return (*left - p).dot(*right - p) < 0.0 && (*left - *right).norm() <= kMaxTrackWidth;
 }
 
 std::optional<Vec2> TrackArea::outward_at_cone(std::size_t i) const {

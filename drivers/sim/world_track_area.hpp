@@ -6,7 +6,7 @@
 // blue or yellow cone). Cones of one role and side are chained to their nearest neighbour and the nearest one on
 // its far side within a gap, and chain ends are joined to the next cone of any role on their side, which follows
 // the boundaries without relying on the order of the track file. A point is on the track when the nearest points
-// of the two boundaries lie on opposite sides of it.
+// of the two boundaries lie on opposite sides of it and not farther apart than a track is wide.
 #include <optional>
 #include <vector>
 
@@ -21,6 +21,8 @@ class TrackArea {
     Vec2 a, b;
     Side side;
   };
+
+  static constexpr double kMaxTrackWidth = 8.0;  // m; FS tracks are 3 m (trackdrive) to 5 m (acceleration)
 
   explicit TrackArea(const Track& track, double max_gap = 7.0);
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "drivers/sim/world.hpp"
@@ -101,6 +102,24 @@ TEST(WorldDistractors, NeverOnTheTrackAndAtLeastTheOffsetAway) {
       }
       EXPECT_EQ(round, cfg.tyres + cfg.posts + cfg.tyre_stacks) << name << " seed " << seed;
       EXPECT_GE(fences, 1) << name << " seed " << seed;
+    }
+  }
+}
+
+// Every shared track, including those the model above does not fit: nothing within the offset of any cone.
+TEST(WorldDistractors, EverySharedTrackKeepsThemAwayFromTheCones) {
+  const WorldConfig cfg;
+  for (const auto& entry : std::filesystem::directory_iterator("../shared/tracks")) {
+    const Track track = load_track(entry.path());
+    const World world(track, cfg, 1);
+    EXPECT_GE(world.distractors().size(), static_cast<std::size_t>(cfg.tyres + cfg.posts)) << track.name;
+    for (const auto& d : world.distractors()) {
+      const double min_offset = d.type == DistractorType::Fence ? cfg.fence_offset_min : cfg.distractor_min_offset;
+      for (const auto& c : track.cones) {
+        const double gap = d.type == DistractorType::Fence ? segment_distance(c.position, d.position, d.fence_end())
+                                                           : (c.position - d.position).norm() - d.footprint_radius();
+        ASSERT_GT(gap, min_offset) << track.name << " " << to_string(d.type) << " at " << d.position.transpose();
+      }
     }
   }
 }
