@@ -1,8 +1,9 @@
 #include "daemon/settings.hpp"
 
 #include "daemon/truth_perception.hpp"
-#include "drivers/sim/vcu_standin.hpp"
-#include "drivers/sim/vehicle_params.hpp"
+#include "control/control_config.hpp"
+#include "drivers/sim/virtual_car.hpp"
+#include "web/config.hpp"
 #include "drivers/gnss/gnss_config.hpp"
 #include "drivers/vcu/vcu_config.hpp"
 #include "drivers/vlp16/config.hpp"
@@ -43,8 +44,9 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   run_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
-  sim::vehicle_section().describe(*schema);
-  sim::vcu_standin_section().describe(*schema);
+  sim::describe_virtual_car_config(*schema);
+  describe_control(*schema);
+  web::web_section().describe(*schema);
   vcu_section().describe(*schema);
   gnss_section().describe(*schema);
   vlp16_section().describe(*schema);

@@ -1,0 +1,102 @@
+#include <csignal>
+#include <fstream>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/clock.hpp"
+#include "common/logging.hpp"
+#include "common/params.hpp"
+#include "daemon/cli.hpp"
+#include "daemon/commands.hpp"
+#include "daemon/run_options.hpp"
+#include "daemon/settings.hpp"
+#include "daemon/sim_run.hpp"
+#include "daemon/telemetry.hpp"
+#include "web/config.hpp"
+#include "web/server.hpp"
+
+namespace fsd {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop.store(true); }
+
+// The command line's values override the configuration's, validated the same way.
+Config load_config(const RunOptions& o) {
+  Config cfg = o.config_file.empty() ? Config(config_schema()) : Config::load(config_schema(), o.config_file);
+  if (o.track) cfg.set("run.track", *o.track, "--track");
+  if (o.mission) cfg.set("run.mission", *o.mission, "--mission");
+  if (o.laps) cfg.set("run.laps", *o.laps, "--laps");
+  if (o.seed) cfg.set("run.seed", *o.seed, "--seed");
+  if (o.port) cfg.set("web.port", *o.port, "--port");
+  return cfg;
+}
+
+int run_command(const RunOptions& o) {
+  Config cfg = load_config(o);
+  init_logging(daemon_section().read(cfg).log_level);
+  if (!o.replay.empty() || !o.record.empty()) {
+    std::cerr << "fsd run: recording and replay (--record, --replay) are not available in this version\n";
+    return kExitBadInput;
+  }
+  if (!o.sim) {
+    std::cerr << "fsd run: only the virtual car is wired in this version: add --sim\n";
+    return kExitBadInput;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  SimRun run(cfg, o);
+  RealClock clock;
+  ParamRegistry params(cfg, &clock);
+  std::unique_ptr<web::WebServer> server;
+  std::unique_ptr<Telemetry> telemetry;
+  if (!o.headless) {
+    const web::WebConfig wc = web::web_section().read(cfg);
+    server = std::make_unique<web::WebServer>(wc, params, clock);
+    server->start();
+    telemetry = std::make_unique<Telemetry>(*server);
+    run.set_telemetry(telemetry.get());
+    const std::string host = wc.bind == "0.0.0.0" ? "localhost" : wc.bind;
+    std::cout << "fsd: dashboard at http://" << host << ":" << server->port() << "/  (Ctrl-C stops)" << std::endl;
+  }
+  const int rc = run.run(g_stop);
+  if (telemetry) telemetry->stop();
+  if (server) server->stop();
+  if (!o.report.empty()) {
+    std::ofstream f(o.report);
+    if (!f) {
+      std::cerr << "fsd run: cannot write the report to " << o.report << "\n";
+      return kExitBadInput;
+    }
+    f << run.scorecard().to_json().dump(2) << "\n";
+  }
+  return rc;
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("run", "Run the daemon: with --sim on the virtual car with the full stack");
+  static RunOptions o;
+  cmd->add_option("--config", o.config_file, "configuration file (JSON); default: compiled-in defaults")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--sim", o.sim, "drive the virtual car in-process");
+  cmd->add_option("--track", o.track, "track file (EUFS/FSDS CSV), overrides run.track");
+  cmd->add_option("--mission", o.mission, "trackdrive|autocross|acceleration|skidpad|inspection|ebs_test");
+  cmd->add_option("--laps", o.laps, "laps of trackdrive, overrides run.laps");
+  cmd->add_option("--seed", o.seed, "seed of the virtual car's random processes");
+  cmd->add_option("--port", o.port, "dashboard port, overrides web.port");
+  cmd->add_option("--replay", o.replay, "replay a recorded run (MCAP)");
+  cmd->add_option("--record", o.record, "record the run (MCAP)");
+  cmd->add_flag("--headless", o.headless, "no dashboard; the simulation runs as fast as the CPU allows (lockstep)");
+  cmd->add_flag("--until-finished", o.until_finished,
+                "stop when the mission is over; exit 1 if it failed (not finished, cones hit, no stop)");
+  cmd->add_option("--report", o.report, "write the scorecard (JSON) here at the end");
+  cmd->callback([&exit_code] { exit_code = run_command(o); });
+}
+
+}  // namespace fsd

@@ -1,0 +1,238 @@
+#include "daemon/sim_run.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "common/clock.hpp"
+#include "common/logging.hpp"
+#include "control/autopilot.hpp"
+#include "control/control_config.hpp"
+#include "daemon/settings.hpp"
+#include "daemon/telemetry.hpp"
+#include "daemon/truth_perception.hpp"
+#include "drivers/gnss/gnss_driver.hpp"
+#include "drivers/sim/virtual_car.hpp"
+#include "drivers/vcu/vcu_session.hpp"
+#include "drivers/vlp16/scan_builder.hpp"
+#include "localization/cone_map.hpp"
+
+namespace fsd {
+
+namespace {
+
+constexpr double kControlPeriod = 0.01;    // s: the control loop runs at 100 Hz
+constexpr double kPerceptionPeriod = 0.1;  // s: one LiDAR revolution
+
+wire::vcu::AsRequest to_wire(AsRequest r) {
+  switch (r) {
+    case AsRequest::Ready: return wire::vcu::AsRequest::Ready;
+    case AsRequest::Finished: return wire::vcu::AsRequest::Finished;
+    case AsRequest::Emergency: return wire::vcu::AsRequest::Emergency;
+    default: return wire::vcu::AsRequest::None;
+  }
+}
+
+// Timed laps of a mission as the timekeeper counts gate crossings, and the stop zone after the last one.
+std::pair<int, double> mission_timing(Mission m, int laps) {
+  switch (m) {
+    case Mission::Trackdrive: return {laps, 30.0};
+    case Mission::Autocross: return {1, 30.0};
+    case Mission::Acceleration: return {1, 100.0};
+    case Mission::Skidpad: return {4, 30.0};
+    default: return {1, 100.0};
+  }
+}
+
+VehicleState state_from_truth(const sim::VehicleTruth& t) {
+  VehicleState s;
+  s.stamp = t.t;
+  s.pose = t.pose;
+  s.vx = t.vx;
+  s.vy = t.vy;
+  s.yaw_rate = t.yaw_rate;
+  s.ax = t.ax;
+  s.ay = t.ay;
+  s.steering = t.steering;
+  return s;
+}
+
+}  // namespace
+
+struct SimRun::Impl {
+  RunSettings run;
+  Mission mission = Mission::Trackdrive;
+  Track track;
+  sim::VirtualCarSettings car_settings;
+  std::unique_ptr<sim::VirtualCar> car;
+  std::unique_ptr<VcuSession> vcu;
+  std::unique_ptr<GnssDriver> gnss;
+  std::unique_ptr<Vlp16ScanBuilder> lidar;
+  std::unique_ptr<Autopilot> autopilot;
+  ConeMap cone_map;
+  TruthPerception perception;
+  std::unique_ptr<Scorecard> card;
+  Telemetry* telemetry = nullptr;
+  bool headless = true, until_finished = false;
+  std::shared_ptr<const Scan> last_scan;
+  std::shared_ptr<const ConeDetections> last_detections;
+  std::vector<Vec2> lap1_trail, lap2_trail;
+  std::vector<FaultRecord> link_faults;
+  std::shared_ptr<spdlog::logger> log = logger("run");
+
+  Impl(const Config& cfg, const RunOptions& opt)
+      : run(run_section().read(cfg)),
+        cone_map(cone_map_section().read(cfg)),
+        perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5) {
+    headless = opt.headless;
+    until_finished = opt.until_finished;
+    const auto m = mission_from_string(run.mission);
+    if (!m) throw std::invalid_argument("unknown mission '" + run.mission + "'");
+    mission = *m;
+    track = load_track(run.track, ColourConvention::named(run.colours));
+    car_settings = sim::read_virtual_car_settings(cfg);
+    // The simulated RES operator presses go shortly after the rules' 5 s in Ready unless configured otherwise.
+    if (car_settings.vcu.res_go_at_s < 0) car_settings.vcu.res_go_at_s = car_settings.vcu.ready_to_drive_s + 0.5;
+
+    const auto seed = static_cast<std::uint64_t>(run.seed);
+    sim::SensorSinks sinks;
+    sinks.vcu_status = [this](Stamp t, std::span<const std::uint8_t> b) { vcu->on_bytes(t, b); };
+    sinks.gnss = [this](Stamp t, std::span<const std::uint8_t> b) { gnss->feed(b, t); };
+    sinks.lidar = [this](Stamp t, std::span<const std::uint8_t> b) { lidar->on_data_packet(t, b); };
+    car = std::make_unique<sim::VirtualCar>(track, car_settings, seed, sinks);
+
+    vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), 0.0, [this](const VcuLinkEvent& e) {
+      link_faults.push_back({e.t, "vcu", std::string(to_string(e.kind)) + (e.what.empty() ? "" : ": " + e.what),
+                             "supervisor watchdog"});
+    });
+    vcu->set_mission(mission);
+
+    // The receiver's local frame is the track's map frame: same origin as the simulated GNSS.
+    GnssConfig gc = gnss_section().read(cfg);
+    gc.use_first_fix = false;
+    gc.origin_lat_deg = car_settings.gnss.origin_lat_deg;
+    gc.origin_lon_deg = car_settings.gnss.origin_lon_deg;
+    gc.origin_height_m = car_settings.gnss.origin_height_m;
+    gnss = std::make_unique<GnssDriver>(gc, [this](const GnssSample& s) { autopilot->on_gnss(s.stamp, s.good); });
+
+    lidar = std::make_unique<Vlp16ScanBuilder>(vlp16_section().read(cfg), [this](Scan&& scan) {
+      last_scan = std::make_shared<const Scan>(std::move(scan));
+    });
+
+    AutopilotConfig ac = read_control(cfg);
+    ac.mission.laps = run.laps;
+    autopilot = std::make_unique<Autopilot>(ac, mission, track.convention);
+
+    const auto [laps_to_finish, stop_zone] = mission_timing(mission, run.laps);
+    card = std::make_unique<Scorecard>(track, mission, laps_to_finish, stop_zone, run.seed);
+    const auto& v = car_settings.vehicle;
+    card->set_vehicle_limits({ac.speed.mu, ac.speed.a_accel_max, ac.speed.a_brake_max, ac.speed.v_max});
+    (void)v;
+  }
+
+  void publish_telemetry(Stamp t, const ControlOutput& out) {
+    if (!telemetry) return;
+    TelemetrySnapshot s;
+    s.t = t;
+    s.state = state_from_truth(car->truth());
+    s.target_speed = out.command.target_speed;
+    s.cone_map = std::make_shared<const std::vector<Cone>>(autopilot->cones());
+    s.detections = last_detections;
+    auto paths = std::make_shared<web::PathSet>();
+    paths->lap1_trajectory = lap1_trail;
+    paths->lap2_tracking = lap2_trail;
+    if (out.path)
+      for (const auto& p : out.path->points) paths->planned.push_back(p.p);
+    s.paths = paths;
+    s.scan = last_scan;
+    s.lidar_pose = car->truth().body_pose3() * sim::lidar_mount(car_settings.lidar);
+    s.as.as_state = car->vcu().state();
+    s.as.mission = mission;
+    s.as.lap = static_cast<int>(autopilot->lap_times().size());
+    s.as.laps_total = mission_timing(mission, run.laps).first;
+    s.as.lap_times = autopilot->lap_times();
+    s.as.control_mode = std::string(to_string(out.source));
+    s.as.finished = out.finished;
+    if (const auto st = vcu->status()) {
+      s.as.res_go = st->res_go;
+      s.as.res_emergency = st->res_emergency;
+      s.as.ebs_active = st->ebs_active;
+    }
+    for (const auto& f : autopilot->faults()) s.faults.push_back({f.t, f.source, f.what, f.action, true});
+    telemetry->publish(std::move(s));
+  }
+
+  int run_loop(const std::atomic<bool>& stop) {
+    const auto wall0 = std::chrono::steady_clock::now();
+    SimulatedClock pace(1.0);
+    Stamp t = 0, next_perception = 0;
+    double stopped_since = -1;
+    int cycle = 0;
+    log->info("driving {} on {} ({} lap(s)), seed {}, {}", to_string(mission), track.name, run.laps, run.seed,
+              headless ? "headless lockstep" : "real time");
+    while (!stop.load(std::memory_order_relaxed)) {
+      t = (++cycle) * kControlPeriod;
+      if (!headless && !pace.sleep_until(t)) break;
+      car->advance_to(t);
+      card->on_truth(car->truth());
+      vcu->tick(t, [this, t](std::vector<std::uint8_t> bytes) { car->feed_vcu(t, bytes); });
+      if (const auto st = vcu->status()) autopilot->on_vcu(*st);
+
+      const sim::VehicleTruth& truth = car->truth();
+      if (t + 1e-9 >= next_perception) {
+        next_perception += kPerceptionPeriod;
+        const auto p0 = std::chrono::steady_clock::now();
+        auto det = perception.detect(t, car->standing_cones(), truth.pose);
+        cone_map.update(det, truth.pose);
+        autopilot->on_cones(t, cone_map.cones());
+        card->latency("perception")
+            .add(std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count());
+        last_detections = std::make_shared<const ConeDetections>(std::move(det));
+      }
+      autopilot->on_state(state_from_truth(truth));
+      const ControlOutput out = autopilot->step(t);
+      vcu->set_command(out.command, t);
+      vcu->set_as_request(to_wire(out.request));
+      if (out.planned) card->latency("planning").add(out.planning_time);
+      card->latency("control").add(out.control_time);
+
+      const std::size_t laps_done = autopilot->lap_times().size();
+      if (car->vcu().state() == AsState::Driving && (cycle % 10) == 0)
+        (laps_done == 0 ? lap1_trail : lap2_trail).push_back(truth.pose.position());
+      card->set_as_state(car->vcu().state());
+      card->set_cones_hit(car->cones_hit());
+      if (cycle % 4 == 0) publish_telemetry(t, out);
+
+      // The end of a run: the mission is over and the car stands (Finished or Emergency), or time ran out.
+      const AsState as = car->vcu().state();
+      const bool resting = truth.speed() < 0.05;
+      stopped_since = resting ? (stopped_since < 0 ? t : stopped_since) : -1;
+      if (until_finished || headless) {
+        if (as == AsState::Finished && stopped_since >= 0 && t - stopped_since > 1.0) break;
+        if (as == AsState::Emergency && stopped_since >= 0 && t - stopped_since > 1.0) break;
+      }
+      if (t >= run.max_sim_time) {
+        log->warn("giving up after {} s of simulated time", run.max_sim_time);
+        break;
+      }
+    }
+    card->set_wall_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
+    for (const auto& f : link_faults) card->add_fault(f);
+    for (const auto& f : autopilot->faults()) card->add_fault({f.t, f.source, f.what, f.action});
+    const auto vc = vcu->counters();
+    log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
+              to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,
+              vc.statuses);
+    if (!until_finished) return 0;
+    return card->mission_succeeded() ? 0 : 1;
+  }
+};
+
+SimRun::SimRun(const Config& config, const RunOptions& options) : impl_(std::make_unique<Impl>(config, options)) {}
+SimRun::~SimRun() = default;
+int SimRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
+const Scorecard& SimRun::scorecard() const { return *impl_->card; }
+void SimRun::set_telemetry(Telemetry* telemetry) { impl_->telemetry = telemetry; }
+
+}  // namespace fsd

@@ -1,0 +1,116 @@
+#include "drivers/sim/virtual_car.hpp"
+
+#include <cmath>
+
+namespace fsd::sim {
+
+const ConfigSection<SimRunConfig>& sim_run_section() {
+  static const auto s = ConfigSection<SimRunConfig>("sim")
+                            .number("physics_rate_hz", &SimRunConfig::physics_rate_hz, 200.0, 5000.0, "Hz",
+                                    "Fixed integration rate of the vehicle model (≥ 200 Hz).")
+                            .boolean("lidar", &SimRunConfig::lidar, "Simulate the VLP-16 (ray casting).")
+                            .boolean("gnss", &SimRunConfig::gnss, "Simulate the GNSS-INS receiver.");
+  return s;
+}
+
+void describe_virtual_car_config(ConfigSchema& schema) {
+  sim_run_section().describe(schema);
+  vehicle_section().describe(schema);
+  world_section().describe(schema);
+  lidar_section().describe(schema);
+  gnss_model_section().describe(schema);
+  vcu_standin_section().describe(schema);
+}
+
+VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
+  VirtualCarSettings s;
+  s.run = sim_run_section().read(cfg);
+  s.vehicle = vehicle_section().read(cfg);
+  s.world = world_section().read(cfg);
+  s.lidar = lidar_section().read(cfg);
+  s.gnss = gnss_model_section().read(cfg);
+  s.vcu = vcu_standin_section().read(cfg);
+  return s;
+}
+
+namespace {
+VcuStandinConfig seeded(VcuStandinConfig c, std::uint64_t seed) {
+  c.seed = static_cast<int>(seed % 1000000007ULL);
+  return c;
+}
+}  // namespace
+
+VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, std::uint64_t seed, SensorSinks sinks)
+    : s_(settings),
+      world_(track, settings.world, seed),
+      vehicle_(settings.vehicle),
+      vcu_(seeded(settings.vcu, seed), sinks.vcu_status),
+      sinks_(std::move(sinks)),
+      dt_(1.0 / settings.run.physics_rate_hz) {
+  vehicle_.reset(track.start, 0.0, 0.0);
+  prev_ = vehicle_.truth();
+  // Each sensor gets its own seed stream so enabling one does not change another's noise.
+  if (s_.run.lidar) lidar_ = std::make_unique<LidarModel>(s_.lidar, world_, seed * 7919 + 1, 0.0);
+  if (s_.run.gnss) gnss_ = std::make_unique<GnssModel>(s_.gnss, seed * 7919 + 2);
+}
+
+void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) { vcu_.feed(t, bytes); }
+
+VehicleTruth VirtualCar::truth_at(Stamp t) const {
+  const VehicleTruth& b = vehicle_.truth();
+  if (t >= b.t || b.t <= prev_.t) return b;
+  if (t <= prev_.t) return prev_;
+  const double w = (t - prev_.t) / (b.t - prev_.t);
+  auto lerp = [w](double x, double y) { return x + w * (y - x); };
+  VehicleTruth r = b;
+  r.t = t;
+  r.pose = {lerp(prev_.pose.x, b.pose.x), lerp(prev_.pose.y, b.pose.y),
+            wrap_angle(prev_.pose.yaw + w * wrap_angle(b.pose.yaw - prev_.pose.yaw))};
+  r.vx = lerp(prev_.vx, b.vx);
+  r.vy = lerp(prev_.vy, b.vy);
+  r.yaw_rate = lerp(prev_.yaw_rate, b.yaw_rate);
+  r.ax = lerp(prev_.ax, b.ax);
+  r.ay = lerp(prev_.ay, b.ay);
+  r.roll = lerp(prev_.roll, b.roll);
+  r.pitch = lerp(prev_.pitch, b.pitch);
+  r.steering = lerp(prev_.steering, b.steering);
+  r.distance = lerp(prev_.distance, b.distance);
+  return r;
+}
+
+void VirtualCar::advance_to(Stamp t) {
+  while (vehicle_.truth().t + dt_ <= t + 1e-9) {
+    const Stamp now = vehicle_.truth().t;
+    const ActuatorOutput& out = vcu_.step(now, vehicle_.truth());
+    ActuatorCommand cmd;
+    cmd.steering = out.steering_request;
+    cmd.target_speed = out.target_speed;
+    cmd.max_brake = out.max_brake;
+    cmd.ebs = out.ebs;
+    cmd.drive_enabled = out.drive_enabled;
+    prev_ = vehicle_.truth();
+    vehicle_.step(dt_, cmd);
+    const auto fp = vehicle_.footprint();
+    world_.update_hits(fp, vehicle_.truth().t);
+    const Stamp t1 = vehicle_.truth().t;
+    if (lidar_ && sinks_.lidar)
+      lidar_->advance_to(t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
+    if (gnss_ && sinks_.gnss) gnss_->advance_to(t1, [this](Stamp ts) { return truth_at(ts); }, sinks_.gnss);
+  }
+}
+
+std::vector<Cone> VirtualCar::standing_cones() const {
+  std::vector<Cone> out;
+  for (std::size_t i = 0; i < world_.cones().size(); ++i) {
+    const auto& wc = world_.cones()[i];
+    if (wc.knocked) continue;
+    Cone c;
+    c.position = wc.base;
+    c.colour = wc.colour;
+    c.id = static_cast<std::uint32_t>(i + 1);
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace fsd::sim

@@ -1,0 +1,81 @@
+#pragma once
+// The virtual car: world, vehicle dynamics, VCU stand-in and sensor models stepped together at a fixed physics
+// rate. Sensors write the bytes of the real devices to sinks; the daemon sends the VCU's bytes in through
+// feed_vcu(). The car never reads a clock: its owner advances it (lockstep) or paces it in real time.
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "common/config.hpp"
+#include "common/track.hpp"
+#include "common/types.hpp"
+#include "drivers/sim/gnss_model.hpp"
+#include "drivers/sim/lidar_model.hpp"
+#include "drivers/sim/sink.hpp"
+#include "drivers/sim/vcu_standin.hpp"
+#include "drivers/sim/vehicle_model.hpp"
+#include "drivers/sim/world.hpp"
+
+namespace fsd::sim {
+
+struct SimRunConfig {
+  double physics_rate_hz = 400.0;
+  bool lidar = true;   // the VLP-16 model (costly: off when only truth perception is used)
+  bool gnss = true;
+};
+const ConfigSection<SimRunConfig>& sim_run_section();  // prefix "sim"
+
+// Every setting of the virtual car, read from the sections of the configuration.
+struct VirtualCarSettings {
+  SimRunConfig run;
+  VehicleParams vehicle;
+  WorldConfig world;
+  LidarConfig lidar;
+  GnssModelConfig gnss;
+  VcuStandinConfig vcu;
+};
+VirtualCarSettings read_virtual_car_settings(const Config& cfg);
+void describe_virtual_car_config(ConfigSchema& schema);
+
+struct SensorSinks {
+  ByteSink lidar;       // VLP-16 UDP payloads (1206 bytes each)
+  ByteSink gnss;        // NMEA bytes as they leave the receiver's serial port
+  ByteSink vcu_status;  // VCU protocol bytes towards the daemon
+};
+
+class VirtualCar {
+ public:
+  VirtualCar(const Track& track, const VirtualCarSettings& settings, std::uint64_t seed, SensorSinks sinks);
+
+  // Bytes from the daemon to the VCU, arriving at time t.
+  void feed_vcu(Stamp t, std::span<const std::uint8_t> bytes);
+  // Integrates physics in fixed steps up to t and lets every sensor emit what it produced meanwhile.
+  void advance_to(Stamp t);
+
+  Stamp now() const { return truth().t; }
+  const VehicleTruth& truth() const { return vehicle_.truth(); }
+  const VehicleModel& vehicle() const { return vehicle_; }
+  VcuStandin& vcu() { return vcu_; }
+  const World& world() const { return world_; }
+  GnssModel* gnss() { return gnss_.get(); }
+  int cones_hit() const { return world_.cones_hit(); }
+  // Upright cones in the map frame with their true colours (the truth perception source and the scorecard).
+  std::vector<Cone> standing_cones() const;
+  std::uint64_t lidar_packets() const { return lidar_ ? lidar_->packets_sent() : 0; }
+
+ private:
+  VehicleTruth truth_at(Stamp t) const;  // interpolated between the last two physics steps
+
+  VirtualCarSettings s_;
+  World world_;
+  VehicleModel vehicle_;
+  VcuStandin vcu_;
+  std::unique_ptr<LidarModel> lidar_;
+  std::unique_ptr<GnssModel> gnss_;
+  SensorSinks sinks_;
+  VehicleTruth prev_;
+  double dt_;
+};
+
+}  // namespace fsd::sim
