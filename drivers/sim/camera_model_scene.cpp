@@ -13,7 +13,7 @@ namespace fsd::sim {
 namespace {
 // Albedos (B, G, R) chosen so that saturated FS cone colours keep their hue under the exposure range.
 const cv::Vec3d kBlue(185, 75, 30);
-const cv::Vec3d kYellow(25, 205, 235);
+const cv::Vec3d kYellow(25, 215, 230);
 const cv::Vec3d kOrange(20, 95, 240);
 const cv::Vec3d kRed(35, 30, 200);
 const cv::Vec3d kWhite(225, 225, 225);
