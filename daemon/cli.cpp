@@ -16,6 +16,7 @@ int run_cli(int argc, char** argv) {
   int exit_code = kExitOk;
   add_version_command(app, exit_code);
   add_config_command(app, exit_code);
+  add_calibrate_homography_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,5 +8,6 @@ namespace fsd {
 
 void add_version_command(CLI::App& app, int& exit_code);
 void add_config_command(CLI::App& app, int& exit_code);
+void add_calibrate_homography_command(CLI::App& app, int& exit_code);
 
 }  // namespace fsd
