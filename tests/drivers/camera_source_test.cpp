@@ -4,6 +4,8 @@
 
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <unistd.h>
@@ -132,6 +134,21 @@ TEST(CameraSource, MissingSourceIsRetriedAndStopsCleanly) {
   EXPECT_EQ(st.frames, 0u);
   EXPECT_FALSE(st.open);
   src.stop();  // idempotent
+}
+
+TEST(CameraSource, ConfigSectionDefaultsAndBounds) {
+  auto schema = std::make_shared<ConfigSchema>();
+  camera_driver_section().describe(*schema);
+  Config cfg(schema);
+  const CameraDriverConfig d = camera_driver_section().read(cfg);
+  EXPECT_EQ(d.source, "/dev/video0");
+  EXPECT_EQ(d.width, 640);
+  EXPECT_EQ(d.fourcc, "MJPG");
+  EXPECT_TRUE(d.calibration.empty());
+  cfg.set("drivers.camera.source", "v4l2src ! videoconvert ! appsink", "test");
+  EXPECT_EQ(camera_driver_section().read(cfg).source, "v4l2src ! videoconvert ! appsink");
+  EXPECT_THROW(cfg.set("drivers.camera.fourcc", "H264", "test"), ConfigError);
+  EXPECT_THROW(cfg.set("drivers.camera.fps", 0.0, "test"), ConfigError);
 }
 
 TEST(CameraSource, SourcesAreClassifiedByTheirForm) {
