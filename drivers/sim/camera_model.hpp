@@ -44,6 +44,8 @@ class CameraModel {
  public:
   // `start` is the capture time of the first frame. The world must outlive the model.
   CameraModel(const CameraConfig& cfg, const World& world, std::uint64_t seed, Stamp start = 0.0);
+  CameraModel(const CameraModel&) = delete;  // the scene refers to this object's sunlight
+  CameraModel& operator=(const CameraModel&) = delete;
 
   // Captures every frame whose capture time is ≤ t and emits it JPEG-encoded, stamped capture time + latency.
   // body_pose_at(t) gives the vehicle body 3D pose (map ← body) at a capture time since the previous call.

@@ -161,7 +161,10 @@ std::vector<Panel> fence_panels(const World& world, int index) {
 }
 
 SceneBuilder::SceneBuilder(const World& world, const Sunlight& sun) : world_(world), sun_(sun) {
-  for (int i = 0; i < static_cast<int>(world.distractors().size()); ++i) fences_.push_back(fence_panels(world, i));
+  for (int i = 0; i < static_cast<int>(world.distractors().size()); ++i) {
+    distractor_solids_.push_back(distractor_solids(world, i));
+    fences_.push_back(fence_panels(world, i));
+  }
 }
 
 void SceneBuilder::build(const CameraView& view, const cv::Scalar& gains, bool with_shadows, DisplayList& list) const {
@@ -174,10 +177,10 @@ void SceneBuilder::build(const CameraView& view, const cv::Scalar& gains, bool w
     solids.push_back(cone_solid(world_, i));
     solid_objects.push_back(i);
   }
-  for (int j = 0; j < static_cast<int>(world_.distractors().size()); ++j)
-    for (auto& s : distractor_solids(world_, j)) {
+  for (std::size_t j = 0; j < distractor_solids_.size(); ++j)
+    for (const auto& s : distractor_solids_[j]) {
       solids.push_back(s);
-      solid_objects.push_back(cones + j);
+      solid_objects.push_back(cones + static_cast<int>(j));
     }
 
   // Shadows reach past their body, so they are culled with a wider sphere.

@@ -70,7 +70,9 @@ class SceneBuilder {
 
   const World& world_;
   const Sunlight& sun_;
-  std::vector<std::vector<Panel>> fences_;  // per distractor (empty unless a fence); fences never change
+  // Distractors never move: their meshes are made once, per distractor.
+  std::vector<std::vector<Solid>> distractor_solids_;
+  std::vector<std::vector<Panel>> fences_;
 };
 
 }  // namespace fsd::sim

@@ -2,7 +2,11 @@
 // projections computed by hand from the intrinsics and the mounting.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include "common/track.hpp"
 
 #include "tests/sim/camera_test_util.hpp"
 #include "tests/sim/world_test_util.hpp"
@@ -143,6 +147,67 @@ TEST(CameraModelGeometry, NearConeHidesTheConeBehindIt) {
   EXPECT_EQ(cones[0].index, 0) << "far to near";
   EXPECT_LT(cones[0].visible_fraction, 0.5);
   EXPECT_DOUBLE_EQ(cones[1].visible_fraction, 1.0);
+}
+
+// Distance from p to the segment a–b.
+double to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double s = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + s * ab - p).norm();
+}
+
+// A viewpoint 6 m from distractor `index` with a clear line of sight (no cone or other object within 1.5 m of it).
+std::optional<Pose2> clear_view_of(const World& world, int index) {
+  const Vec2 target = world.distractors()[static_cast<std::size_t>(index)].position;
+  for (int k = 0; k < 16; ++k) {
+    const double a = k * std::numbers::pi / 8;
+    const Vec2 eye = target + 6.0 * Vec2(std::cos(a), std::sin(a));
+    bool clear = true;
+    for (const auto& c : world.cones()) clear = clear && to_segment(c.base.head<2>(), eye, target) > 1.5;
+    for (int j = 0; j < static_cast<int>(world.distractors().size()); ++j) {
+      if (j == index) continue;
+      const Distractor& d = world.distractors()[static_cast<std::size_t>(j)];
+      const double dist = d.type == DistractorType::Fence
+                              ? std::min({to_segment(eye, d.position, d.fence_end()), to_segment(target, d.position, d.fence_end())})
+                              : to_segment(d.position, eye, target);
+      clear = clear && dist > 1.5 + (d.type == DistractorType::Fence ? 0.0 : d.footprint_radius());
+    }
+    if (clear) return Pose2{eye.x(), eye.y(), a + std::numbers::pi};
+  }
+  return std::nullopt;
+}
+
+TEST(CameraModelGeometry, PostsAreGreyAndTyreStacksBlackWhereTheWorldPutsThem) {
+  const World world(load_track("../shared/tracks/epfl_track_1.csv"), WorldConfig{}, 1);
+  const CameraModel cam(plain_camera(), world, 1);
+  int posts = 0, stacks = 0;
+  for (int i = 0; i < static_cast<int>(world.distractors().size()); ++i) {
+    const Distractor& d = world.distractors()[static_cast<std::size_t>(i)];
+    if (d.type != DistractorType::Post && d.type != DistractorType::TyreStack) continue;
+    const auto eye = clear_view_of(world, i);
+    if (!eye) continue;
+    const cv::Mat img = cam.render(eye->to_pose3());
+    cv::Mat hsv;
+    cv::cvtColor(img, hsv, cv::COLOR_BGR2HSV);
+    // The object's axis projects onto the centre column; sample it between 10 cm above the ground and 10 cm below
+    // the top (capped at 0.9 m, below the camera), on the front surface 6 m − radius away.
+    const double near = 6.0 - d.radius;
+    const int v0 = static_cast<int>(std::ceil(v_of(near, std::min(d.height - 0.1, 0.9))));
+    const int v1 = static_cast<int>(std::floor(v_of(near, 0.1)));
+    ASSERT_LT(v0, v1);
+    for (int v = v0; v <= v1; ++v) {
+      const cv::Vec3b p = hsv.at<cv::Vec3b>(v, 320);
+      if (d.type == DistractorType::Post) {
+        EXPECT_LT(p[1], 40) << "post pixels are grey, row " << v;
+        EXPECT_GT(p[2], 90) << "post pixels are light, row " << v;
+      } else {
+        EXPECT_LT(p[2], 70) << "tyre pixels are dark, row " << v;
+      }
+    }
+    (d.type == DistractorType::Post ? posts : stacks)++;
+  }
+  EXPECT_GT(posts, 0);
+  EXPECT_GT(stacks, 0);
 }
 
 }  // namespace
