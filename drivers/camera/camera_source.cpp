@@ -13,6 +13,17 @@ namespace fsd {
 
 namespace {
 constexpr int kFailuresBeforeReconnect = 3;
+
+// The frame as 8-bit BGR, or empty for pixel formats a camera should not deliver through VideoCapture.
+cv::Mat to_bgr(const cv::Mat& image) {
+  cv::Mat bgr;
+  switch (image.type()) {
+    case CV_8UC3: return image;
+    case CV_8UC1: cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR); return bgr;
+    case CV_8UC4: cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR); return bgr;
+    default: return bgr;
+  }
+}
 }  // namespace
 
 const ConfigSection<CameraDriverConfig>& camera_driver_section() {
@@ -115,6 +126,7 @@ void CameraSource::run() {
   int consecutive_failures = 0;
   std::uint64_t open_attempts = 0, next_report = 1;
   bool warned_size = false;
+  bool looping = false;
   const auto period = std::chrono::duration<double>(1.0 / cfg_.fps);
   auto next_due = std::chrono::steady_clock::now();
   auto set_open = [&](bool open) {
@@ -143,13 +155,20 @@ void CameraSource::run() {
       open_attempts = 0;
       next_report = 1;
       next_due = std::chrono::steady_clock::now();
-      log->info("camera '{}' open ({})", cfg_.source, cap.getBackendName());
+      if (!looping) log->info("camera '{}' open ({})", cfg_.source, cap.getBackendName());
+      looping = false;
     }
 
     cv::Mat image;
     bool ok = false;
     try {
       ok = cap.read(image) && !image.empty();
+      if (ok) {
+        cv::Mat bgr = to_bgr(image);
+        if (bgr.empty()) log->warn("camera '{}': unsupported pixel format (OpenCV type {})", cfg_.source, image.type());
+        ok = !bgr.empty();
+        image = bgr;
+      }
     } catch (const cv::Exception& e) {
       log->warn("camera '{}': read failed: {}", cfg_.source, e.what());
     }
@@ -157,7 +176,10 @@ void CameraSource::run() {
       if (kind_ == CameraSourceKind::File) {
         cap.release();
         set_open(false);
-        if (cfg_.loop_file && seq > 0) continue;  // start over (a file with no frame at all is retried slowly below)
+        if (cfg_.loop_file && seq > 0) {  // start over (a file with no frame at all is retried slowly below)
+          looping = true;
+          continue;
+        }
         if (seq > 0) {
           {
             std::lock_guard lock(m_);
@@ -183,9 +205,7 @@ void CameraSource::run() {
     Frame f;
     f.stamp = clock_.now() - cfg_.latency;
     f.seq = seq++;
-    if (image.type() == CV_8UC1) cv::cvtColor(image, f.bgr, cv::COLOR_GRAY2BGR);
-    else if (image.type() == CV_8UC4) cv::cvtColor(image, f.bgr, cv::COLOR_BGRA2BGR);
-    else f.bgr = image;
+    f.bgr = image;
     if (f.bgr.cols != cfg_.width || f.bgr.rows != cfg_.height) {
       count(&CameraStats::size_mismatches);
       if (!warned_size) log->warn("camera '{}': frames are {}×{}, configured {}×{}", cfg_.source, f.bgr.cols, f.bgr.rows,
