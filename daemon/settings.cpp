@@ -2,6 +2,7 @@
 
 #include "daemon/truth_perception.hpp"
 #include "control/control_config.hpp"
+#include "drivers/camera/camera_source.hpp"
 #include "drivers/sim/virtual_car.hpp"
 #include "web/config.hpp"
 #include "drivers/gnss/gnss_config.hpp"
@@ -50,6 +51,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   vcu_section().describe(*schema);
   gnss_section().describe(*schema);
   vlp16_section().describe(*schema);
+  camera_driver_section().describe(*schema);
   return schema;
 }
 

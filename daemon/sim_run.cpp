@@ -77,6 +77,7 @@ struct SimRun::Impl {
   bool headless = true, until_finished = false;
   std::shared_ptr<const Scan> last_scan;
   std::shared_ptr<const ConeDetections> last_detections;
+  std::shared_ptr<const std::vector<std::uint8_t>> last_image;
   std::vector<Vec2> lap1_trail, lap2_trail;
   std::vector<FaultRecord> link_faults;
   std::shared_ptr<spdlog::logger> log = logger("run");
@@ -100,6 +101,10 @@ struct SimRun::Impl {
     sinks.vcu_status = [this](Stamp t, std::span<const std::uint8_t> b) { vcu->on_bytes(t, b); };
     sinks.gnss = [this](Stamp t, std::span<const std::uint8_t> b) { gnss->feed(b, t); };
     sinks.lidar = [this](Stamp t, std::span<const std::uint8_t> b) { lidar->on_data_packet(t, b); };
+    // Camera frames go to the dashboard as the camera sent them (JPEG); perception does not use them yet.
+    sinks.camera = [this](Stamp, std::span<const std::uint8_t> b) {
+      if (telemetry) last_image = std::make_shared<const std::vector<std::uint8_t>>(b.begin(), b.end());
+    };
     car = std::make_unique<sim::VirtualCar>(track, car_settings, seed, sinks);
 
     vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), 0.0, [this](const VcuLinkEvent& e) {
@@ -146,6 +151,7 @@ struct SimRun::Impl {
       for (const auto& p : out.path->points) paths->planned.push_back(p.p);
     s.paths = paths;
     s.scan = last_scan;
+    s.camera_jpeg = last_image;
     s.lidar_pose = car->truth().body_pose3() * sim::lidar_mount(car_settings.lidar);
     s.as.as_state = car->vcu().state();
     s.as.mission = mission;

@@ -30,7 +30,7 @@ void Telemetry::loop() {
   };
   auto due = [](double hz) { return Due{1.0 / hz, clock::now()}; };
   Due state = due(rates_.state_hz), car = due(rates_.car_hz), scene = due(rates_.scene_hz),
-      cloud = due(rates_.cloud_hz), status = due(rates_.status_hz);
+      cloud = due(rates_.cloud_hz), status = due(rates_.status_hz), camera = due(rates_.camera_hz);
   auto ready = [](Due& d, clock::time_point now) {
     if (now < d.next) return false;
     d.next = now + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(d.period));
@@ -38,6 +38,7 @@ void Telemetry::loop() {
   };
   std::uint64_t seen = 0;
   std::shared_ptr<const Scan> last_scan;
+  std::shared_ptr<const std::vector<std::uint8_t>> last_image;
   while (!stop_) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     const auto snap_opt = latest_.get_if_newer(seen);
@@ -54,6 +55,10 @@ void Telemetry::loop() {
     if (s.scan && s.scan != last_scan && ready(cloud, now)) {
       last_scan = s.scan;
       server_.publish(ch_.point_cloud, s.t, web::point_cloud(s.t, s.lidar_pose, {}, s.scan->points));
+    }
+    if (s.camera_jpeg && s.camera_jpeg != last_image && ready(camera, now)) {
+      last_image = s.camera_jpeg;
+      server_.publish(ch_.camera_image, s.t, web::compressed_image(s.t, *s.camera_jpeg, "jpeg"));
     }
     if (ready(status, now)) {
       server_.publish(ch_.as_status, s.t, web::as_status_json(s.t, s.as));

@@ -26,13 +26,14 @@ struct TelemetrySnapshot {
   std::shared_ptr<const ConeDetections> detections;       // vehicle frame
   std::shared_ptr<const web::PathSet> paths;
   std::shared_ptr<const Scan> scan;                       // sensor frame
+  std::shared_ptr<const std::vector<std::uint8_t>> camera_jpeg;  // the newest camera frame as sent
   Pose3 lidar_pose = Pose3::Identity();                   // map ← sensor at the scan
   web::AsStatusView as;
   std::vector<web::FaultEvent> faults;
 };
 
 struct TelemetryRates {
-  double state_hz = 25, car_hz = 25, scene_hz = 4, cloud_hz = 2, status_hz = 5;
+  double state_hz = 25, car_hz = 25, scene_hz = 4, cloud_hz = 2, status_hz = 5, camera_hz = 5;
 };
 
 class Telemetry {

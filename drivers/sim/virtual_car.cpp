@@ -9,7 +9,8 @@ const ConfigSection<SimRunConfig>& sim_run_section() {
                             .number("physics_rate_hz", &SimRunConfig::physics_rate_hz, 200.0, 5000.0, "Hz",
                                     "Fixed integration rate of the vehicle model (≥ 200 Hz).")
                             .boolean("lidar", &SimRunConfig::lidar, "Simulate the VLP-16 (ray casting).")
-                            .boolean("gnss", &SimRunConfig::gnss, "Simulate the GNSS-INS receiver.");
+                            .boolean("gnss", &SimRunConfig::gnss, "Simulate the GNSS-INS receiver.")
+                            .boolean("camera", &SimRunConfig::camera, "Simulate the camera (rendering, JPEG).");
   return s;
 }
 
@@ -20,6 +21,7 @@ void describe_virtual_car_config(ConfigSchema& schema) {
   lidar_section().describe(schema);
   gnss_model_section().describe(schema);
   vcu_standin_section().describe(schema);
+  camera_section().describe(schema);
 }
 
 VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
@@ -30,6 +32,7 @@ VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
   s.lidar = lidar_section().read(cfg);
   s.gnss = gnss_model_section().read(cfg);
   s.vcu = vcu_standin_section().read(cfg);
+  s.camera = camera_section().read(cfg);
   return s;
 }
 
@@ -52,6 +55,7 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
   // Each sensor gets its own seed stream so enabling one does not change another's noise.
   if (s_.run.lidar) lidar_ = std::make_unique<LidarModel>(s_.lidar, world_, seed * 7919 + 1, 0.0);
   if (s_.run.gnss) gnss_ = std::make_unique<GnssModel>(s_.gnss, seed * 7919 + 2);
+  if (s_.run.camera) camera_ = std::make_unique<CameraModel>(s_.camera, world_, seed * 7919 + 3, 0.0);
 }
 
 void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) { vcu_.feed(t, bytes); }
@@ -95,6 +99,8 @@ void VirtualCar::advance_to(Stamp t) {
     const Stamp t1 = vehicle_.truth().t;
     if (lidar_ && sinks_.lidar)
       lidar_->advance_to(t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
+    if (camera_ && sinks_.camera)
+      camera_->advance_to(t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.camera);
     if (gnss_ && sinks_.gnss) gnss_->advance_to(t1, [this](Stamp ts) { return truth_at(ts); }, sinks_.gnss);
   }
 }

@@ -10,6 +10,7 @@
 #include "common/config.hpp"
 #include "common/track.hpp"
 #include "common/types.hpp"
+#include "drivers/sim/camera_model.hpp"
 #include "drivers/sim/gnss_model.hpp"
 #include "drivers/sim/lidar_model.hpp"
 #include "drivers/sim/sink.hpp"
@@ -23,6 +24,7 @@ struct SimRunConfig {
   double physics_rate_hz = 400.0;
   bool lidar = true;   // the VLP-16 model (costly: off when only truth perception is used)
   bool gnss = true;
+  bool camera = true;  // the camera model (rendering + JPEG: costly)
 };
 const ConfigSection<SimRunConfig>& sim_run_section();  // prefix "sim"
 
@@ -34,6 +36,7 @@ struct VirtualCarSettings {
   LidarConfig lidar;
   GnssModelConfig gnss;
   VcuStandinConfig vcu;
+  CameraConfig camera;
 };
 VirtualCarSettings read_virtual_car_settings(const Config& cfg);
 void describe_virtual_car_config(ConfigSchema& schema);
@@ -42,6 +45,7 @@ struct SensorSinks {
   ByteSink lidar;       // VLP-16 UDP payloads (1206 bytes each)
   ByteSink gnss;        // NMEA bytes as they leave the receiver's serial port
   ByteSink vcu_status;  // VCU protocol bytes towards the daemon
+  ByteSink camera;      // JPEG frames as an MJPEG camera sends them
 };
 
 class VirtualCar {
@@ -73,6 +77,7 @@ class VirtualCar {
   VcuStandin vcu_;
   std::unique_ptr<LidarModel> lidar_;
   std::unique_ptr<GnssModel> gnss_;
+  std::unique_ptr<CameraModel> camera_;
   SensorSinks sinks_;
   VehicleTruth prev_;
   double dt_;

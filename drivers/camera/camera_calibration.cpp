@@ -1,0 +1,242 @@
+#include "drivers/camera/camera_calibration.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+namespace fsd {
+
+namespace {
+using nlohmann::json;
+
+constexpr const char* kFormat = "fsd-camera-calibration";
+constexpr int kVersion = 1;
+constexpr double kMaxMountOffset = 10.0;    // m: anything farther is not on the car
+constexpr int kMaxImageSide = 16384;
+
+// Reads fields of one JSON object and reports problems with the file and the dotted field name.
+class Reader {
+ public:
+  Reader(const json& j, std::string origin, std::string path) : j_(j), origin_(std::move(origin)), path_(std::move(path)) {
+    if (!j_.is_object()) fail("", "expected an object, got " + std::string(j_.type_name()));
+  }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    const std::string name = field.empty() ? path_ : (path_.empty() ? field : path_ + "." + field);
+    throw CalibrationError(origin_ + ": " + (name.empty() ? "" : "field '" + name + "': ") + problem);
+  }
+
+  bool has(const std::string& field) const { return j_.contains(field); }
+  const json& at(const std::string& field) const {
+    if (!j_.contains(field)) fail(field, "missing");
+    return j_.at(field);
+  }
+  Reader object(const std::string& field) const { return {at(field), origin_, name(field)}; }
+  void only(const std::set<std::string>& known) const {
+    for (const auto& [key, value] : j_.items())
+      if (!known.contains(key)) fail(key, "unknown field");
+  }
+
+  double number(const std::string& field, double lo, double hi) const { return number_in(at(field), field, lo, hi); }
+  int integer(const std::string& field, int lo, int hi) const {
+    const json& v = at(field);
+    if (!v.is_number_integer()) fail(field, "expected an integer, got " + v.dump());
+    const auto i = v.get<long long>();
+    if (i < lo || i > hi) fail(field, std::to_string(i) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(i);
+  }
+  std::vector<double> numbers(const std::string& field, const json& v) const {
+    if (!v.is_array()) fail(field, "expected an array of numbers, got " + v.dump());
+    std::vector<double> out;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(number_in(v[i], field + "[" + std::to_string(i) + "]", -HUGE_VAL, HUGE_VAL));
+    return out;
+  }
+  cv::Matx33d matrix3(const std::string& field) const {
+    const json& v = at(field);
+    if (!v.is_array() || v.size() != 3) fail(field, "expected a 3×3 array of numbers (3 rows of 3)");
+    cv::Matx33d m;
+    for (int r = 0; r < 3; ++r) {
+      const auto row = numbers(field + "[" + std::to_string(r) + "]", v[static_cast<std::size_t>(r)]);
+      if (row.size() != 3) fail(field, "row " + std::to_string(r) + " has " + std::to_string(row.size()) + " numbers, expected 3");
+      for (int c = 0; c < 3; ++c) m(r, c) = row[static_cast<std::size_t>(c)];
+    }
+    return m;
+  }
+  PointQuad quad(const std::string& field) const {
+    const json& v = at(field);
+    if (!v.is_array() || v.size() != 4) fail(field, "expected 4 points [a, b]");
+    PointQuad q;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const auto p = numbers(field + "[" + std::to_string(i) + "]", v[i]);
+      if (p.size() != 2) fail(field, "point " + std::to_string(i + 1) + " must have 2 numbers");
+      q[i] = cv::Point2d(p[0], p[1]);
+    }
+    return q;
+  }
+  std::string name(const std::string& field) const { return path_.empty() ? field : path_ + "." + field; }
+
+ private:
+  double number_in(const json& v, const std::string& field, double lo, double hi) const {
+    if (!v.is_number()) fail(field, "expected a number, got " + v.dump());
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(field, "not a finite number");
+    if (d < lo || d > hi) fail(field, std::to_string(d) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return d;
+  }
+
+  const json& j_;
+  std::string origin_;
+  std::string path_;
+};
+
+CameraIntrinsics read_intrinsics(const Reader& r) {
+  r.only({"width", "height", "K", "distortion"});
+  CameraIntrinsics in;
+  in.width = r.integer("width", 1, kMaxImageSide);
+  in.height = r.integer("height", 1, kMaxImageSide);
+  in.K = r.matrix3("K");
+  const cv::Matx33d& K = in.K;
+  if (!(K(0, 0) > 0) || !(K(1, 1) > 0)) r.fail("K", "focal lengths K[0][0] and K[1][1] must be positive");
+  if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1)
+    r.fail("K", "must be upper triangular with K[2][2] = 1: [[fx, s, cx], [0, fy, cy], [0, 0, 1]]");
+  if (K(0, 2) < 0 || K(0, 2) > in.width || K(1, 2) < 0 || K(1, 2) > in.height)
+    r.fail("K", "principal point (" + std::to_string(K(0, 2)) + ", " + std::to_string(K(1, 2)) + ") lies outside the image");
+  if (r.has("distortion")) {
+    in.distortion = r.numbers("distortion", r.at("distortion"));
+    const std::size_t n = in.distortion.size();
+    if (n != 0 && n != 4 && n != 5 && n != 8 && n != 12 && n != 14)
+      r.fail("distortion", "has " + std::to_string(n) + " coefficients; OpenCV takes 4, 5, 8, 12 or 14");
+  }
+  return in;
+}
+
+CameraMount read_extrinsics(const Reader& r) {
+  r.only({"x", "y", "z", "roll", "pitch", "yaw"});
+  constexpr double pi = std::numbers::pi;
+  CameraMount m;
+  m.x = r.number("x", -kMaxMountOffset, kMaxMountOffset);
+  m.y = r.number("y", -kMaxMountOffset, kMaxMountOffset);
+  m.z = r.number("z", -kMaxMountOffset, kMaxMountOffset);
+  m.roll = r.number("roll", -pi, pi);
+  m.pitch = r.number("pitch", -pi / 2, pi / 2);
+  m.yaw = r.number("yaw", -pi, pi);
+  return m;
+}
+
+HomographyCalibration read_homography(const Reader& r) {
+  r.only({"image_to_ground", "image_points", "ground_points"});
+  HomographyCalibration h;
+  try {
+    h.homography = make_ground_homography(r.matrix3("image_to_ground"));
+  } catch (const HomographyError& e) {
+    r.fail("image_to_ground", e.what());
+  }
+  if (r.has("image_points") != r.has("ground_points"))
+    r.fail(r.has("image_points") ? "ground_points" : "image_points", "missing (give both point lists or neither)");
+  if (!r.has("image_points")) return h;
+  h.image_points = r.quad("image_points");
+  h.ground_points = r.quad("ground_points");
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto g = image_to_ground(h.homography, (*h.image_points)[i]);
+    const cv::Point2d want = (*h.ground_points)[i];
+    if (!g || cv::norm(*g - want) > 0.01 + 1e-3 * cv::norm(want))
+      r.fail("image_to_ground", "does not map image point " + std::to_string(i + 1) + " onto ground point " +
+                                    std::to_string(i + 1) + " (recompute it with fsd calibrate-homography)");
+  }
+  return h;
+}
+
+json matrix_json(const cv::Matx33d& m) {
+  json rows = json::array();
+  for (int r = 0; r < 3; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2)});
+  return rows;
+}
+
+json quad_json(const PointQuad& q) {
+  json a = json::array();
+  for (const auto& p : q) a.push_back({p.x, p.y});
+  return a;
+}
+}  // namespace
+
+Pose3 CameraMount::body_from_optical() const {
+  Pose3 T = Pose3::Identity();
+  Eigen::Matrix3d mount_from_optical;  // optical x right = −y, y down = −z, z forward = +x of the camera body
+  mount_from_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T.linear() = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
+                Eigen::AngleAxisd(roll, Vec3::UnitX()))
+                   .toRotationMatrix() *
+               mount_from_optical;
+  T.translation() = Vec3(x, y, z);
+  return T;
+}
+
+CameraCalibration parse_camera_calibration(const json& j, const std::string& origin) {
+  const Reader r(j, origin, "");
+  r.only({"format", "version", "intrinsics", "extrinsics", "homography"});
+  if (r.has("format") && r.at("format") != kFormat) r.fail("format", std::string("expected \"") + kFormat + "\"");
+  if (r.has("version") && r.integer("version", 0, 1000) != kVersion)
+    r.fail("version", "unsupported version; this build reads version " + std::to_string(kVersion));
+  CameraCalibration c;
+  if (r.has("intrinsics")) c.intrinsics = read_intrinsics(r.object("intrinsics"));
+  if (r.has("extrinsics")) c.extrinsics = read_extrinsics(r.object("extrinsics"));
+  if (r.has("homography")) c.homography = read_homography(r.object("homography"));
+  if (!c.intrinsics && !c.extrinsics && !c.homography)
+    r.fail("", "holds no calibration: expected at least one of intrinsics, extrinsics, homography");
+  return c;
+}
+
+json to_json(const CameraCalibration& c) {
+  json j = {{"format", kFormat}, {"version", kVersion}};
+  if (c.intrinsics) {
+    const auto& in = *c.intrinsics;
+    j["intrinsics"] = {{"width", in.width}, {"height", in.height}, {"K", matrix_json(in.K)}, {"distortion", in.distortion}};
+  }
+  if (c.extrinsics) {
+    const auto& m = *c.extrinsics;
+    j["extrinsics"] = {{"x", m.x}, {"y", m.y}, {"z", m.z}, {"roll", m.roll}, {"pitch", m.pitch}, {"yaw", m.yaw}};
+  }
+  if (c.homography) {
+    json h = {{"image_to_ground", matrix_json(c.homography->homography.image_to_ground)}};
+    if (c.homography->image_points && c.homography->ground_points) {
+      h["image_points"] = quad_json(*c.homography->image_points);
+      h["ground_points"] = quad_json(*c.homography->ground_points);
+    }
+    j["homography"] = h;
+  }
+  return j;
+}
+
+CameraCalibration load_camera_calibration(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw CalibrationError(file.string() + ": cannot open the calibration file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw CalibrationError(file.string() + ": not valid JSON: " + e.what());
+  }
+  return parse_camera_calibration(j, file.string());
+}
+
+void save_camera_calibration(const CameraCalibration& c, const std::filesystem::path& file) {
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    if (!out) throw CalibrationError(file.string() + ": cannot write (" + tmp.string() + " does not open)");
+    out << to_json(c).dump(2) << "\n";
+    if (!out.flush()) throw CalibrationError(file.string() + ": write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw CalibrationError(file.string() + ": cannot replace the file: " + ec.message());
+  }
+}
+
+}  // namespace fsd
