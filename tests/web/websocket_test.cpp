@@ -127,14 +127,22 @@ TEST(WebSocket, UnsubscribeStopsData) {
 TEST(WebSocket, LatchedChannelSendsItsLastMessageToNewSubscribers) {
   TestServer s;
   const auto ch = s.server->add_channel("/map", "M", "{}", ChannelOptions{true});
+  const auto marker = s.server->add_channel("/marker", "K", "{}");
+  WsClient first(s.port());
+  subscribe(first, 1, marker);
   s.server->publish(ch, 3.0, "\"old\"");
   s.server->publish(ch, 4.0, "\"latest\"");
-  WsClient c(s.port());
-  ASSERT_TRUE(c.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 7}, {"channelId", ch}}}}}.dump()));
-  const auto m = c.next_binary();
+  s.server->publish(marker, 5.0, "\"m\"");
+  ASSERT_TRUE(first.next_binary());  // messages are taken in order: both map messages are in by now
+
+  WsClient late(s.port());
+  ASSERT_TRUE(late.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 7}, {"channelId", ch}}}}}.dump()));
+  const auto m = late.next_binary();
   ASSERT_TRUE(m);
+  EXPECT_EQ(u32_le(*m, 1), 7u);
   EXPECT_EQ(u64_le(*m, 5), 4'000'000'000ull);
   EXPECT_EQ(m->substr(13), "\"latest\"");
+  EXPECT_FALSE(late.next_binary(300ms));  // only the last one
 }
 
 TEST(WebSocket, SubscribeErrorsAreReported) {
