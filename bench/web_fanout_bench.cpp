@@ -11,6 +11,8 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <pthread.h>
+#include <sched.h>
 #include <utility>  // before Asio (Boost 1.74)
 #include <vector>
 
@@ -122,7 +124,14 @@ struct Result {
   std::uint64_t dropped;
 };
 
-Result run_case(int n_clients, double seconds) {
+// The daemon runs its control thread with real-time priority on the car; do the same here when allowed.
+bool make_realtime() {
+  sched_param p{};
+  p.sched_priority = 50;
+  return pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+}
+
+Result run_case(int n_clients, double seconds, bool realtime) {
   struct Tuning {
     double x = 1;
   };
@@ -166,42 +175,47 @@ Result run_case(int n_clients, double seconds) {
   for (int i = 0; i < 600; ++i) paths.lap1_trajectory.emplace_back(0.5 * i, std::sin(0.01 * i));
 
   Stats jitter, publish_cost;
-  const auto period = std::chrono::milliseconds(10);
   const int ticks = static_cast<int>(seconds * 100);
-  auto next = Clock::now() + period;
-  auto last_wake = Clock::now();
-  VehicleState vs;
-  const auto timed_publish = [&](web::ChannelId c, Stamp t, std::string payload) {
-    const auto a = Clock::now();
-    server.publish(c, t, std::move(payload));
-    publish_cost.v.push_back(std::chrono::duration<double, std::micro>(Clock::now() - a).count());
-  };
-  for (int tick = 0; tick < ticks; ++tick) {
-    std::this_thread::sleep_until(next);
-    const auto woke = Clock::now();
-    if (tick > 0) jitter.v.push_back(std::abs(std::chrono::duration<double, std::milli>(woke - last_wake).count() - 10.0));
-    last_wake = woke;
-    next += period;
-    const Stamp t = tick * 0.01;
-    vs.stamp = t;
-    vs.vx = 8.0;
-    vs.pose = {0.08 * tick, 0, 0};
-    // The payload starts with the send time so clients can measure latency.
-    std::string state = web::vehicle_state_json(vs, 8.0);
-    timed_publish(ch.vehicle_state, t, "{\"sent_ns\":" + std::to_string(now_ns()) + "," + state.substr(1));
-    if (tick % 5 == 0) timed_publish(ch.car, t, web::car_scene(t, vs.pose));
-    if (tick % 10 == 0) {
-      ConeDetections d;
-      d.cones.assign(cones.begin(), cones.begin() + 12);
-      timed_publish(ch.detections, t, web::detections_scene(t, d, vs.pose));
+  // The simulated control thread: wakes every 10 ms, builds and publishes that tick's telemetry.
+  std::thread loop([&] {
+    if (realtime) make_realtime();
+    const auto period = std::chrono::milliseconds(10);
+    auto next = Clock::now() + period;
+    auto last_wake = Clock::now();
+    VehicleState vs;
+    const auto timed_publish = [&](web::ChannelId c, Stamp t, std::string payload) {
+      const auto a = Clock::now();
+      server.publish(c, t, std::move(payload));
+      publish_cost.v.push_back(std::chrono::duration<double, std::micro>(Clock::now() - a).count());
+    };
+    for (int tick = 0; tick < ticks; ++tick) {
+      std::this_thread::sleep_until(next);
+      const auto woke = Clock::now();
+      if (tick > 0) jitter.v.push_back(std::abs(std::chrono::duration<double, std::milli>(woke - last_wake).count() - 10.0));
+      last_wake = woke;
+      next += period;
+      const Stamp t = tick * 0.01;
+      vs.stamp = t;
+      vs.vx = 8.0;
+      vs.pose = {0.08 * tick, 0, 0};
+      // The payload starts with the send time so clients can measure latency.
+      const std::string state = web::vehicle_state_json(vs, 8.0);
+      timed_publish(ch.vehicle_state, t, "{\"sent_ns\":" + std::to_string(now_ns()) + "," + state.substr(1));
+      if (tick % 5 == 0) timed_publish(ch.car, t, web::car_scene(t, vs.pose));
+      if (tick % 10 == 0) {
+        ConeDetections d;
+        d.cones.assign(cones.begin(), cones.begin() + 12);
+        timed_publish(ch.detections, t, web::detections_scene(t, d, vs.pose));
+      }
+      if (tick % 20 == 0) timed_publish(ch.point_cloud, t, web::point_cloud(t, vs.pose.to_pose3(), ground, objects));
+      if (tick % 50 == 0) {
+        timed_publish(ch.paths, t, web::paths_scene(t, paths));
+        timed_publish(ch.as_status, t, web::as_status_json(t, {}));
+      }
+      if (tick % 100 == 0) timed_publish(ch.cone_map, t, web::cone_map_scene(t, cones));
     }
-    if (tick % 20 == 0) timed_publish(ch.point_cloud, t, web::point_cloud(t, vs.pose.to_pose3(), ground, objects));
-    if (tick % 50 == 0) {
-      timed_publish(ch.paths, t, web::paths_scene(t, paths));
-      timed_publish(ch.as_status, t, web::as_status_json(t, {}));
-    }
-    if (tick % 100 == 0) timed_publish(ch.cone_map, t, web::cone_map_scene(t, cones));
-  }
+  });
+  loop.join();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let the last messages arrive
 
   Result r{};
@@ -238,12 +252,15 @@ Result run_case(int n_clients, double seconds) {
 int main(int argc, char** argv) {
   const double seconds = argc > 1 ? std::atof(argv[1]) : 10.0;
   spdlog::set_level(spdlog::level::warn);
+  bool realtime = false;
+  std::thread([&] { realtime = make_realtime(); }).join();
   std::printf("web fan-out: 100 Hz loop publishing vehicle state 100 Hz, car 20 Hz, detections 10 Hz, cloud 5 Hz "
-              "(8000 → 5000 points), paths + AS 2 Hz, cone map 1 Hz; %.0f s per case\n\n", seconds);
+              "(8000 → 5000 points), paths + AS 2 Hz, cone map 1 Hz; %.0f s per case; loop thread %s\n\n",
+              seconds, realtime ? "SCHED_FIFO 50 (as on the car)" : "normal priority (SCHED_FIFO not permitted)");
   std::printf("| clients | loop jitter p50 / p99 / max (ms) | publish() p50 / p99 / max (µs) | latency p50 / p99 / max (ms) | state msgs received | MB/s out | dropped |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const int n : {0, 20}) {
-    const auto r = run_case(n, seconds);
+    const auto r = run_case(n, seconds, realtime);
     std::printf("| %d | %.3f / %.3f / %.3f | %.1f / %.1f / %.1f | %.2f / %.2f / %.2f | %.1f %% | %.1f | %llu |\n", r.clients,
                 r.jitter_p50, r.jitter_p99, r.jitter_max, r.publish_p50, r.publish_p99, r.publish_max, r.latency_p50,
                 r.latency_p99, r.latency_max, 100.0 * r.received_fraction, r.mbytes_per_s,

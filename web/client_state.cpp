@@ -82,14 +82,9 @@ bool ClientState::push_telemetry(OutMessage m) {
 }
 
 bool ClientState::offer(ChannelId channel, std::uint64_t timestamp_ns,
-                        const std::shared_ptr<const std::string>& payload, bool wait) {
+                        const std::shared_ptr<const std::string>& payload) {
   if (!subscribed(channel)) return false;
-  std::unique_lock lock(m_, std::defer_lock);
-  if (wait) lock.lock();
-  else if (!lock.try_lock()) {
-    drop();
-    return false;
-  }
+  std::lock_guard lock(m_);
   const auto it = sub_of_channel_.find(channel);
   if (it == sub_of_channel_.end()) return false;
   OutMessage m;
@@ -103,11 +98,7 @@ bool ClientState::offer(ChannelId channel, std::uint64_t timestamp_ns,
 }
 
 bool ClientState::offer_binary(std::shared_ptr<const std::string> frame) {
-  std::unique_lock lock(m_, std::try_to_lock);
-  if (!lock) {
-    drop();
-    return false;
-  }
+  std::lock_guard lock(m_);
   OutMessage m;
   m.binary = true;
   m.body = std::move(frame);

@@ -1,10 +1,10 @@
 #pragma once
-// What the server keeps for one WebSocket client, shared between the publishers (any thread) and the client's
-// I/O strand: its channel and parameter subscriptions and its outgoing queues. This is where back-pressure
-// lives (as in foxglove_bridge): telemetry goes to a bounded queue that drops its oldest message when the client
-// reads too slowly, so a publisher never waits; protocol replies go to a separate queue that is never dropped
-// from (a client that lets it overflow is disconnected). All operations take one short lock, never held
-// across I/O.
+// What the server keeps for one WebSocket client, shared by the server's I/O threads (the hub's fan-out, the
+// client's strand) and the parameter listener: its channel and parameter subscriptions and its outgoing queues.
+// This is where back-pressure lives (as in foxglove_bridge): telemetry goes to a bounded queue that drops its
+// oldest message when the client reads too slowly; protocol replies go to a separate queue that is never
+// dropped from (a client that lets it overflow is disconnected). Every operation takes one short lock, never
+// held across I/O. Publishers (the control thread) never come here: they hand over to the hub's ring.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -53,12 +53,9 @@ class ClientState {
   bool wants_param(const std::string& name) const;
 
   // Each push returns true when the writer was idle: the caller must then wake it (exactly once).
-  // Telemetry of `channel` for this client's subscription to it; does nothing when not subscribed. Never waits:
-  // the subscription is checked without a lock, and if the queue is locked at that instant (the writer is taking
-  // a message) this message is dropped for this client and counted, rather than waited for.
-  // `wait` (for the I/O thread's own pushes, such as a latched message on subscribing) takes the lock anyway.
-  bool offer(ChannelId channel, std::uint64_t timestamp_ns, const std::shared_ptr<const std::string>& payload,
-             bool wait = false);
+  // Telemetry of `channel` for this client's subscription to it; does nothing (and takes no lock) when not
+  // subscribed.
+  bool offer(ChannelId channel, std::uint64_t timestamp_ns, const std::shared_ptr<const std::string>& payload);
   // A droppable binary frame that belongs to no subscription (time messages).
   bool offer_binary(std::shared_ptr<const std::string> frame);
   // A protocol reply (text). When the control queue is full the message is refused and overflowed() turns true.

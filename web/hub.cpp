@@ -27,7 +27,9 @@ Hub::Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits l
       name_(std::move(server_name)),
       session_id_(std::to_string(std::chrono::system_clock::now().time_since_epoch().count())),
       peers_(std::make_shared<const PeerList>()),
+      outbox_(limits.outbox),
       published_(metrics.counter("fsd_web_published_total", "Messages handed to the web server by publishers")),
+      outbox_full_(metrics.counter("fsd_web_outbox_dropped_total", "Messages dropped because the web I/O thread fell behind the publishers")),
       dropped_(metrics.counter("fsd_web_messages_dropped_total", "Telemetry messages dropped because a client read too slowly")),
       dropped_unknown_(metrics.counter("fsd_web_publish_unknown_channel_total", "Publishes to a channel id never added")),
       protocol_errors_(metrics.counter("fsd_web_protocol_errors_total", "Client messages refused as malformed or not allowed")),
@@ -46,27 +48,6 @@ void Hub::listen_to_params() {
   params_.subscribe([weak = weak_from_this()](const ParamChange& c) {
     if (auto self = weak.lock()) self->on_param_change(c);
   });
-}
-
-void Hub::set_poster(std::function<void(std::function<void()>)> post) { post_ = std::move(post); }
-
-// Publishers only mark the peers whose writer went idle and post a single pass to the I/O threads, so the cost
-// on the publishing thread (the control loop) does not grow with wake-ups per client.
-void Hub::schedule_wakes() {
-  if (!post_) {
-    wake_pass();
-    return;
-  }
-  if (!wake_scheduled_.exchange(true))
-    post_([weak = weak_from_this()] {
-      if (auto self = weak.lock()) self->wake_pass();
-    });
-}
-
-void Hub::wake_pass() {
-  wake_scheduled_.store(false);  // before the scan: a mark made after it posts a new pass
-  for (const auto& p : *peers())
-    if (p->wake_pending.exchange(false)) p->wake();
 }
 
 ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
@@ -108,27 +89,34 @@ std::shared_ptr<const Hub::PeerList> Hub::peers() const { return peers_.load(); 
 
 void Hub::publish(ChannelId channel, Stamp t, std::string payload) {
   const std::uint64_t ns = foxglove::to_nanoseconds(t);
-  Channel* c = this->channel(channel);
-  if (!c) {
+  if (!this->channel(channel)) {
     dropped_unknown_.inc();
     return;
   }
-  auto shared = std::make_shared<const std::string>(std::move(payload));
-  if (c->options.latched) c->last.store(std::make_shared<const Latched>(Latched{shared, ns}));
-  published_.inc();
+  if (outbox_.try_push({channel, ns, std::make_shared<const std::string>(std::move(payload))})) published_.inc();
+  else outbox_full_.inc();
+}
+
+void Hub::drain() {
+  const auto list = peers();
+  Outgoing m;
   bool any = false;
-  for (const auto& p : *peers())
-    if (p->state->offer(channel, ns, shared)) any = p->wake_pending = true;
-  if (any) schedule_wakes();
+  while (outbox_.try_pop(m)) {
+    Channel* c = channel(m.channel);
+    if (c->options.latched) c->last.store(std::make_shared<const Latched>(Latched{m.payload, m.ns}));
+    for (const auto& p : *list)
+      if (p->state->offer(m.channel, m.ns, m.payload)) any = p->wake_pending = true;
+  }
+  if (!any) return;
+  for (const auto& p : *list)
+    if (p->wake_pending.exchange(false)) p->wake();
 }
 
 void Hub::publish_time(Stamp t) {
   const auto msg = foxglove::time_message(foxglove::to_nanoseconds(t));
   auto frame = std::make_shared<const std::string>(msg.begin(), msg.end());
-  bool any = false;
   for (const auto& p : *peers())
-    if (p->state->offer_binary(frame)) any = p->wake_pending = true;
-  if (any) schedule_wakes();
+    if (p->state->offer_binary(frame)) p->wake();
 }
 
 std::shared_ptr<ClientState> Hub::make_client_state() {
@@ -216,7 +204,7 @@ void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
         continue;
       case ClientState::SubscribeResult::Ok: break;
     }
-    if (latched && peer.state->offer(s.channel_id, latched->ns, latched->payload, /*wait=*/true)) peer.wake();
+    if (latched && peer.state->offer(s.channel_id, latched->ns, latched->payload)) peer.wake();
   }
 }
 

@@ -2,6 +2,11 @@
 // The socket-free heart of the server: the advertised channels, the connected clients, the fan-out of published
 // telemetry into each client's bounded queue, and the Foxglove protocol's replies to what a client sends
 // (subscriptions, parameters with authorisation). The Beast sessions only move bytes in and out of it.
+//
+// Publishing is wait-free: publish() puts the message in a lock-free ring (the outbox) and returns; the server's
+// I/O thread drains the ring every couple of milliseconds (drain()) and does the fan-out, the latching and the
+// wake-ups. So the cost on the control thread does not depend on the number of clients, and no client, lock or
+// system call can make it wait.
 #include <array>
 #include <atomic>
 #include <functional>
@@ -16,6 +21,7 @@
 #include "common/time.hpp"
 #include "web/client_state.hpp"
 #include "web/metrics.hpp"
+#include "web/mpmc_ring.hpp"
 #include "web/protocol.hpp"
 
 namespace fsd::web {
@@ -30,7 +36,7 @@ struct ChannelOptions {
 struct Peer {
   std::shared_ptr<ClientState> state;
   std::function<void()> wake;  // schedules the client's writer; called when a push reports the writer idle
-  std::atomic<bool> wake_pending{false};  // publish() marks it; the hub's wake pass on the I/O thread calls wake
+  std::atomic<bool> wake_pending{false};  // set during a drain pass; the pass then calls wake once
   std::string address;         // "ip:port", for logs and the attribution of parameter changes
   bool token_ok = false;       // the WebSocket URL carried the right ?token=
 };
@@ -39,6 +45,7 @@ struct HubLimits {
   int max_clients = 32;
   std::size_t telemetry_queue = 256;
   std::size_t control_queue = 1024;
+  std::size_t outbox = 4096;  // messages published and not yet drained
 };
 
 class Hub : public std::enable_shared_from_this<Hub> {
@@ -46,16 +53,16 @@ class Hub : public std::enable_shared_from_this<Hub> {
   Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits limits, std::string server_name);
   // Registers for parameter changes (call once after construction; the listener holds a weak reference).
   void listen_to_params();
-  // How publish() gets the clients' writers going without doing it on the publisher's thread: `post` runs a
-  // function on the I/O threads. Unset, publish() wakes the writers itself.
-  void set_poster(std::function<void(std::function<void()>)> post);
 
   ChannelId add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
                         ChannelOptions options = {});
   std::vector<foxglove::ChannelInfo> channels() const;
-  // Never waits: no blocking lock is taken; the payload is shared by every subscriber; a slow client loses its
-  // oldest messages, and a client whose queue is being worked on at that instant loses this one (counted).
+  // Any thread, wait-free: hands the message to the outbox (a full outbox drops it, counted).
   void publish(ChannelId channel, Stamp t, std::string payload);
+  // On an I/O thread: moves the outbox into the subscribers' queues (a slow client loses its oldest messages),
+  // keeps latched channels' last message and wakes the clients' writers.
+  void drain();
+  // On an I/O thread: a Foxglove time message to every client.
   void publish_time(Stamp t);
 
   // The state of a new client, with the configured queue sizes.
@@ -96,8 +103,6 @@ class Hub : public std::enable_shared_from_this<Hub> {
 
   Channel* channel(ChannelId id) const;  // nullptr for an unknown id; lock-free
   std::shared_ptr<const PeerList> peers() const;
-  void schedule_wakes();  // one posted pass wakes every peer whose wake_pending is set
-  void wake_pass();
   void push(Peer& peer, std::string text);
   void on_param_change(const ParamChange& change);
   void handle(Peer& peer, const foxglove::SubscribeOp& op);
@@ -124,10 +129,16 @@ class Hub : public std::enable_shared_from_this<Hub> {
   std::mutex peers_write_m_;
   std::atomic<std::shared_ptr<const PeerList>> peers_;
   std::atomic<int> admitted_{0};
-  std::function<void(std::function<void()>)> post_;
-  std::atomic<bool> wake_scheduled_{false};
+
+  struct Outgoing {
+    ChannelId channel = 0;
+    std::uint64_t ns = 0;
+    std::shared_ptr<const std::string> payload;
+  };
+  MpmcRing<Outgoing> outbox_;
 
   Counter& published_;
+  Counter& outbox_full_;
   Counter& dropped_;
   Counter& dropped_unknown_;
   Counter& protocol_errors_;

@@ -10,12 +10,22 @@ namespace fsd::web {
 
 namespace {
 constexpr auto kTimePeriod = std::chrono::milliseconds(100);  // Foxglove "time" messages, 10 Hz
+constexpr auto kDrainPeriod = std::chrono::milliseconds(2);   // publish → clients' queues
 }
 
 struct WebServer::Impl {
   Impl(const WebConfig& cfg, ParamRegistry& params, Clock& clk)
-      : ctx(std::make_shared<ServerContext>(cfg, params)), clock(clk), time_timer(ioc) {
-    ctx->hub->set_poster([this](std::function<void()> fn) { net::post(ioc, std::move(fn)); });
+      : ctx(std::make_shared<ServerContext>(cfg, params)), clock(clk), time_timer(ioc), drain_timer(ioc) {}
+
+  // The publishers' outbox is drained on this timer rather than on a signal from them: publishing stays a
+  // wait-free push, at the price of up to kDrainPeriod of latency.
+  void tick_drain() {
+    drain_timer.expires_after(kDrainPeriod);
+    drain_timer.async_wait([this](beast::error_code ec) {
+      if (ec) return;
+      ctx->hub->drain();
+      tick_drain();
+    });
   }
 
   void tick_time() {
@@ -32,6 +42,7 @@ struct WebServer::Impl {
   net::io_context ioc;
   std::optional<net::executor_work_guard<net::io_context::executor_type>> work;
   net::steady_timer time_timer;
+  net::steady_timer drain_timer;
   std::shared_ptr<Listener> listener;
   std::vector<std::thread> threads;
   bool started = false, stopped = false;
@@ -54,6 +65,7 @@ void WebServer::start() {
   d.work.emplace(d.ioc.get_executor());
   d.listener->run();
   d.tick_time();
+  d.tick_drain();
   for (int i = 0; i < cfg.io_threads; ++i) d.threads.emplace_back([&d] { d.ioc.run(); });
   const auto token = effective_token(cfg);
   logger("web")->info("dashboard on http://{}:{}/ (Foxglove WebSocket on the same port); tuning {}", cfg.bind,
@@ -67,6 +79,7 @@ void WebServer::stop() {
   net::post(d.ioc, [&d] {
     d.listener->shutdown();
     d.time_timer.cancel();
+    d.drain_timer.cancel();
     d.ctx->tracker.shutdown_all();
   });
   // Give clients a moment to receive their close frames, then end whatever is left.

@@ -38,8 +38,9 @@ class WebServer {
   // Advertised to clients connected now and later. Allowed before and after start(); topics are unique.
   ChannelId add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
                         ChannelOptions options = {});
-  // Thread-safe and never blocks: each subscribed client gets the message in its bounded queue, and a client
-  // that reads too slowly loses its oldest telemetry (counted in fsd_web_messages_dropped_total).
+  // Any thread; wait-free (a lock-free hand-over to the I/O thread, which fans out within ~2 ms): each
+  // subscribed client gets the message in its bounded queue, and a client that reads too slowly loses its oldest
+  // telemetry (counted in fsd_web_messages_dropped_total).
   void publish(ChannelId channel, Stamp t, std::string json_payload);
   // The body of /api/state; called on a web I/O thread, so it must be thread-safe.
   void set_state_provider(std::function<nlohmann::json()> provider);

@@ -1,8 +1,9 @@
 // Browser test of the pit-lane dashboard: headless Chromium (Debian's) driven by playwright-core against
 // fsd-web-demo (the web server with synthetic telemetry on epfl_track_1) until `fsd run --sim` serves it.
 // Checks that the 3D view renders the cones, the plots move, a parameter change with the token takes effect
-// and one without is refused, the page reconnects by itself and makes no request elsewhere. Screenshots go to
-// test-artifacts/. Exits 77 (CTest: skipped) when Chromium or the dashboard's node_modules are missing.
+// and one without is refused, the page reconnects by itself and makes no request elsewhere; and that Foxglove's
+// own client library (@foxglove/ws-protocol, what Foxglove Studio uses) understands the server. Screenshots go
+// to test-artifacts/. Exits 77 (CTest: skipped) when Chromium or the dashboard's node_modules are missing.
 //
 //   node tests/browser/dashboard.spec.mjs     (from the project root; FSD_WEB_DEMO names the demo binary)
 import { test, before, after } from 'node:test';
@@ -27,7 +28,8 @@ for (const [what, file] of [['chromium', chromiumPath], ['playwright-core', path
     process.exit(77);
   }
 }
-const { chromium } = createRequire(path.join(dashboard, 'package.json'))('playwright-core');
+const requireDev = createRequire(path.join(dashboard, 'package.json'));
+const { chromium } = requireDev('playwright-core');
 
 // Starts the demo server; resolves with { proc, port } once it prints its address.
 function startDemo(port = 0) {
@@ -167,6 +169,64 @@ test('a parameter change with the token takes effect on the car', async () => {
   assert.equal(history.at(-1).new, 9);
   assert.match(history.at(-1).who, /^web 127\.0\.0\.1:\d+ \(token ok\)$/);
   await page.screenshot({ path: path.join(artifacts, 'dashboard-param-applied.png') });
+});
+
+test("Foxglove's client library (as in Foxglove Studio) subscribes, decodes and sets parameters", async () => {
+  const { FoxgloveClient } = requireDev('@foxglove/ws-protocol');
+  const WebSocket = requireDev('ws');
+  const client = new FoxgloveClient({
+    ws: new WebSocket(`ws://127.0.0.1:${demo.port}/?token=${TOKEN}`, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]),
+  });
+  const seen = { info: null, channels: new Map(), states: [], time: null, params: new Map(), errors: [] };
+  const done = new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`incomplete: ${JSON.stringify({ info: !!seen.info, channels: seen.channels.size, states: seen.states.length, time: seen.time !== null, params: [...seen.params.keys()] })}`)), 15000);
+    const check = () => {
+      if (seen.info && seen.states.length >= 5 && seen.time !== null && seen.params.has('set')) {
+        clearTimeout(timer);
+        resolve();
+      }
+    };
+    client.on('serverInfo', (info) => { seen.info = info; check(); });
+    client.on('error', (e) => seen.errors.push(String(e)));
+    client.on('advertise', (channels) => {
+      for (const ch of channels) seen.channels.set(ch.id, ch);
+      const state = channels.find((c) => c.topic === '/vehicle/state');
+      if (state) {
+        seen.stateSub = client.subscribe(state.id);
+        client.getParameters(['demo.lookahead'], 'get');
+        client.setParameters([{ name: 'demo.lookahead', value: 30 }], 'set');
+      }
+    });
+    client.on('message', (m) => {
+      if (m.subscriptionId !== seen.stateSub) return;
+      seen.states.push({ t: m.timestamp, body: JSON.parse(new TextDecoder().decode(m.data)) });
+      check();
+    });
+    client.on('time', (t) => { seen.time = t.timestamp; check(); });
+    client.on('parameterValues', (p) => { seen.params.set(p.id, p.parameters); check(); });
+  });
+  try {
+    await done;
+  } finally {
+    client.close();
+  }
+  assert.deepEqual(seen.errors, []);
+  assert.ok(seen.info.capabilities.includes('parameters') && seen.info.capabilities.includes('parametersSubscribe'));
+  const byTopic = new Map([...seen.channels.values()].map((c) => [c.topic, c]));
+  assert.equal(byTopic.get('/map/cones').schemaName, 'foxglove.SceneUpdate');
+  assert.equal(byTopic.get('/lidar/points').schemaName, 'foxglove.PointCloud');
+  assert.equal(byTopic.get('/log').schemaName, 'foxglove.Log');
+  for (const ch of seen.channels.values()) {
+    assert.equal(ch.encoding, 'json');
+    assert.equal(JSON.parse(ch.schema).title, ch.schemaName);
+  }
+  const last = seen.states.at(-1);
+  assert.equal(typeof last.t, 'bigint');
+  assert.equal(last.t, BigInt(last.body.timestamp.sec) * 1000000000n + BigInt(last.body.timestamp.nsec));
+  assert.ok(Number.isFinite(last.body.speed) && Number.isFinite(last.body.yaw_rate));
+  assert.equal(seen.params.get('get')[0].name, 'demo.lookahead');
+  assert.deepEqual(seen.params.get('set'), [{ name: 'demo.lookahead', value: 30, type: 'float64' }]);
+  assert.equal(await apiValue('demo.lookahead'), 30);
 });
 
 test('usable on a tablet in portrait', async () => {

@@ -119,7 +119,7 @@ TEST(ClientState, UnsubscribedAndOutOfRangeChannelsCostNoDrop) {
   EXPECT_EQ(drops.value(), 0u);
 }
 
-// A publisher and a writer racing: every offered message is either delivered, in order, or counted as dropped.
+// A fan-out thread and a writer racing: every offered message is either delivered, in order, or counted.
 TEST(ClientState, ConcurrentOffersAreDeliveredInOrderOrCounted) {
   Counter drops;
   ClientState c(64, 8, &drops);
@@ -140,6 +140,7 @@ TEST(ClientState, ConcurrentOffersAreDeliveredInOrderOrCounted) {
   EXPECT_EQ(got.size() + drops.value(), static_cast<std::size_t>(kN));
   EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
   EXPECT_EQ(std::adjacent_find(got.begin(), got.end()), got.end());  // no duplicates
+  EXPECT_EQ(got.back(), kN - 1);  // the newest survives, the oldest are the ones dropped
 }
 
 }  // namespace

@@ -127,14 +127,22 @@ TEST(WebSocket, UnsubscribeStopsData) {
 TEST(WebSocket, LatchedChannelSendsItsLastMessageToNewSubscribers) {
   TestServer s;
   const auto ch = s.server->add_channel("/map", "M", "{}", ChannelOptions{true});
+  const auto marker = s.server->add_channel("/marker", "K", "{}");
+  WsClient first(s.port());
+  subscribe(first, 1, marker);
   s.server->publish(ch, 3.0, "\"old\"");
   s.server->publish(ch, 4.0, "\"latest\"");
-  WsClient c(s.port());
-  ASSERT_TRUE(c.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 7}, {"channelId", ch}}}}}.dump()));
-  const auto m = c.next_binary();
+  s.server->publish(marker, 5.0, "\"m\"");
+  ASSERT_TRUE(first.next_binary());  // messages are taken in order: both map messages are in by now
+
+  WsClient late(s.port());
+  ASSERT_TRUE(late.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 7}, {"channelId", ch}}}}}.dump()));
+  const auto m = late.next_binary();
   ASSERT_TRUE(m);
+  EXPECT_EQ(u32_le(*m, 1), 7u);
   EXPECT_EQ(u64_le(*m, 5), 4'000'000'000ull);
   EXPECT_EQ(m->substr(13), "\"latest\"");
+  EXPECT_FALSE(late.next_binary(300ms));  // only the last one
 }
 
 TEST(WebSocket, SubscribeErrorsAreReported) {
@@ -461,6 +469,41 @@ TEST(WebSocket, TimeMessagesCarryTheServerClock) {
   const double t = static_cast<double>(u64_le(*m, 1)) * 1e-9;
   EXPECT_GE(t, before - 1e-6);
   EXPECT_LE(t, after + 1e-6);
+}
+
+TEST(WebSocket, IdleClientsThatDoNotAnswerPingsAreClosed) {
+  auto cfg = TestServer::base_config();
+  cfg.idle_timeout_s = 1;
+  TestServer s(cfg);
+  WsClient::Options mute;
+  mute.read = false;  // never reads, so never answers the server's pings
+  WsClient silent(s.port(), mute);
+  WsClient alive(s.port());  // reads, and Beast answers pings by itself
+  ASSERT_TRUE(silent.handshake_ok());
+  ASSERT_TRUE(alive.next_op("advertise"));
+  for (int i = 0; i < 500 && s.server->client_count() > 1; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(s.server->client_count(), 1u);
+  std::this_thread::sleep_for(1500ms);  // well past the idle timeout: the live client is still there
+  EXPECT_EQ(s.server->client_count(), 1u);
+  ASSERT_TRUE(alive.send_text(R"({"op":"getParameters","parameterNames":[],"id":"still"})"));
+  EXPECT_TRUE(alive.next_op("parameterValues"));
+}
+
+TEST(WebSocket, TwoIoThreadsServeTheSameProtocol) {
+  auto cfg = TestServer::base_config();
+  cfg.io_threads = 2;
+  TestServer s(cfg);
+  const auto ch = s.server->add_channel("/a", "A", "{}");
+  WsClient a(s.port()), b(s.port());
+  subscribe(a, 1, ch);
+  subscribe(b, 2, ch);
+  for (int i = 0; i < 100; ++i) s.server->publish(ch, i, std::to_string(i));
+  for (auto* c : {&a, &b})
+    for (int i = 0; i < 100; ++i) {
+      const auto m = c->next_binary();
+      ASSERT_TRUE(m);
+      EXPECT_EQ(m->substr(13), std::to_string(i));
+    }
 }
 
 TEST(WebSocket, StopClosesClientsWithGoingAway) {
