@@ -74,6 +74,10 @@ void ConfigSchema::add(ConfigEntry e) {
   if (e.key.empty() || e.key.front() == '.' || e.key.back() == '.' || !e.default_value)
     throw std::logic_error("config schema: malformed entry '" + e.key + "'");
   if (find(e.key)) throw std::logic_error("config schema: duplicate key '" + e.key + "'");
+  // A key cannot also be a section: "a.b" and "a.b.c" would need "a.b" to be a value and an object at once.
+  for (const auto& other : entries_)
+    if (other.key.rfind(e.key + ".", 0) == 0 || e.key.rfind(other.key + ".", 0) == 0)
+      throw std::logic_error("config schema: key '" + e.key + "' clashes with section of '" + other.key + "'");
   if (auto why = e.check(*e.default_value); !why.empty())
     throw std::logic_error("config schema: default of '" + e.key + "': " + why);
   entries_.push_back(std::move(e));

@@ -8,9 +8,9 @@ const ConfigSection<SimRunConfig>& sim_run_section() {
   static const auto s = ConfigSection<SimRunConfig>("sim")
                             .number("physics_rate_hz", &SimRunConfig::physics_rate_hz, 200.0, 5000.0, "Hz",
                                     "Fixed integration rate of the vehicle model (≥ 200 Hz).")
-                            .boolean("lidar", &SimRunConfig::lidar, "Simulate the VLP-16 (ray casting).")
-                            .boolean("gnss", &SimRunConfig::gnss, "Simulate the GNSS-INS receiver.")
-                            .boolean("camera", &SimRunConfig::camera, "Simulate the camera (rendering, JPEG).");
+                            .boolean("enable_lidar", &SimRunConfig::lidar, "Simulate the VLP-16 (ray casting).")
+                            .boolean("enable_gnss", &SimRunConfig::gnss, "Simulate the GNSS-INS receiver.")
+                            .boolean("enable_camera", &SimRunConfig::camera, "Simulate the camera (rendering, JPEG).");
   return s;
 }
 

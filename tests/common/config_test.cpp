@@ -89,6 +89,9 @@ TEST(Config, SchemaRejectsDuplicatesAndBadDefaults) {
   ConfigSchema s;
   section().describe(s);
   EXPECT_THROW(section().describe(s), std::logic_error);
+  ConfigSchema s3;
+  ConfigSection<Sample>("a").number("b", &Sample::speed, 0, 30, "", "").describe(s3);
+  EXPECT_THROW(ConfigSection<Sample>("a.b").number("c", &Sample::speed, 0, 30, "", "").describe(s3), std::logic_error);
   ConfigSchema s2;
   EXPECT_THROW(ConfigSection<Sample>("x").number("speed", &Sample::speed, 10, 20, "", "").describe(s2),
                std::logic_error);
