@@ -17,6 +17,7 @@ int run_cli(int argc, char** argv) {
   add_version_command(app, exit_code);
   add_config_command(app, exit_code);
   add_run_command(app, exit_code);
+  add_sim_command(app, exit_code);
   add_lidar_dump_command(app, exit_code);
   add_calibrate_homography_command(app, exit_code);
   try {

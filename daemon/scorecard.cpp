@@ -18,7 +18,16 @@ Scorecard::Scorecard(const Track& track, Mission mission, int laps_to_finish, do
 void Scorecard::on_truth(const sim::VehicleTruth& truth) {
   sim_time_ = truth.t;
   const Vec2 pos = truth.pose.position();
-  if (last_) {
+  if (!last_) {
+    // A car that starts just past a timing line (some FSDS layouts) has begun its first lap at the start, as the
+    // stack's lap counter also counts it; otherwise lap 1 begins at the first crossing.
+    for (std::size_t g = 0; g < gates_.gates().size(); ++g) {
+      const double past = gates_.past(g, pos);
+      const Vec2 lat(-gates_.gates()[g].forward.y(), gates_.gates()[g].forward.x());
+      if (past > 0.0 && past < 10.0 && std::fabs((pos - gates_.gates()[g].centre).dot(lat)) <= gates_.gates()[g].half_width)
+        lap_start_ = truth.t;
+    }
+  } else {
     if (const auto g = gates_.crossed(last_->pose.position(), pos); g && !finished_) {
       // Interpolate the crossing time for lap times better than one step.
       const double da = gates_.past(*g, last_->pose.position()), db = gates_.past(*g, pos);
