@@ -4,7 +4,10 @@
 // two boundaries, keep the best few partial walks (beam search) by a cost on heading change, width consistency and
 // boundary colours, then smooth the chosen edge midpoints into a path with curvature and a speed profile.
 // Colours help but are not trusted: a known colour on the wrong side costs, unknown colours fall back to geometry
-// (crossing edges of plausible track width, boundary sides kept consistent along the walk).
+// (crossing edges of plausible track width, boundary sides kept consistent along the walk, boundaries that bend
+// gently with cones a few metres apart). Where one boundary is missing over a stretch, the path runs half a
+// width inside the other one. Work is bounded by the cone count, beam width and depth; the wall-clock time is
+// measured and reported against the budget (the supervisor decides what a late plan means).
 #include <string>
 #include <vector>
 
