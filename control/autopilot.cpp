@@ -38,6 +38,8 @@ void Autopilot::set_config(const AutopilotConfig& config) {
   planner_.set_speed_limits(config.speed.realtime());
   follower_.set_config(config.follower);
   supervisor_.set_config(config.supervisor);
+  // The stored lap's speeds follow the car's limits (μ, margins, v_max) as they are tuned.
+  if (lap_path_) SpeedProfile(config.speed.known()).apply(*lap_path_, 0, 0);
 }
 
 void Autopilot::on_vcu(const VcuStatus& status) { supervisor_.on_vcu(status); }

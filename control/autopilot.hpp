@@ -4,6 +4,15 @@
 // Inside: the mission (trackdrive, autocross, acceleration, skid pad, inspection, EBS test), real-time midline
 // planning, the lap-2 trajectory, the lap counter, the path follower and the AS supervisor. No I/O, no threads:
 // the caller owns time (every call carries the stack's clock) and calls from one thread.
+//
+// One control cycle (on each GNSS-INS sample or at 50–100 Hz):
+//   on_vcu(status)          the newest VcuStatus
+//   on_cones(t, map)        only when mapping produced a new cone map (map frame, all cones so far; ~10 Hz)
+//   on_state(state)         the fused VehicleState (map frame; steering = measured wheel angle)
+//   on_gnss(t, good)        the newest GNSS-INS sample's GnssSample::good
+//   out = step(now)         send out.command to the VCU every cycle, out.request while it is not None;
+//                           out.path / out.follow / out.lap / faults() feed telemetry and the scorecard.
+// step() runs the planner itself when new cones arrived or replan_period passed (≈ 0.2–0.5 ms).
 #include <optional>
 #include <string_view>
 #include <vector>

@@ -33,6 +33,8 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
           .number("w_length", &C::w_length, 0, 10, "1/m", "Reward per metre of walk.")
           .number("w_start", &C::w_start, 0, 10, "1/m", "Cost per metre from the car to the first midpoint.")
           .number("max_score", &C::max_score, -100, 100, "", "A best walk scoring worse is no plan.")
+          .number("colour_check_margin", &C::colour_check_margin, -1, 100, "", "A colour-blind walk this much better in geometry wins (< 0: off).")
+          .integer("max_wrong_colours", &C::max_wrong_colours, 0, 20, "", "... if it passes at most this many cones against their colour.")
           .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the planned path.")
           .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 50, "m", "Ripples shorter than this are smoothed out.", true)
           .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "control/smoothing.hpp"
 #include "control/triangulation.hpp"
@@ -38,8 +39,18 @@ struct Node {
   double cost = 0;
   double length = 0;
   double width_ref = 0;
+  double colour_cost = 0;  // the part of cost that comes from colours (unknown or contradicting)
+  int conflicts = 0;       // cones passed on the side their colour contradicts
   // The last two cones passed on each side (0 left, 1 right): the boundaries as the walk has seen them.
   std::array<int, 2> last{-1, -1}, prev{-1, -1};
+};
+
+// The chosen walk: its midpoints, and how much of its cost the colours decided.
+struct Walk {
+  std::vector<Vec2> mids;
+  std::vector<std::pair<int, int>> passed;  // (cone, side it was passed on: +1 left, −1 right)
+  int conflicts = 0;
+  double geometric_score = 0;  // score without the colour terms
 };
 
 class Walker {
@@ -58,7 +69,7 @@ class Walker {
   }
 
   // Best walk from the car (origin, heading +x: the planner works in the vehicle frame), as midpoints.
-  std::vector<Vec2> walk() {
+  Walk walk() {
     seed();
     for (int depth = 0; depth < c_.max_depth && !beam_.empty(); ++depth) {
       std::map<std::pair<int, int>, int> best_of;  // (edge, next triangle) → candidate node
@@ -97,10 +108,17 @@ class Walker {
     const int best = *std::min_element(finals_.begin(), finals_.end(), [&](int a, int b) { return score(a) < score(b); });
     // Even the best walk may be implausible (the track ends, or only the next stretch of track is in view).
     if (score(best) > c_.max_score) return {};
-    std::vector<Vec2> out;
-    for (int u = best; u >= 0; u = nodes_[static_cast<std::size_t>(u)].parent)
-      out.push_back(nodes_[static_cast<std::size_t>(u)].m);
-    std::reverse(out.begin(), out.end());
+    Walk out;
+    const Node& b = nodes_[static_cast<std::size_t>(best)];
+    out.conflicts = b.conflicts;
+    out.geometric_score = score(best) - b.colour_cost;
+    for (int u = best; u >= 0; u = nodes_[static_cast<std::size_t>(u)].parent) {
+      const Node& q = nodes_[static_cast<std::size_t>(u)];
+      out.mids.push_back(q.m);
+      const auto& e = tri_.edges[static_cast<std::size_t>(q.edge)];
+      for (const int v : {e.a, e.b}) out.passed.emplace_back(v, crossing_side(v, q.edge, q.normal));
+    }
+    std::reverse(out.mids.begin(), out.mids.end());
     return out;
   }
 
@@ -153,7 +171,9 @@ class Walker {
     nn.length = nu.length + len;
     // A short step moves the path little sideways whatever its turn (hairpin fans, the last crossing at the
     // edge of what is seen), so its turn costs in proportion.
-    nn.cost = nu.cost + c_.w_turn * turn * turn * std::min(1.0, len / 1.5) + side_cost(f, n);
+    nn.colour_cost = nu.colour_cost;
+    nn.conflicts = nu.conflicts;
+    nn.cost = nu.cost + c_.w_turn * turn * turn * std::min(1.0, len / 1.5) + side_cost(nn, f, n);
     nn.last = nu.last;
     nn.prev = nu.prev;
     nn.cost += boundary_cost(nn, f, n);
@@ -194,14 +214,20 @@ class Walker {
     return cost;
   }
 
-  double side_cost(int e, const Vec2& n) const {
+  // Cost of the colours of edge e's cones for a crossing along n; accounted in nn's colour bookkeeping.
+  double side_cost(Node& nn, int e, const Vec2& n) const {
     const auto& ed = tri_.edges[static_cast<std::size_t>(e)];
     double cost = 0;
     for (const int v : {ed.a, ed.b}) {
       const int known = cones_[static_cast<std::size_t>(v)].side;
-      if (known == 0) cost += c_.w_unknown;
-      else if (known != crossing_side(v, e, n)) cost += c_.w_colour_conflict;
+      if (known == 0) {
+        cost += c_.w_unknown;
+      } else if (known != crossing_side(v, e, n)) {
+        cost += c_.w_colour_conflict;
+        ++nn.conflicts;
+      }
     }
+    nn.colour_cost += cost;
     return cost;
   }
 
@@ -259,7 +285,8 @@ class Walker {
       const double w = std::abs(cross2(m / std::max(dist, 1e-6), cone(e.b) - cone(e.a)));
       if (dist > 0.3 && w < c_.min_crossing_cos * (cone(e.b) - cone(e.a)).norm()) continue;
       const double rel = (w - c_.nominal_width) / c_.nominal_width;
-      nn.cost = c_.w_turn * nn.heading * nn.heading + c_.w_start * dist + side_cost(f, n) + c_.w_width * rel * rel;
+      nn.cost = c_.w_turn * nn.heading * nn.heading + c_.w_start * dist + c_.w_width * rel * rel;
+      nn.cost += side_cost(nn, f, n);
       seeds.push_back(push(nn));
     }
     std::sort(seeds.begin(), seeds.end(), [&](int a, int b) { return score(a) < score(b); });
@@ -279,6 +306,7 @@ class Walker {
 // boundary that is there, half a track width inside it. Cones of unknown colour count for the side of the car
 // they are on. The chain runs forward from the car, cone to nearest cone ahead, without sharp bends.
 std::vector<Vec2> boundary_offset_walk(const std::vector<LocalCone>& cones, const MidlinePlannerConfig& c) {
+  const double half_width = 0.5 * c.nominal_width;
   std::vector<Vec2> best;
   for (const int side : {1, -1}) {
     std::vector<Vec2> pts;
@@ -317,7 +345,7 @@ std::vector<Vec2> boundary_offset_walk(const std::vector<LocalCone>& cones, cons
     for (std::size_t i = 0; i < chain.size(); ++i) {
       const Vec2 t = (chain[std::min(i + 1, chain.size() - 1)] - chain[i == 0 ? 0 : i - 1]).normalized();
       const Vec2 inward = -side * Vec2(-t.y(), t.x());  // away from the boundary, into the track
-      offset.push_back(chain[i] + inward * (0.5 * c.nominal_width));
+      offset.push_back(chain[i] + inward * half_width);
     }
     if (offset.size() > best.size()) best = std::move(offset);
   }
@@ -379,8 +407,25 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
   const Triangulation tri = delaunay(positions);
   result.triangles = static_cast<int>(tri.triangles.size());
 
-  Walker walker(config_, local, tri);
-  std::vector<Vec2> mids = walker.walk();
+  Walk walk = Walker(config_, local, tri).walk();
+  // A wrong colour can lead the walk astray where geometry alone would not: walk again without colours and
+  // take that walk when its geometry is clearly better, as long as it passes no more than a cone or two
+  // against their colour (more would be a wrong branch, not a wrong cone).
+  if (config_.use_colours && config_.colour_check_margin >= 0) {
+    std::vector<LocalCone> blind = local;
+    for (auto& c : blind) c.side = 0;
+    Walk geometric = Walker(config_, blind, tri).walk();
+    // A wrong colour is a cone or two; a colour-blind walk against many colours took a wrong branch.
+    std::set<int> against;
+    for (const auto& [cone, side] : geometric.passed)
+      if (local[static_cast<std::size_t>(cone)].side * side == -1) against.insert(cone);
+    const bool better = !walk.mids.empty() && geometric.geometric_score + config_.colour_check_margin < walk.geometric_score;
+    if (!geometric.mids.empty() && static_cast<int>(against.size()) <= config_.max_wrong_colours && better) {
+      walk = std::move(geometric);
+      result.ignored_colours = true;
+    }
+  }
+  std::vector<Vec2> mids = std::move(walk.mids);
   const double reach = mids.empty() ? 0.0 : mids.back().norm();
   if (reach < config_.fallback_below) {
     std::vector<Vec2> side = boundary_offset_walk(local, config_);

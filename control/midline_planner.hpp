@@ -4,7 +4,10 @@
 // two boundaries, keep the best few partial walks (beam search) by a cost on heading change, width consistency and
 // boundary colours, then smooth the chosen edge midpoints into a path with curvature and a speed profile.
 // Colours help but are not trusted: a known colour on the wrong side costs, unknown colours fall back to geometry
-// (crossing edges of plausible track width, boundary sides kept consistent along the walk).
+// (crossing edges of plausible track width, boundary sides kept consistent along the walk, boundaries that bend
+// gently with cones a few metres apart). Where one boundary is missing over a stretch, the path runs half a
+// width inside the other one. Work is bounded by the cone count, beam width and depth; the wall-clock time is
+// measured and reported against the budget (the supervisor decides what a late plan means).
 #include <string>
 #include <vector>
 
@@ -43,6 +46,8 @@ struct MidlinePlannerConfig {
   double w_length = 0.2;          // reward per metre of walk
   double w_start = 0.05;          // cost per metre from the car to the first midpoint
   double max_score = 1.0;         // a best walk scoring worse (cost − length reward) is no plan
+  double colour_check_margin = 1.0;  // a colour-blind walk this much better in geometry wins; < 0: no check
+  int max_wrong_colours = 2;      // ... if it passes at most this many cones against their colour
   double ds = 0.25;               // m: spacing of the output path
   double smoothing_wavelength = 5.0;  // m: ripples shorter than this are smoothed out
   double min_length = 3.0;        // m: shorter walks are a failed plan
@@ -58,6 +63,7 @@ struct PlanResult {
   Duration compute_time = 0;      // s, wall clock spent in plan()
   bool over_budget = false;       // compute_time > time_budget: the supervisor treats the plan as late
   bool single_boundary = false;   // planned half a width inside one boundary (the other one is missing)
+  bool ignored_colours = false;   // colours contradicted the geometry; planned colour-blind
   int cones_used = 0;
   int triangles = 0;
   std::vector<Vec2> midpoints;    // the chosen crossing-edge midpoints, map frame (for display)

@@ -36,7 +36,7 @@ class SpeedProfile {
   SpeedLimits limits_;
 };
 
-// Time to drive the path at its speeds (trapezoidal in 1/v); +inf if it stops somewhere inside.
+// Time to drive the path at its speeds (each segment at the mean of its end speeds); +inf if it stops inside.
 double travel_time(const Path& path);
 
 }  // namespace fsd

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "control/smoothing.hpp"
 #include "tests/control/mission_harness.hpp"
 
 namespace fsd {
@@ -45,6 +46,29 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   const double past = h.car().pose.y - 6.0;
   EXPECT_GT(past, 0.0);
   EXPECT_LT(past, test_config().mission.stop_distance + 1.0);
+  // Lap 2 against the friction-limited flying lap of the true centre line at the car's full μ (the speed
+  // profile is checked against hand-computed values in speed_profile_test.cpp); the centre line is the file's
+  // ordered left cones joined to their nearest right cones, smoothed like the lap-2 line. Lap 2 uses 92 % of
+  // μ (≈ 4 % slower in corners) and starts at the lap-1 speed on the start straight, so it is allowed 10 %.
+  Path centre;
+  centre.closed = true;
+  for (const auto& l : track.cones) {
+    if (l.role != ConeRole::Left) continue;
+    const TrackCone* best = nullptr;
+    for (const auto& r : track.cones)
+      if (r.role == ConeRole::Right && (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
+        best = &r;
+    centre.points.push_back({0.5 * (l.position + best->position), 0, 0, 0, 0});
+  }
+  centre = smooth_path(centre, 0.25, 12.0);
+  SpeedLimits full = test_config().speed.known();
+  full.mu = test_config().speed.mu;
+  SpeedProfile(full).apply(centre, 0, 0);
+  const double t_ref = travel_time(centre);
+  std::printf("  lap 2 %.2f s, friction-limited centre line %.2f s (+%.1f %%)\n", h.laps()[1].time_s, t_ref,
+              100 * (h.laps()[1].time_s / t_ref - 1));
+  EXPECT_LT(h.laps()[1].time_s, 1.10 * t_ref);
+  EXPECT_GT(h.laps()[1].time_s, t_ref);  // never faster than the friction limit
   bool used_recorded = false;
   for (const auto& r : h.records()) used_recorded = used_recorded || r.source == PathSource::Recorded;
   EXPECT_TRUE(used_recorded);
