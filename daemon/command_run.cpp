@@ -60,6 +60,7 @@ int run_command(const RunOptions& o) {
     server->start();
     telemetry = std::make_unique<Telemetry>(*server);
     run.set_telemetry(telemetry.get());
+    run.set_params(&params);
     const std::string host = wc.bind == "0.0.0.0" ? "localhost" : wc.bind;
     std::cout << "fsd: dashboard at http://" << host << ":" << server->port() << "/  (Ctrl-C stops)" << std::endl;
   }

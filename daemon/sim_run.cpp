@@ -7,6 +7,7 @@
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
+#include "common/params.hpp"
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
 #include "daemon/settings.hpp"
@@ -74,6 +75,9 @@ struct SimRun::Impl {
   TruthPerception perception;
   std::unique_ptr<Scorecard> card;
   Telemetry* telemetry = nullptr;
+  ParamRegistry* params = nullptr;
+  std::atomic<bool> params_changed{false};
+  Config tuned;  // the configuration with the live parameter values
   bool headless = true, until_finished = false;
   std::shared_ptr<const Scan> last_scan;
   std::shared_ptr<const ConeDetections> last_detections;
@@ -85,7 +89,8 @@ struct SimRun::Impl {
   Impl(const Config& cfg, const RunOptions& opt)
       : run(run_section().read(cfg)),
         cone_map(cone_map_section().read(cfg)),
-        perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5) {
+        perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5),
+        tuned(cfg) {
     headless = opt.headless;
     until_finished = opt.until_finished;
     const auto m = mission_from_string(run.mission);
@@ -169,6 +174,19 @@ struct SimRun::Impl {
     telemetry->publish(std::move(s));
   }
 
+  // Copies the registry's values into the configuration and hands the control part to the autopilot; runs on the
+  // loop's thread, so the autopilot is never touched from the web's.
+  void apply_params() {
+    for (const auto& p : params->list()) {
+      if (p.entry->type == ValueType::Boolean) tuned.set(p.entry->key, p.value != 0.0, "parameter");
+      else if (p.entry->type == ValueType::Integer) tuned.set(p.entry->key, static_cast<long long>(p.value), "parameter");
+      else tuned.set(p.entry->key, p.value, "parameter");
+    }
+    AutopilotConfig ac = read_control(tuned);
+    ac.mission.laps = run.laps;
+    autopilot->set_config(ac);
+  }
+
   int run_loop(const std::atomic<bool>& stop) {
     const auto wall0 = std::chrono::steady_clock::now();
     SimulatedClock pace(1.0);
@@ -197,6 +215,7 @@ struct SimRun::Impl {
         last_detections = std::make_shared<const ConeDetections>(std::move(det));
       }
       autopilot->on_state(state_from_truth(truth));
+      if (params_changed.exchange(false)) apply_params();
       const ControlOutput out = autopilot->step(t);
       vcu->set_command(out.command, t);
       vcu->set_as_request(to_wire(out.request));
@@ -240,5 +259,9 @@ SimRun::~SimRun() = default;
 int SimRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
 const Scorecard& SimRun::scorecard() const { return *impl_->card; }
 void SimRun::set_telemetry(Telemetry* telemetry) { impl_->telemetry = telemetry; }
+void SimRun::set_params(ParamRegistry* params) {
+  impl_->params = params;
+  if (params) params->subscribe([this](const ParamChange&) { impl_->params_changed = true; });
+}
 
 }  // namespace fsd

@@ -17,6 +17,7 @@
 namespace fsd {
 
 class Telemetry;
+class ParamRegistry;
 
 // Per-cycle view of the run for the dashboard and logs.
 struct SimRunHooks {
@@ -32,6 +33,8 @@ class SimRun {
   int run(const std::atomic<bool>& stop);
   const Scorecard& scorecard() const;
   void set_telemetry(Telemetry* telemetry);
+  // Live tuning: changes of the registry's control.* parameters reach the autopilot at the next cycle.
+  void set_params(ParamRegistry* params);
 
  private:
   struct Impl;
