@@ -132,6 +132,8 @@ struct SimRun::Impl {
 
     AutopilotConfig ac = read_control(cfg);
     ac.mission.laps = run.laps;
+    // In lockstep a slow plan delays no simulated time, and wall-clock checks would make runs unrepeatable.
+    if (headless) ac.supervisor.check_plan_time = false;
     autopilot = std::make_unique<Autopilot>(ac, mission, track.convention);
 
     const auto [laps_to_finish, stop_zone] = mission_timing(mission, run.laps);
@@ -184,6 +186,7 @@ struct SimRun::Impl {
     }
     AutopilotConfig ac = read_control(tuned);
     ac.mission.laps = run.laps;
+    if (headless) ac.supervisor.check_plan_time = false;
     autopilot->set_config(ac);
   }
 
