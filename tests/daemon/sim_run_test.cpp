@@ -88,6 +88,25 @@ TEST(SimRun, OtherLoopsFinishCleanly) {
   }
 }
 
+TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
+  for (const char* track : {"epfl_acceleration", "amz_fssim_acceleration"}) {
+    SCOPED_TRACE(track);
+    const std::string out = ::testing::TempDir() + track + ".json";
+    ASSERT_EQ(run("run --sim --headless --until-finished --mission acceleration --config " + fast_config() +
+                  " --track ../shared/tracks/" + track + ".csv --report " + out),
+              0);
+    const auto r = report(out);
+    EXPECT_EQ(r["mission"], "acceleration");
+    EXPECT_TRUE(r["stopped_after_finish"]);  // within 100 m of the finish line, on the lane
+    EXPECT_EQ(r["cones_hit"], 0);
+    ASSERT_EQ(r["laps"].size(), 1u);
+    // The car starts ~4.4 m before the start line: at the traction limit a = µg ≈ 13.7 m/s² it crosses it at
+    // ≤ 11 m/s, and 75 m then take at least t with 75 = 11 t + 6.87 t², t ≈ 2.6 s. Nothing can be faster.
+    EXPECT_GT(r["laps"][0]["time_s"].get<double>(), 2.6);
+    EXPECT_LT(r["laps"][0]["time_s"].get<double>(), 6.0);
+  }
+}
+
 TEST(SimRun, BadInputExitsTwoNamingIt) {
   std::string log;
   EXPECT_EQ(run("run --sim --headless --track /nonexistent.csv", &log), 2);
