@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "common/config.hpp"
@@ -31,8 +33,15 @@ std::shared_ptr<const ConfigSchema> schema() {
   return s;
 }
 
+// Each test runs as its own process under ctest -j: every file gets a name of its own.
+std::filesystem::path temp_file() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  return std::filesystem::temp_directory_path() /
+         (std::string("fsd_config_") + info->name() + "_" + std::to_string(::getpid()) + ".json");
+}
+
 std::string load_error(const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / "fsd_config_test.json";
+  const auto path = temp_file();
   std::ofstream(path) << text;
   try {
     Config::load(schema(), path);
@@ -58,7 +67,7 @@ TEST(Config, DefaultsComeFromTheStruct) {
 
 TEST(Config, FileOverridesOnlyItsKeys) {
   EXPECT_EQ(load_error(R"({"ctl": {"speed": 7.5}})"), "ok");
-  const auto path = std::filesystem::temp_directory_path() / "fsd_config_test.json";
+  const auto path = temp_file();
   const Sample s = section().read(Config::load(schema(), path));
   EXPECT_EQ(s.speed, 7.5);
   EXPECT_EQ(s.laps, 2);

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "daemon/settings.hpp"
@@ -60,7 +62,7 @@ TEST(Cli, ConfigurationDocsListEveryKey) {
 }
 
 TEST(Cli, ConfigCheckNamesTheBadKey) {
-  const std::string path = ::testing::TempDir() + "bad_config.json";
+  const std::string path = ::testing::TempDir() + std::to_string(::getpid()) + "_bad_config.json";
   std::ofstream(path) << R"({"run": {"laps": 0}})";
   const auto r = run("config check " + path);
   EXPECT_EQ(r.status, 2);

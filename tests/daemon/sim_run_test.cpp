@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 namespace fsd {
@@ -24,6 +26,9 @@ int run(const std::string& args, std::string* out = nullptr) {
   return WEXITSTATUS(rc);
 }
 
+// Tests run as separate processes under ctest -j: files get the process id in their names.
+std::string tmp(const std::string& name) { return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name; }
+
 nlohmann::json report(const std::string& path) {
   std::ifstream f(path);
   return nlohmann::json::parse(f);
@@ -31,13 +36,13 @@ nlohmann::json report(const std::string& path) {
 
 std::string fast_config() {
   // Truth perception needs neither LiDAR nor camera; leaving them out makes the run ~10× faster.
-  const std::string path = ::testing::TempDir() + "fsd_fast.json";
+  const std::string path = tmp("fsd_fast.json");
   std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
   return path;
 }
 
 TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
-  const std::string out = ::testing::TempDir() + "track1.json";
+  const std::string out = tmp("track1.json");
   std::string log;
   ASSERT_EQ(run("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 --report " +
                     out,
@@ -64,7 +69,7 @@ TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
 }
 
 TEST(SimRun, HeadlessRunsAreDeterministic) {
-  const std::string a = ::testing::TempDir() + "det_a.json", b = ::testing::TempDir() + "det_b.json";
+  const std::string a = tmp("det_a.json"), b = tmp("det_b.json");
   const std::string args = "run --sim --headless --until-finished --config " + fast_config() +
                            " --track ../shared/tracks/epfl_track_5.csv --seed 3 --report ";
   ASSERT_EQ(run(args + a), 0);
@@ -77,7 +82,7 @@ TEST(SimRun, HeadlessRunsAreDeterministic) {
 TEST(SimRun, OtherLoopsFinishCleanly) {
   for (const char* track : {"epfl_track_2", "epfl_fsds_competition_1", "epfl_fsds_default", "epfl_21_05_2023"}) {
     SCOPED_TRACE(track);
-    const std::string out = ::testing::TempDir() + track + ".json";
+    const std::string out = tmp(std::string(track) + ".json");
     ASSERT_EQ(run("run --sim --headless --until-finished --config " + fast_config() + " --track ../shared/tracks/" +
                   track + ".csv --report " + out),
               0);
@@ -91,7 +96,7 @@ TEST(SimRun, OtherLoopsFinishCleanly) {
 TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
   for (const char* track : {"epfl_acceleration", "amz_fssim_acceleration"}) {
     SCOPED_TRACE(track);
-    const std::string out = ::testing::TempDir() + track + ".json";
+    const std::string out = tmp(std::string(track) + ".json");
     ASSERT_EQ(run("run --sim --headless --until-finished --mission acceleration --config " + fast_config() +
                   " --track ../shared/tracks/" + track + ".csv --report " + out),
               0);
@@ -118,7 +123,7 @@ TEST(SimRun, BadInputExitsTwoNamingIt) {
 }
 
 TEST(SimCommand, WritesAPcapTheDriverReads) {
-  const std::string pcap = ::testing::TempDir() + "sim.pcap";
+  const std::string pcap = tmp("sim.pcap");
   std::string log;
   ASSERT_EQ(run("sim --track ../shared/tracks/epfl_track_1.csv --duration 2 --fast --lidar-pcap " + pcap, &log), 0)
       << log;
