@@ -138,9 +138,8 @@ struct SimRun::Impl {
 
     const auto [laps_to_finish, stop_zone] = mission_timing(mission, run.laps);
     card = std::make_unique<Scorecard>(track, mission, laps_to_finish, stop_zone, run.seed);
-    const auto& v = car_settings.vehicle;
+    // The limits the stack plans with (the scorecard's "vehicle" object).
     card->set_vehicle_limits({ac.speed.mu, ac.speed.a_accel_max, ac.speed.a_brake_max, ac.speed.v_max});
-    (void)v;
   }
 
   void publish_telemetry(Stamp t, const ControlOutput& out) {
