@@ -6,16 +6,6 @@
 
 namespace fsd {
 
-std::string_view to_string(AsRequest r) {
-  switch (r) {
-    case AsRequest::None: return "none";
-    case AsRequest::Ready: return "ready";
-    case AsRequest::Finished: return "finished";
-    case AsRequest::Emergency: return "emergency";
-  }
-  return "none";
-}
-
 std::string_view to_string(InputStream s) {
   switch (s) {
     case InputStream::Lidar: return "lidar";

@@ -12,11 +12,12 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "common/wire/vcu_protocol.hpp"
 
 namespace fsd {
 
-enum class AsRequest : std::uint8_t { None = 0, Ready, Finished, Emergency };
-std::string_view to_string(AsRequest r);
+// What the stack asks of the VCU's AS state machine: the VCU protocol's own request type, so no mapping is needed.
+using wire::vcu::AsRequest;
 
 enum class InputStream : std::uint8_t { Lidar = 0, Pose, Gnss, Vcu, Plan };
 std::string_view to_string(InputStream s);

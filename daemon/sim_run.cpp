@@ -26,15 +26,6 @@ namespace {
 constexpr double kControlPeriod = 0.01;    // s: the control loop runs at 100 Hz
 constexpr double kPerceptionPeriod = 0.1;  // s: one LiDAR revolution
 
-wire::vcu::AsRequest to_wire(AsRequest r) {
-  switch (r) {
-    case AsRequest::Ready: return wire::vcu::AsRequest::Ready;
-    case AsRequest::Finished: return wire::vcu::AsRequest::Finished;
-    case AsRequest::Emergency: return wire::vcu::AsRequest::Emergency;
-    default: return wire::vcu::AsRequest::None;
-  }
-}
-
 // Timed laps of a mission as the timekeeper counts gate crossings, and the stop zone after the last one.
 std::pair<int, double> mission_timing(Mission m, int laps) {
   switch (m) {
@@ -220,7 +211,7 @@ struct SimRun::Impl {
       if (params_changed.exchange(false)) apply_params();
       const ControlOutput out = autopilot->step(t);
       vcu->set_command(out.command, t);
-      vcu->set_as_request(to_wire(out.request));
+      vcu->set_as_request(out.request);
       if (out.planned) card->latency("planning").add(out.planning_time);
       card->latency("control").add(out.control_time);
 
