@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/rotation.hpp"
+
 namespace fsd {
 
 namespace {
@@ -164,14 +166,8 @@ json quad_json(const PointQuad& q) {
 }  // namespace
 
 Pose3 CameraMount::body_from_optical() const {
-  Pose3 T = Pose3::Identity();
-  Eigen::Matrix3d mount_from_optical;  // optical x right = −y, y down = −z, z forward = +x of the camera body
-  mount_from_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  T.linear() = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
-                Eigen::AngleAxisd(roll, Vec3::UnitX()))
-                   .toRotationMatrix() *
-               mount_from_optical;
-  T.translation() = Vec3(x, y, z);
+  Pose3 T = pose_zyx(Vec3(x, y, z), yaw, pitch, roll);
+  T.linear() = T.linear() * mount_from_optical();
   return T;
 }
 

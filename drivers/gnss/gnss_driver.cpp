@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/rotation.hpp"
 #include "common/wire/nmea.hpp"
 
 namespace fsd {
@@ -22,13 +23,6 @@ std::optional<SentenceType> ender_from_config(const std::string& name) {
 
 // NMEA angle (degrees clockwise from true north) → ENU yaw (radians counter-clockwise from east).
 double enu_yaw_from_north_deg(double deg) { return wrap_angle(std::numbers::pi / 2 - deg2rad(deg)); }
-
-// Body → ENU rotation, Z-Y-X (yaw, pitch, roll) as in ISO 8855 and VehicleTruth::body_pose3.
-Eigen::Matrix3d body_rotation(double yaw, double pitch, double roll) {
-  return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
-          Eigen::AngleAxisd(roll, Vec3::UnitX()))
-      .toRotationMatrix();
-}
 
 // Velocity, heading, attitude and yaw rate of an epoch into the sample (no position).
 void fill_motion(const Epoch& e, GnssSample& s) {
@@ -136,7 +130,7 @@ void GnssDriver::on_epoch(const Epoch& e) {
                                  : (origin_ ? origin_->origin().h : 0.0);
     const Geodetic antenna = Geodetic::from_degrees(s.lat_deg, s.lon_deg, s.alt_m);
     // Antenna → rear axle in ENU; without a heading only the height of the lever arm is known.
-    const Vec3 lever_enu = s.heading_valid ? Vec3(body_rotation(s.heading, s.pitch, s.roll) * lever_)
+    const Vec3 lever_enu = s.heading_valid ? Vec3(rotation_zyx(s.heading, s.pitch, s.roll) * lever_)
                                            : Vec3(0.0, 0.0, lever_.z());
     if (!origin_ && config_.use_first_fix && quality_ok && heading_ok && rmc_ok)
       origin_.emplace(LocalEnu(antenna).to_geodetic(-lever_enu));

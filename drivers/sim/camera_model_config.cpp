@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/rotation.hpp"
+
 namespace fsd::sim {
 
 const ConfigSection<CameraConfig>& camera_section() {
@@ -53,18 +55,8 @@ PinholeIntrinsics camera_intrinsics(const CameraConfig& cfg) {
 }
 
 Pose3 camera_mount(const CameraConfig& cfg) {
-  Pose3 body_from_mount = Pose3::Identity();
-  body_from_mount.linear() = (Eigen::AngleAxisd(cfg.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(cfg.pitch, Vec3::UnitY()) *
-                              Eigen::AngleAxisd(cfg.roll, Vec3::UnitX()))
-                                 .toRotationMatrix();
-  body_from_mount.translation() = Vec3(cfg.x, cfg.y, cfg.z);
-  // Optical axes in the mount frame: x right = −y, y down = −z, z forward = +x.
-  Eigen::Matrix3d mount_from_optical;
-  mount_from_optical << 0, 0, 1,
-                        -1, 0, 0,
-                        0, -1, 0;
-  Pose3 T = body_from_mount;
-  T.linear() = body_from_mount.linear() * mount_from_optical;
+  Pose3 T = pose_zyx(Vec3(cfg.x, cfg.y, cfg.z), cfg.yaw, cfg.pitch, cfg.roll);
+  T.linear() = T.linear() * mount_from_optical();
   return T;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/rotation.hpp"
 #include "drivers/sim/world_random.hpp"
 
 namespace fsd::sim {
@@ -54,12 +55,7 @@ const ConfigSection<LidarConfig>& lidar_section() {
 }
 
 Pose3 lidar_mount(const LidarConfig& cfg) {
-  Pose3 T = Pose3::Identity();
-  T.linear() = (Eigen::AngleAxisd(cfg.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(cfg.pitch, Vec3::UnitY()) *
-                Eigen::AngleAxisd(cfg.roll, Vec3::UnitX()))
-                   .toRotationMatrix();
-  T.translation() = Vec3(cfg.x, cfg.y, cfg.z);
-  return T;
+  return pose_zyx(Vec3(cfg.x, cfg.y, cfg.z), cfg.yaw, cfg.pitch, cfg.roll);
 }
 
 LidarModel::LidarModel(const LidarConfig& cfg, const World& world, std::uint64_t seed, Stamp start)
