@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <unistd.h>
 
@@ -83,31 +84,36 @@ TEST(FaultInjection, WithoutFaultsTheRunHasNone) {
 }
 
 TEST(FaultInjection, GnssLostOnLapTwoRealtimePlanningTakesOverAndTheLapCompletes) {
-  // No fix from 3 s into lap 2 for 8 s: most of the lap is driven on real-time planning.
-  const FsdRun r = run_with_faults("gnss", {{"gnss", {{"lap", 2}, {"at_s", 3.0}, {"duration_s", 8.0}}}});
-  ASSERT_EQ(r.rc, 0) << r.log;
-  const json& rep = r.report;
-  EXPECT_TRUE(rep["finished"]);
-  EXPECT_TRUE(rep["stopped_after_finish"]);
-  EXPECT_EQ(rep["as_state"], "Finished");
-  EXPECT_EQ(rep["cones_hit"], 0);
-  ASSERT_EQ(rep["laps"].size(), 2u);
-  const json& inj = injected(r, "gnss");
-  const double start = inj["start_s"].get<double>();
-  // Lap 2 begins after the 5 s in Ready and the whole of lap 1.
-  EXPECT_GT(start, 5.0 + rep["laps"][0]["time_s"].get<double>() + 3.0);
-  EXPECT_NEAR(inj["end_s"].get<double>() - start, 8.0, 1e-9);
-  // The stack noticed the first epoch without a fix (50 Hz, 10 ms latency) and fell back to real-time planning.
-  const auto gnss = faults_of(r, "gnss");
-  ASSERT_EQ(gnss.size(), 1u) << rep["faults"].dump();
-  EXPECT_EQ(gnss[0]["what"], "fix lost");
-  EXPECT_EQ(gnss[0]["action"], "fallback to real-time planning");
-  EXPECT_GE(gnss[0]["t"].get<double>(), start);
-  EXPECT_LE(gnss[0]["t"].get<double>(), start + 0.05);
-  // Nothing else went wrong: no stop, no other fault.
-  EXPECT_EQ(rep["faults"].size(), 1u) << rep["faults"].dump();
-  // The car kept driving through the outage (never below walking pace).
-  for (const auto& v : inj["trace"]["speed_m_s"]) EXPECT_GT(v.get<double>(), 2.0);
+  // The fix lost from 3 s into lap 2 for 8 s: most of the lap is driven on real-time planning. no_fix: the stack
+  // notices the first epoch without a fix (50 Hz, 10 ms latency); silent: control.gnss_timeout (0.5 s) after
+  // the last good sample.
+  for (const auto& [mode, delay] : {std::pair<std::string, double>{"no_fix", 0.0}, {"silent", 0.5}}) {
+    SCOPED_TRACE(mode);
+    const FsdRun r = run_with_faults(
+        "gnss_" + mode, {{"gnss", {{"lap", 2}, {"at_s", 3.0}, {"duration_s", 8.0}, {"mode", mode}}}});
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const json& rep = r.report;
+    EXPECT_TRUE(rep["finished"]);
+    EXPECT_TRUE(rep["stopped_after_finish"]);
+    EXPECT_EQ(rep["as_state"], "Finished");
+    EXPECT_EQ(rep["cones_hit"], 0);
+    ASSERT_EQ(rep["laps"].size(), 2u);
+    const json& inj = injected(r, "gnss");
+    const double start = inj["start_s"].get<double>();
+    // Lap 2 begins after the 5 s in Ready and the whole of lap 1.
+    EXPECT_GT(start, 5.0 + rep["laps"][0]["time_s"].get<double>() + 3.0);
+    EXPECT_NEAR(inj["end_s"].get<double>() - start, 8.0, 1e-9);
+    const auto gnss = faults_of(r, "gnss");
+    ASSERT_EQ(gnss.size(), 1u) << rep["faults"].dump();
+    EXPECT_EQ(gnss[0]["what"], "fix lost");
+    EXPECT_EQ(gnss[0]["action"], "fallback to real-time planning");
+    EXPECT_GE(gnss[0]["t"].get<double>(), start + delay);
+    EXPECT_LE(gnss[0]["t"].get<double>(), start + delay + 0.05);
+    // Nothing else went wrong: no stop, no other fault.
+    EXPECT_EQ(rep["faults"].size(), 1u) << rep["faults"].dump();
+    // The car kept driving through the outage (never below walking pace).
+    for (const auto& v : inj["trace"]["speed_m_s"]) EXPECT_GT(v.get<double>(), 2.0);
+  }
 }
 
 // The reaction to a LiDAR lost for 1 s on lap 1, from the scorecard of a run.
