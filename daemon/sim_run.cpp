@@ -11,6 +11,7 @@
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
 #include "daemon/settings.hpp"
+#include "daemon/sim_faults.hpp"
 #include "daemon/telemetry.hpp"
 #include "daemon/truth_perception.hpp"
 #include "drivers/gnss/gnss_driver.hpp"
@@ -24,7 +25,6 @@ namespace fsd {
 namespace {
 
 constexpr double kControlPeriod = 0.01;    // s: the control loop runs at 100 Hz
-constexpr double kPerceptionPeriod = 0.1;  // s: one LiDAR revolution
 
 // Timed laps of a mission as the timekeeper counts gate crossings, and the stop zone after the last one.
 std::pair<int, double> mission_timing(Mission m, int laps) {
@@ -58,6 +58,7 @@ struct SimRun::Impl {
   Track track;
   sim::VirtualCarSettings car_settings;
   std::unique_ptr<sim::VirtualCar> car;
+  std::unique_ptr<SimFaults> faults;  // sim.faults: perception input, planner stall, truth around each fault
   std::unique_ptr<VcuSession> vcu;
   std::unique_ptr<GnssDriver> gnss;
   std::unique_ptr<Vlp16ScanBuilder> lidar;
@@ -102,6 +103,7 @@ struct SimRun::Impl {
       if (telemetry) last_image = std::make_shared<const std::vector<std::uint8_t>>(b.begin(), b.end());
     };
     car = std::make_unique<sim::VirtualCar>(track, car_settings, seed, sinks);
+    faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
 
     vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), 0.0, [this](const VcuLinkEvent& e) {
       link_faults.push_back({e.t, "vcu", std::string(to_string(e.kind)) + (e.what.empty() ? "" : ": " + e.what),
@@ -183,7 +185,7 @@ struct SimRun::Impl {
   int run_loop(const std::atomic<bool>& stop) {
     const auto wall0 = std::chrono::steady_clock::now();
     SimulatedClock pace(1.0);
-    Stamp t = 0, next_perception = 0;
+    Stamp t = 0;
     double stopped_since = -1;
     int cycle = 0;
     log->info("driving {} on {} ({} lap(s)), seed {}, {}", to_string(mission), track.name, run.laps, run.seed,
@@ -192,13 +194,13 @@ struct SimRun::Impl {
       t = (++cycle) * kControlPeriod;
       if (!headless && !pace.sleep_until(t)) break;
       car->advance_to(t);
+      faults->on_cycle(t, *autopilot);
       card->on_truth(car->truth());
       vcu->tick(t, [this, t](std::vector<std::uint8_t> bytes) { car->feed_vcu(t, bytes); });
       if (const auto st = vcu->status()) autopilot->on_vcu(*st);
 
       const sim::VehicleTruth& truth = car->truth();
-      if (t + 1e-9 >= next_perception) {
-        next_perception += kPerceptionPeriod;
+      if (faults->perception_due(t, last_scan.get())) {
         const auto p0 = std::chrono::steady_clock::now();
         auto det = perception.detect(t, car->standing_cones(), truth.pose);
         cone_map.update(det, truth.pose);
@@ -238,6 +240,7 @@ struct SimRun::Impl {
     card->set_wall_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
     for (const auto& f : link_faults) card->add_fault(f);
     for (const auto& f : autopilot->faults()) card->add_fault({f.t, f.source, f.what, f.action});
+    card->set_section("injected_faults", faults->report());
     const auto vc = vcu->counters();
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
               to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,

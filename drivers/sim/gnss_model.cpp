@@ -117,6 +117,14 @@ void GnssModel::advance_to(Stamp t, const std::function<VehicleTruth(Stamp)>& tr
   }
 }
 
+void GnssModel::set_outage(Stamp start, Duration duration, const std::string& mode) {
+  if (mode != "silent" && mode != "no_fix" && mode != "single")
+    throw std::invalid_argument("GNSS outage mode: '" + mode + "'");
+  c_.outage_start_s = start;
+  c_.outage_duration_s = duration;
+  c_.outage_mode = mode;
+}
+
 GnssModel::Fix GnssModel::fix_at(Stamp t) const {
   const bool outage = c_.outage_start_s >= 0.0 && t >= c_.outage_start_s && t < c_.outage_start_s + c_.outage_duration_s;
   if (outage && c_.outage_mode == "no_fix") return Fix::None;

@@ -92,6 +92,10 @@ class GnssModel {
   // ≤ t to `sink`, in order, one call per sentence stamped with its delivery time. Later bytes stay queued.
   void advance_to(Stamp t, const std::function<VehicleTruth(Stamp)>& truth_at, const ByteSink& sink);
 
+  // Replaces the configured outage window (the fault schedule opens its windows while the car drives).
+  // `mode`: silent | no_fix | single; throws std::invalid_argument otherwise.
+  void set_outage(Stamp start, Duration duration, const std::string& mode);
+
   const LocalEnu& frame() const { return frame_; }
   const GnssModelStats& stats() const { return stats_; }
 

@@ -22,6 +22,7 @@ void describe_virtual_car_config(ConfigSchema& schema) {
   gnss_model_section().describe(schema);
   vcu_standin_section().describe(schema);
   camera_section().describe(schema);
+  describe_fault_schedule(schema);
 }
 
 VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
@@ -33,6 +34,7 @@ VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
   s.gnss = gnss_model_section().read(cfg);
   s.vcu = vcu_standin_section().read(cfg);
   s.camera = camera_section().read(cfg);
+  s.faults = read_fault_schedule(cfg);
   return s;
 }
 
@@ -47,8 +49,13 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
     : s_(settings),
       world_(track, settings.world, seed),
       vehicle_(settings.vehicle),
-      vcu_(seeded(settings.vcu, seed), sinks.vcu_status),
+      // Status frames go through the (cuttable) link; the lambda runs only after construction.
+      vcu_(seeded(settings.vcu, seed),
+           [this](Stamp t, std::span<const std::uint8_t> b) {
+             if (sinks_.vcu_status && !faults_.active(FaultKind::VcuLink, t)) sinks_.vcu_status(t, b);
+           }),
       sinks_(std::move(sinks)),
+      faults_(settings.faults, track),
       dt_(1.0 / settings.run.physics_rate_hz) {
   vehicle_.reset(track.start, 0.0, 0.0);
   prev_ = vehicle_.truth();
@@ -56,9 +63,17 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
   if (s_.run.lidar) lidar_ = std::make_unique<LidarModel>(s_.lidar, world_, seed * 7919 + 1, 0.0);
   if (s_.run.gnss) gnss_ = std::make_unique<GnssModel>(s_.gnss, seed * 7919 + 2);
   if (s_.run.camera) camera_ = std::make_unique<CameraModel>(s_.camera, world_, seed * 7919 + 3, 0.0);
+  // A LiDAR outage: the packets are produced (the model's clock runs on) but never leave the sensor.
+  if (sinks_.lidar) {
+    sinks_.lidar = [this, out = sinks_.lidar](Stamp t, std::span<const std::uint8_t> b) {
+      if (!faults_.active(FaultKind::Lidar, t)) out(t, b);
+    };
+  }
 }
 
-void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) { vcu_.feed(t, bytes); }
+void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) {
+  if (!faults_.active(FaultKind::VcuLink, t)) vcu_.feed(t, bytes);
+}
 
 VehicleTruth VirtualCar::truth_at(Stamp t) const {
   const VehicleTruth& b = vehicle_.truth();
@@ -97,6 +112,13 @@ void VirtualCar::advance_to(Stamp t) {
     const auto fp = vehicle_.footprint();
     world_.update_hits(fp, vehicle_.truth().t);
     const Stamp t1 = vehicle_.truth().t;
+    faults_.on_truth(t1, vehicle_.truth().pose.position());
+    if (gnss_ && !gnss_outage_set_) {
+      if (const auto w = faults_.window(FaultKind::Gnss)) {
+        gnss_->set_outage(w->start, w->end - w->start, s_.faults.gnss.mode);
+        gnss_outage_set_ = true;
+      }
+    }
     if (lidar_ && sinks_.lidar)
       lidar_->advance_to(t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
     if (camera_ && sinks_.camera)

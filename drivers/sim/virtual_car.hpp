@@ -11,6 +11,7 @@
 #include "common/track.hpp"
 #include "common/types.hpp"
 #include "drivers/sim/camera_model.hpp"
+#include "drivers/sim/fault_schedule.hpp"
 #include "drivers/sim/gnss_model.hpp"
 #include "drivers/sim/lidar_model.hpp"
 #include "drivers/sim/sink.hpp"
@@ -37,6 +38,7 @@ struct VirtualCarSettings {
   GnssModelConfig gnss;
   VcuStandinConfig vcu;
   CameraConfig camera;
+  FaultScheduleConfig faults;
 };
 VirtualCarSettings read_virtual_car_settings(const Config& cfg);
 void describe_virtual_car_config(ConfigSchema& schema);
@@ -52,9 +54,10 @@ class VirtualCar {
  public:
   VirtualCar(const Track& track, const VirtualCarSettings& settings, std::uint64_t seed, SensorSinks sinks);
 
-  // Bytes from the daemon to the VCU, arriving at time t.
+  // Bytes from the daemon to the VCU, arriving at time t (lost while the fault schedule cuts the VCU link).
   void feed_vcu(Stamp t, std::span<const std::uint8_t> bytes);
-  // Integrates physics in fixed steps up to t and lets every sensor emit what it produced meanwhile.
+  // Integrates physics in fixed steps up to t and lets every sensor emit what it produced meanwhile; the fault
+  // schedule silences the sensors and the link in its windows.
   void advance_to(Stamp t);
 
   Stamp now() const { return truth().t; }
@@ -63,6 +66,7 @@ class VirtualCar {
   VcuStandin& vcu() { return vcu_; }
   const World& world() const { return world_; }
   GnssModel* gnss() { return gnss_.get(); }
+  const FaultSchedule& faults() const { return faults_; }
   int cones_hit() const { return world_.cones_hit(); }
   // Upright cones in the map frame with their true colours (the truth perception source and the scorecard).
   std::vector<Cone> standing_cones() const;
@@ -79,6 +83,8 @@ class VirtualCar {
   std::unique_ptr<GnssModel> gnss_;
   std::unique_ptr<CameraModel> camera_;
   SensorSinks sinks_;
+  FaultSchedule faults_;
+  bool gnss_outage_set_ = false;  // the GNSS fault's window has been handed to the receiver model
   VehicleTruth prev_;
   double dt_;
 };
