@@ -1,5 +1,6 @@
-// The 3D view: renders foxglove.SceneUpdate entities (cylinders, cubes, line strips, arrows) and a
-// foxglove.PointCloud with three.js, in the map frame (z up), as Foxglove Studio's 3D panel would.
+// The 3D view: renders foxglove.SceneUpdate entities (cylinders, cubes, line strips and loops, arrows) and a
+// foxglove.PointCloud with three.js, in the map frame (z up), as Foxglove Studio's 3D panel would. Entities
+// whose metadata says render=ghost (the simulator's ground truth) are drawn as wireframes over the rest.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { Line2 } from 'three/addons/lines/Line2.js';
@@ -68,9 +69,14 @@ export class Scene3D {
     this.dirty = true;
   }
 
-  material(c) {
-    const key = `${c.r},${c.g},${c.b},${c.a}`;
+  material(c, ghost = false) {
+    const key = `${c.r},${c.g},${c.b},${c.a}${ghost ? ',ghost' : ''}`;
     let m = this.materials.get(key);
+    if (!m && ghost) {
+      // A wireframe in the full colour: it shows where the truth is without hiding what the stack sees.
+      m = new THREE.MeshBasicMaterial({ color: new THREE.Color(c.r, c.g, c.b), wireframe: true, transparent: true, opacity: 0.9 });
+      this.materials.set(key, m);
+    }
     if (!m) {
       // Some emission keeps the cone colours recognisable whatever side the light comes from.
       m = new THREE.MeshStandardMaterial({
@@ -113,16 +119,17 @@ export class Scene3D {
       const key = `${topic} ${e.id}`;
       this.remove(key);
       const group = new THREE.Group();
-      group.userData = { topic, id: e.id, cylinders: 0, cubes: 0, lines: 0 };
+      const ghost = (e.metadata ?? []).some((kv) => kv.key === 'render' && kv.value === 'ghost');
+      group.userData = { topic, id: e.id, cylinders: 0, cubes: 0, lines: 0, ghost };
       for (const c of e.cylinders ?? []) {
-        const m = new THREE.Mesh(this.cylinderGeometry(c.bottom_scale ?? 1, c.top_scale ?? 1), this.material(c.color));
+        const m = new THREE.Mesh(this.cylinderGeometry(c.bottom_scale ?? 1, c.top_scale ?? 1), this.material(c.color, ghost));
         Scene3D.place(m, c.pose);
         m.scale.set(c.size.x, c.size.y, c.size.z);
         group.add(m);
         group.userData.cylinders++;
       }
       for (const c of e.cubes ?? []) {
-        const m = new THREE.Mesh(this.box, this.material(c.color));
+        const m = new THREE.Mesh(this.box, this.material(c.color, ghost));
         Scene3D.place(m, c.pose);
         m.scale.set(c.size.x, c.size.y, c.size.z);
         group.add(m);
@@ -131,7 +138,8 @@ export class Scene3D {
       for (const l of e.lines ?? []) {
         if (!l.points || l.points.length < 2) continue;
         const g = new LineGeometry();
-        g.setPositions(l.points.flatMap((p) => [p.x, p.y, p.z]));
+        const pts = l.type === 1 ? [...l.points, l.points[0]] : l.points;  // LINE_LOOP closes
+        g.setPositions(pts.flatMap((p) => [p.x, p.y, p.z]));
         const mat = new LineMaterial({
           color: new THREE.Color(l.color.r, l.color.g, l.color.b),
           linewidth: l.thickness || 0.1,
@@ -159,6 +167,11 @@ export class Scene3D {
       this.scene.add(group);
     }
     this.dirty = true;
+  }
+
+  // Drops every entity of a topic (a subscription turned off).
+  removeTopic(topic) {
+    for (const key of [...this.entities.keys()]) if (key.startsWith(`${topic} `)) this.remove(key);
   }
 
   remove(key) {
@@ -253,8 +266,9 @@ export class Scene3D {
     const out = {};
     for (const { group } of this.entities.values()) {
       const u = group.userData;
-      const t = (out[u.topic] ??= { entities: 0, cylinders: 0, cubes: 0, lines: 0 });
+      const t = (out[u.topic] ??= { entities: 0, cylinders: 0, cubes: 0, lines: 0, ghosts: 0 });
       t.entities++;
+      if (u.ghost) t.ghosts += u.cylinders + u.cubes + u.lines;
       t.cylinders += u.cylinders;
       t.cubes += u.cubes;
       t.lines += u.lines;
