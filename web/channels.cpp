@@ -290,7 +290,7 @@ std::string truth_car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
   }
   e["lines"].push_back({{"type", 1},  // LINE_LOOP: the footprint
                         {"pose", yaw_pose(0, 0, 0, 0)},
-                        {"thickness", 0.06},
+                        {"thickness", 0.12},
                         {"scale_invariant", false},
                         {"points", std::move(points)},
                         {"color", rgba(1.0, 1.0, 1.0, 1.0)},

@@ -8,6 +8,7 @@ import { LineMaterial } from 'three/addons/lines/LineMaterial.js';
 import { LineGeometry } from 'three/addons/lines/LineGeometry.js';
 import { fromBase64 } from './foxglove.js';
 
+const GHOST_GROWTH = 1.08;
 const NUMERIC_SIZE = { 1: 1, 2: 1, 3: 2, 4: 2, 5: 4, 6: 4, 7: 4, 8: 8 };
 
 export class Scene3D {
@@ -73,8 +74,10 @@ export class Scene3D {
     const key = `${c.r},${c.g},${c.b},${c.a}${ghost ? ',ghost' : ''}`;
     let m = this.materials.get(key);
     if (!m && ghost) {
-      // A wireframe in the full colour: it shows where the truth is without hiding what the stack sees.
-      m = new THREE.MeshBasicMaterial({ color: new THREE.Color(c.r, c.g, c.b), wireframe: true, transparent: true, opacity: 0.9 });
+      // A wireframe in a pale version of the colour: it shows where the truth is without hiding what the stack
+      // sees, and stays apart from the stack's solid cones where the two agree.
+      const pale = new THREE.Color(c.r, c.g, c.b).lerp(new THREE.Color(1, 1, 1), 0.55);
+      m = new THREE.MeshBasicMaterial({ color: pale, wireframe: true, transparent: true, opacity: 0.95 });
       this.materials.set(key, m);
     }
     if (!m) {
@@ -124,7 +127,8 @@ export class Scene3D {
       for (const c of e.cylinders ?? []) {
         const m = new THREE.Mesh(this.cylinderGeometry(c.bottom_scale ?? 1, c.top_scale ?? 1), this.material(c.color, ghost));
         Scene3D.place(m, c.pose);
-        m.scale.set(c.size.x, c.size.y, c.size.z);
+        const grow = ghost ? GHOST_GROWTH : 1;  // a ghost's wires just outside a solid body at the same place
+        m.scale.set(c.size.x * grow, c.size.y * grow, c.size.z * grow);
         group.add(m);
         group.userData.cylinders++;
       }
@@ -161,6 +165,13 @@ export class Scene3D {
         const len = (a.shaft_length ?? 1) + (a.head_length ?? 0.2);
         group.add(new THREE.ArrowHelper(dir, origin, len, new THREE.Color(a.color.r, a.color.g, a.color.b),
                                         a.head_length ?? 0.2, a.head_diameter ?? 0.1));
+      }
+      if (ghost) {
+        // Drawn over everything: the true car's outline must show through the stack's car box.
+        group.traverse((o) => {
+          o.renderOrder = 10;
+          if (o.material) o.material.depthTest = false;
+        });
       }
       const life = e.lifetime ? e.lifetime.sec + e.lifetime.nsec * 1e-9 : 0;
       this.entities.set(key, { group, expires: life > 0 ? performance.now() + life * 1000 : Infinity });
