@@ -10,6 +10,7 @@
 #include "common/params.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/run_options.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
@@ -54,19 +55,32 @@ int run_command(const RunOptions& o) {
   ParamRegistry params(cfg, &clock);
   std::unique_ptr<web::WebServer> server;
   std::unique_ptr<Telemetry> telemetry;
+  std::unique_ptr<RunMetrics> metrics;
+  std::unique_ptr<LogForwarding> log_forwarding;
   if (!o.headless) {
     const web::WebConfig wc = web::web_section().read(cfg);
     server = std::make_unique<web::WebServer>(wc, params, clock);
-    server->start();
-    telemetry = std::make_unique<Telemetry>(*server);
+    telemetry = std::make_unique<Telemetry>(*server, TelemetryRates{}, /*truth=*/o.sim);
+    metrics = std::make_unique<RunMetrics>(server->metrics());
+    // Before the server's threads start: spdlog's sink lists must not change while anyone logs.
+    log_forwarding = std::make_unique<LogForwarding>(*server, telemetry->channels().log, clock);
+    try {
+      server->start();
+    } catch (const std::exception& e) {
+      std::cerr << "fsd run: " << e.what() << "\n";
+      return kExitBadInput;
+    }
     run.set_telemetry(telemetry.get());
+    run.set_metrics(metrics.get());
     run.set_params(&params);
+    // With web.port 0 the system picks the port: port() is the one bound.
     const std::string host = wc.bind == "0.0.0.0" ? "localhost" : wc.bind;
     std::cout << "fsd: dashboard at http://" << host << ":" << server->port() << "/  (Ctrl-C stops)" << std::endl;
   }
   const int rc = run.run(g_stop);
   if (telemetry) telemetry->stop();
   if (server) server->stop();
+  if (log_forwarding) log_forwarding->detach();
   if (!o.report.empty()) {
     std::ofstream f(o.report);
     if (!f) {

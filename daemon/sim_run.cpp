@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -10,8 +11,10 @@
 #include "common/params.hpp"
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
+#include "daemon/sim_truth.hpp"
 #include "daemon/telemetry.hpp"
 #include "daemon/truth_perception.hpp"
 #include "drivers/gnss/gnss_driver.hpp"
@@ -67,6 +70,10 @@ struct SimRun::Impl {
   TruthPerception perception;
   std::unique_ptr<Scorecard> card;
   Telemetry* telemetry = nullptr;
+  RunMetrics* metrics = nullptr;
+  VehicleState stack_state;  // what the autopilot was given this cycle (the dashboard's /vehicle/state)
+  std::shared_ptr<const std::vector<web::TruthCone>> truth_cones;  // rebuilt when a cone falls
+  int truth_cones_hit = -1;
   ParamRegistry* params = nullptr;
   std::atomic<bool> params_changed{false};
   Config tuned;  // the configuration with the live parameter values
@@ -139,7 +146,7 @@ struct SimRun::Impl {
     if (!telemetry) return;
     TelemetrySnapshot s;
     s.t = t;
-    s.state = state_from_truth(car->truth());
+    s.state = stack_state;
     s.target_speed = out.command.target_speed;
     s.cone_map = std::make_shared<const std::vector<Cone>>(autopilot->cones());
     s.detections = last_detections;
@@ -165,6 +172,13 @@ struct SimRun::Impl {
       s.as.ebs_active = st->ebs_active;
     }
     for (const auto& f : autopilot->faults()) s.faults.push_back({f.t, f.source, f.what, f.action, true});
+    // Ground truth on its own channels, so the stack's estimate above is never confused with it.
+    s.truth = fsd::truth_state(*car);
+    if (!truth_cones || car->cones_hit() != truth_cones_hit) {
+      truth_cones = std::make_shared<const std::vector<web::TruthCone>>(fsd::truth_cones(car->world()));
+      truth_cones_hit = car->cones_hit();
+    }
+    s.truth_cones = truth_cones;
     telemetry->publish(std::move(s));
   }
 
@@ -200,19 +214,24 @@ struct SimRun::Impl {
       if (const auto st = vcu->status()) autopilot->on_vcu(*st);
 
       const sim::VehicleTruth& truth = car->truth();
+      CycleFigures fig;  // for /metrics
+      std::optional<std::chrono::steady_clock::time_point> frame_start;
       if (faults->perception_due(t, last_scan.get())) {
         const auto p0 = std::chrono::steady_clock::now();
+        frame_start = p0;
         auto det = perception.detect(t, car->standing_cones(), truth.pose);
         cone_map.update(det, truth.pose);
         autopilot->on_cones(t, cone_map.cones());
-        card->latency("perception")
-            .add(std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count());
+        fig.perception_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
+        card->latency("perception").add(fig.perception_s);
         last_detections = std::make_shared<const ConeDetections>(std::move(det));
       }
-      autopilot->on_state(state_from_truth(truth));
+      autopilot->on_state(stack_state = state_from_truth(truth));
       if (params_changed.exchange(false)) apply_params();
       const ControlOutput out = autopilot->step(t);
       vcu->set_command(out.command, t);
+      if (frame_start)
+        fig.end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - *frame_start).count();
       vcu->set_as_request(out.request);
       if (out.planned) card->latency("planning").add(out.planning_time);
       card->latency("control").add(out.control_time);
@@ -223,6 +242,15 @@ struct SimRun::Impl {
       card->set_as_state(car->vcu().state());
       card->set_cones_hit(car->cones_hit());
       if (cycle % 4 == 0) publish_telemetry(t, out);
+      if (metrics) {
+        fig.t = t;
+        fig.planning_s = out.planned ? out.planning_time : -1;
+        fig.control_s = out.control_time;
+        fig.as_state = car->vcu().state();
+        fig.laps = static_cast<int>(laps_done);
+        fig.cones_hit = car->cones_hit();
+        metrics->on_cycle(fig);
+      }
 
       // The end of a run: the mission is over and the car stands (Finished or Emergency), or time ran out.
       const AsState as = car->vcu().state();
@@ -255,6 +283,7 @@ SimRun::~SimRun() = default;
 int SimRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
 const Scorecard& SimRun::scorecard() const { return *impl_->card; }
 void SimRun::set_telemetry(Telemetry* telemetry) { impl_->telemetry = telemetry; }
+void SimRun::set_metrics(RunMetrics* metrics) { impl_->metrics = metrics; }
 void SimRun::set_params(ParamRegistry* params) {
   impl_->params = params;
   if (params) params->subscribe([this](const ParamChange&) { impl_->params_changed = true; });

@@ -17,6 +17,7 @@
 namespace fsd {
 
 class Telemetry;
+class RunMetrics;
 class ParamRegistry;
 
 // Per-cycle view of the run for the dashboard and logs.
@@ -33,6 +34,8 @@ class SimRun {
   int run(const std::atomic<bool>& stop);
   const Scorecard& scorecard() const;
   void set_telemetry(Telemetry* telemetry);
+  // Per-cycle figures for /metrics (latencies, loop rate, AS state); wait-free on the loop's side.
+  void set_metrics(RunMetrics* metrics);
   // Live tuning: changes of the registry's control.* parameters reach the autopilot at the next cycle.
   void set_params(ParamRegistry* params);
 

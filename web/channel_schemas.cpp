@@ -152,6 +152,23 @@ json vehicle_state() {
                                      {"target_speed", num("m/s, commanded")}});
 }
 
+json truth_state() {
+  return object("fsd.TruthVehicleState", {{"timestamp", time_type()},
+                                          {"source", str("always \"simulator ground truth\"")},
+                                          {"x", num("m, true rear-axle centre in the map (local ENU)")},
+                                          {"y", num("m")},
+                                          {"yaw", num("rad, ENU")},
+                                          {"speed", num("m/s, true")},
+                                          {"vx", num("m/s, body frame at the CoG")},
+                                          {"vy", num("m/s, body frame at the CoG")},
+                                          {"yaw_rate", num("rad/s")},
+                                          {"lateral_acceleration", num("m/s², body frame, as an IMU at the CoG measures it")},
+                                          {"longitudinal_acceleration", num("m/s², body frame")},
+                                          {"sideslip", num("rad, at the CoG (0 below walking speed)")},
+                                          {"steering", num("rad, actual front wheel angle, left positive")},
+                                          {"cones_hit", integer("cones the car has knocked over")}});
+}
+
 json as_status() {
   return object("fsd.AsStatus", {{"timestamp", time_type()},
                                  {"as_state", str("Off, Ready, Driving, Emergency, Finished")},
@@ -181,6 +198,14 @@ ChannelSpec spec(const char* topic, const json& schema, const std::string& descr
 }
 
 }  // namespace
+
+std::vector<ChannelSpec> truth_channels() {
+  return {
+      spec(topics::kTruthCones, scene_update(), "Simulator ground truth: every cone, standing or knocked over", true),
+      spec(topics::kTruthCar, scene_update(), "Simulator ground truth: the car's true pose"),
+      spec(topics::kTruthVehicleState, truth_state(), "Simulator ground truth: the car's true motion (SI units)"),
+  };
+}
 
 std::vector<ChannelSpec> standard_channels() {
   return {

@@ -129,6 +129,12 @@ StandardChannels add_standard_channels(WebServer& server) {
   return c;
 }
 
+TruthChannels add_truth_channels(WebServer& server) {
+  std::vector<ChannelId> ids;
+  for (const auto& s : truth_channels()) ids.push_back(server.add_channel(s.topic, s.schema_name, s.schema, s.options));
+  return {ids[0], ids[1], ids[2]};
+}
+
 std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones) {
   json e = entity(t, "cone_map");
   for (const auto& c : cones)
@@ -247,6 +253,75 @@ std::string vehicle_state_json(const VehicleState& s, double target_speed) {
               {"sideslip", s.sideslip()},
               {"steering", s.steering},
               {"target_speed", target_speed}}
+      .dump();
+}
+
+std::string truth_cones_scene(Stamp t, const std::vector<TruthCone>& cones) {
+  json standing = entity(t, "truth_cones"), knocked = entity(t, "truth_knocked_cones");
+  for (const auto& c : cones) {
+    const Vec3 axis = c.base.linear().col(2);
+    const Vec3 centre = c.base.translation() + axis * (c.height / 2);
+    if (!centre.allFinite()) continue;
+    Pose3 p = c.base;
+    p.translation() = centre;
+    const double d = c.base_width;
+    json cyl = {{"pose", pose3(p)},
+                {"size", vec3(d, d, c.height)},
+                {"bottom_scale", 1.0},
+                {"top_scale", d > 0 ? std::clamp(c.top_width / d, 0.0, 1.0) : 1.0},
+                {"color", c.knocked ? rgba(1.0, 0.1, 0.8, 1.0) : colour_of(c.colour, 0.35)}};
+    (c.knocked ? knocked : standing)["cylinders"].push_back(std::move(cyl));
+  }
+  for (json* e : {&standing, &knocked}) {
+    (*e)["metadata"].push_back({{"key", "source"}, {"value", "simulator ground truth"}});
+    (*e)["metadata"].push_back({{"key", "count"}, {"value", std::to_string((*e)["cylinders"].size())}});
+  }
+  standing["metadata"].push_back({{"key", "render"}, {"value", "ghost"}});
+  return scene(json::array({standing, knocked}));
+}
+
+std::string truth_car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
+  json e = entity(t, "truth_car");
+  const double back = -shape.rear_overhang, front = shape.length - shape.rear_overhang, half = shape.width / 2;
+  json points = json::array();
+  for (const Vec2& corner : {Vec2(back, -half), Vec2(front, -half), Vec2(front, half), Vec2(back, half)}) {
+    const Vec2 m = pose.transform(corner);
+    points.push_back(vec3(m.x(), m.y(), 0.05));
+  }
+  e["lines"].push_back({{"type", 1},  // LINE_LOOP: the footprint
+                        {"pose", yaw_pose(0, 0, 0, 0)},
+                        {"thickness", 0.12},
+                        {"scale_invariant", false},
+                        {"points", std::move(points)},
+                        {"color", rgba(1.0, 1.0, 1.0, 1.0)},
+                        {"colors", json::array()},
+                        {"indices", json::array()}});
+  e["arrows"].push_back({{"pose", yaw_pose(pose.x, pose.y, 0.08, pose.yaw)},
+                         {"shaft_length", shape.length * 0.6},
+                         {"shaft_diameter", 0.05},
+                         {"head_length", 0.35},
+                         {"head_diameter", 0.2},
+                         {"color", rgba(1.0, 1.0, 1.0, 1.0)}});
+  e["metadata"].push_back({{"key", "source"}, {"value", "simulator ground truth"}});
+  e["metadata"].push_back({{"key", "render"}, {"value", "ghost"}});
+  return scene(json::array({e}));
+}
+
+std::string truth_state_json(const TruthState& s) {
+  return json{{"timestamp", stamp(s.t)},
+              {"source", "simulator ground truth"},
+              {"x", s.pose.x},
+              {"y", s.pose.y},
+              {"yaw", s.pose.yaw},
+              {"speed", s.speed},
+              {"vx", s.vx},
+              {"vy", s.vy},
+              {"yaw_rate", s.yaw_rate},
+              {"lateral_acceleration", s.ay},
+              {"longitudinal_acceleration", s.ax},
+              {"sideslip", s.sideslip},
+              {"steering", s.steering},
+              {"cones_hit", s.cones_hit}}
       .dump();
 }
 

@@ -29,6 +29,10 @@ inline constexpr const char* kVehicleState = "/vehicle/state";           // fsd.
 inline constexpr const char* kAsStatus = "/as/status";                   // fsd.AsStatus, latched
 inline constexpr const char* kFaults = "/faults";                        // fsd.Faults, latched
 inline constexpr const char* kLog = "/log";                              // foxglove.Log
+// Simulator ground truth (sim runs only), kept apart from the stack's own estimates above.
+inline constexpr const char* kTruthCones = "/truth/cones";               // foxglove.SceneUpdate, latched
+inline constexpr const char* kTruthCar = "/truth/car";                   // foxglove.SceneUpdate
+inline constexpr const char* kTruthVehicleState = "/truth/vehicle_state";  // fsd.TruthVehicleState
 }  // namespace topics
 
 struct ChannelSpec {
@@ -45,6 +49,13 @@ struct StandardChannels {
             camera_detections = 0, vehicle_state = 0, as_status = 0, faults = 0, log = 0;
 };
 StandardChannels add_standard_channels(WebServer& server);
+
+// The ground-truth channels of a simulated run, in the order of the topics above.
+std::vector<ChannelSpec> truth_channels();
+struct TruthChannels {
+  ChannelId cones = 0, car = 0, vehicle_state = 0;
+};
+TruthChannels add_truth_channels(WebServer& server);
 
 // ---- payload builders (each returns the JSON text of one message)
 
@@ -111,6 +122,33 @@ struct FaultEvent {
 };
 // The recent faults (the latest `max_items`), newest last.
 std::string faults_json(Stamp t, const std::vector<FaultEvent>& faults, std::size_t max_items = 50);
+
+// ---- ground truth of a simulated run (never the stack's estimate)
+
+struct TruthCone {
+  Pose3 base = Pose3::Identity();  // centre of the base on the ground; z axis = the cone's axis (tilted when knocked)
+  ConeColour colour = ConeColour::Unknown;
+  double base_width = 0.228, top_width = 0.0, height = 0.325;  // m
+  bool knocked = false;
+};
+// Standing cones as translucent cylinders in their colours (entity "truth_cones", metadata render=ghost so the
+// dashboard draws them as wireframes) and knocked-over ones lying where they fell, in solid magenta (entity
+// "truth_knocked_cones"); both carry the count in their metadata.
+std::string truth_cones_scene(Stamp t, const std::vector<TruthCone>& cones);
+// The true car pose: the footprint outline and a heading arrow (entity "truth_car", render=ghost).
+std::string truth_car_scene(Stamp t, const Pose2& pose, const CarShape& shape = {});
+
+struct TruthState {
+  Stamp t = 0;
+  Pose2 pose;                          // rear-axle centre, map frame
+  double speed = 0, vx = 0, vy = 0;    // m/s (vx, vy in the body frame at the CoG)
+  double yaw_rate = 0;                 // rad/s
+  double ax = 0, ay = 0;               // m/s², body frame
+  double sideslip = 0;                 // rad
+  double steering = 0;                 // rad, actual front wheel angle
+  int cones_hit = 0;
+};
+std::string truth_state_json(const TruthState& s);
 
 enum class LogLevel : int { Unknown = 0, Debug = 1, Info = 2, Warning = 3, Error = 4, Fatal = 5 };  // foxglove.Log
 std::string log_json(Stamp t, LogLevel level, const std::string& name, const std::string& message);

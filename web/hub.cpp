@@ -42,6 +42,8 @@ Hub::Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits l
     for (const auto& p : *peers()) deepest = std::max(deepest, p->state->depth());
     return static_cast<double>(deepest);
   });
+  metrics.gauge_callback("fsd_web_outbox_depth", "Messages published and not yet fanned out by the web I/O thread",
+                         [this] { return static_cast<double>(outbox_.approx_size()); });
 }
 
 void Hub::listen_to_params() {

@@ -64,6 +64,11 @@ class MpmcRing {
   }
 
   std::size_t capacity() const { return size_; }
+  // Items pushed and not yet popped; a snapshot that may be stale by the time it is read (for metrics).
+  std::size_t approx_size() const {
+    const std::size_t tail = tail_.load(std::memory_order_relaxed), head = head_.load(std::memory_order_relaxed);
+    return head > tail ? head - tail : 0;
+  }
 
  private:
   struct Cell {

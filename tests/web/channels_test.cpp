@@ -228,5 +228,103 @@ TEST(Channels, StandardChannelsHaveUniqueTopicsAndValidSchemas) {
   EXPECT_EQ(json::parse(specs[4].schema)["properties"]["data"]["contentEncoding"], "base64");
 }
 
+TEST(Channels, TruthConesStandAsGhostsAndKnockedOnesLieApart) {
+  TruthCone up;  // small blue cone standing at (3, 4) on flat ground
+  up.base.translation() = Vec3(3, 4, 0);
+  up.colour = ConeColour::Blue;
+  up.base_width = 0.228;
+  up.top_width = 0.0456;
+  up.height = 0.325;
+  TruthCone down = up;  // lying with its axis horizontal along +x: a rotation of 90° about y
+  down.knocked = true;
+  down.base = Pose3::Identity();
+  down.base.linear() = Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY()).toRotationMatrix();
+  down.base.translation() = Vec3(1, 2, 0.1);
+  const auto j = json::parse(truth_cones_scene(2.5, {up, down}));
+  ASSERT_EQ(j["entities"].size(), 2u);
+  const auto& standing = j["entities"][0];
+  const auto& knocked = j["entities"][1];
+  EXPECT_EQ(standing["id"], "truth_cones");
+  EXPECT_EQ(knocked["id"], "truth_knocked_cones");
+  ASSERT_EQ(standing["cylinders"].size(), 1u);
+  ASSERT_EQ(knocked["cylinders"].size(), 1u);
+  auto meta = [](const json& e, const std::string& key) {
+    for (const auto& kv : e["metadata"])
+      if (kv["key"] == key) return kv["value"].get<std::string>();
+    return std::string();
+  };
+  EXPECT_EQ(meta(standing, "source"), "simulator ground truth");
+  EXPECT_EQ(meta(knocked, "source"), "simulator ground truth");
+  EXPECT_EQ(meta(standing, "render"), "ghost");
+  EXPECT_EQ(meta(knocked, "render"), "");  // solid: a fallen cone must stand out
+  EXPECT_EQ(meta(knocked, "count"), "1");
+
+  const auto& a = standing["cylinders"][0];  // centre half the height above the base
+  EXPECT_NEAR(a["pose"]["position"]["x"].get<double>(), 3.0, 1e-12);
+  EXPECT_NEAR(a["pose"]["position"]["y"].get<double>(), 4.0, 1e-12);
+  EXPECT_NEAR(a["pose"]["position"]["z"].get<double>(), 0.1625, 1e-12);
+  EXPECT_NEAR(a["top_scale"].get<double>(), 0.2, 1e-12);
+  EXPECT_NEAR(a["color"]["b"].get<double>(), 0.95, 1e-12);
+  EXPECT_LT(a["color"]["a"].get<double>(), 0.5);
+
+  const auto& b = knocked["cylinders"][0];  // centre half the height along +x from the base
+  EXPECT_NEAR(b["pose"]["position"]["x"].get<double>(), 1.1625, 1e-12);
+  EXPECT_NEAR(b["pose"]["position"]["y"].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(b["pose"]["position"]["z"].get<double>(), 0.1, 1e-12);
+  EXPECT_NEAR(b["pose"]["orientation"]["y"].get<double>(), std::sin(std::numbers::pi / 4), 1e-12);
+  EXPECT_NEAR(b["pose"]["orientation"]["w"].get<double>(), std::cos(std::numbers::pi / 4), 1e-12);
+  EXPECT_DOUBLE_EQ(b["color"]["a"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(b["color"]["g"].get<double>(), 0.1);  // magenta, whatever the cone's colour
+}
+
+TEST(Channels, TruthCarIsTheFootprintAndHeading) {
+  CarShape shape;  // 2.9 m × 1.4 m, 0.6 m behind the rear axle
+  const auto j = json::parse(truth_car_scene(0, Pose2{10, 5, std::numbers::pi / 2}, shape));
+  const auto& e = j["entities"][0];
+  EXPECT_EQ(e["id"], "truth_car");
+  ASSERT_EQ(e["lines"].size(), 1u);
+  EXPECT_EQ(e["lines"][0]["type"], 1);  // LINE_LOOP
+  const auto& pts = e["lines"][0]["points"];
+  ASSERT_EQ(pts.size(), 4u);
+  // Heading +y: body (x, y) → map (10 − y, 5 + x).
+  const double expect[4][2] = {{10.7, 4.4}, {10.7, 7.3}, {9.3, 7.3}, {9.3, 4.4}};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(pts[i]["x"].get<double>(), expect[i][0], 1e-9) << i;
+    EXPECT_NEAR(pts[i]["y"].get<double>(), expect[i][1], 1e-9) << i;
+  }
+  EXPECT_NEAR(e["arrows"][0]["pose"]["position"]["x"].get<double>(), 10.0, 1e-12);
+  EXPECT_NEAR(e["arrows"][0]["pose"]["orientation"]["z"].get<double>(), std::sin(std::numbers::pi / 4), 1e-12);
+}
+
+TEST(Channels, TruthStateIsLabelledAndInSiUnits) {
+  TruthState s;
+  s.t = 3.25;
+  s.pose = Pose2{1, 2, 0.5};
+  s.speed = 10;
+  s.vx = 9.9;
+  s.vy = -0.3;
+  s.yaw_rate = 0.4;
+  s.ay = 4.1;
+  s.sideslip = -0.03;
+  s.cones_hit = 2;
+  const auto j = json::parse(truth_state_json(s));
+  EXPECT_EQ(j["source"], "simulator ground truth");
+  EXPECT_EQ(j["timestamp"]["sec"], 3);
+  EXPECT_EQ(j["timestamp"]["nsec"], 250000000);
+  EXPECT_DOUBLE_EQ(j["speed"].get<double>(), 10);
+  EXPECT_DOUBLE_EQ(j["lateral_acceleration"].get<double>(), 4.1);
+  EXPECT_DOUBLE_EQ(j["sideslip"].get<double>(), -0.03);
+  EXPECT_EQ(j["cones_hit"], 2);
+  const auto specs = truth_channels();
+  ASSERT_EQ(specs.size(), 3u);
+  EXPECT_EQ(specs[0].topic, "/truth/cones");
+  EXPECT_TRUE(specs[0].options.latched);
+  EXPECT_EQ(specs[2].schema_name, "fsd.TruthVehicleState");
+  for (const auto& spec : specs) EXPECT_EQ(json::parse(spec.schema)["title"], spec.schema_name);
+  // Every property the builder writes is in the schema (Foxglove Studio lists fields from it).
+  const auto props = json::parse(specs[2].schema)["properties"];
+  for (const auto& [key, value] : j.items()) EXPECT_TRUE(props.contains(key)) << key;
+}
+
 }  // namespace
 }  // namespace fsd::web

@@ -11,14 +11,18 @@ namespace {
 TEST(MpmcRing, FifoAndBounded) {
   MpmcRing<int> r(3);  // rounded up to 4
   EXPECT_EQ(r.capacity(), 4u);
+  EXPECT_EQ(r.approx_size(), 0u);
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(r.try_push(i));
+  EXPECT_EQ(r.approx_size(), 4u);
   EXPECT_FALSE(r.try_push(99));  // full: refused, never waits
+  EXPECT_EQ(r.approx_size(), 4u);
   int v = -1;
   for (int i = 0; i < 4; ++i) {
     ASSERT_TRUE(r.try_pop(v));
     EXPECT_EQ(v, i);
   }
   EXPECT_FALSE(r.try_pop(v));
+  EXPECT_EQ(r.approx_size(), 0u);
   EXPECT_TRUE(r.try_push(5));  // wraps around
   ASSERT_TRUE(r.try_pop(v));
   EXPECT_EQ(v, 5);

@@ -6,8 +6,8 @@ const OP_MESSAGE_DATA = 0x01;
 const OP_TIME = 0x02;
 
 export class FoxgloveClient {
-  // handlers: { onState(state, detail), onServerInfo(info), onStatus(msg), onMessage(topic, tNs, payload),
-  //             onParameterValues(params, id), onTime(tNs) }
+  // handlers: { onState(state, detail), onServerInfo(info), onAdvertise(channels), onStatus(msg),
+  //             onMessage(topic, tNs, payload), onParameterValues(params, id), onTime(tNs) }
   constructor(url, topics, handlers) {
     this.url = url;
     this.wanted = new Set(topics);
@@ -120,6 +120,7 @@ export class FoxgloveClient {
           }
         }
         if (subscriptions.length) this.send({ op: 'subscribe', subscriptions });
+        this.h.onAdvertise?.(this.channels);
         break;
       }
       case 'unadvertise':
@@ -127,6 +128,7 @@ export class FoxgloveClient {
           this.channels.delete(id);
           for (const [sid, ch] of this.subs) if (ch.id === id) this.subs.delete(sid);
         }
+        this.h.onAdvertise?.(this.channels);
         break;
       case 'status':
         this.h.onStatus?.(msg);
@@ -137,6 +139,32 @@ export class FoxgloveClient {
       default:
         break;
     }
+  }
+
+  // Subscribes to (on) or unsubscribes from (off) a topic now and after every reconnect.
+  setWanted(topic, on) {
+    if (on) {
+      if (this.wanted.has(topic)) return;
+      this.wanted.add(topic);
+      const subscriptions = [];
+      for (const ch of this.channels.values()) {
+        if (ch.topic !== topic || ch.encoding !== 'json') continue;
+        const id = this.nextSub++;
+        this.subs.set(id, ch);
+        subscriptions.push({ id, channelId: ch.id });
+      }
+      if (subscriptions.length) this.send({ op: 'subscribe', subscriptions });
+    } else {
+      if (!this.wanted.delete(topic)) return;
+      const ids = [...this.subs].filter(([, ch]) => ch.topic === topic).map(([id]) => id);
+      for (const id of ids) this.subs.delete(id);
+      if (ids.length) this.send({ op: 'unsubscribe', subscriptionIds: ids });
+    }
+  }
+
+  hasTopic(topic) {
+    for (const ch of this.channels.values()) if (ch.topic === topic) return true;
+    return false;
   }
 
   getParameters(names = []) {

@@ -22,6 +22,8 @@ const TOPICS = {
   faults: '/faults',
   log: '/log',
 };
+// The simulator's ground truth (sim runs only): subscribed while the truth overlay is on.
+const TRUTH = { cones: '/truth/cones', car: '/truth/car', state: '/truth/vehicle_state' };
 
 // ?ws=ws://car:8080/ connects elsewhere (development with `npm run dev`); by default the page's own server.
 const wsUrl = new URLSearchParams(location.search).get('ws') ??
@@ -31,14 +33,17 @@ const scene = new Scene3D($('view3d'));
 const plots = {
   speed: new TimePlot($('plot-speed'), {
     title: 'Speed', unit: 'km/h', minRange: 5,
-    series: [{ label: 'v', color: '#4fc3f7' }, { label: 'target', color: '#ffb74d', dash: [6, 4] }],
+    series: [{ label: 'v', color: '#4fc3f7' }, { label: 'target', color: '#ffb74d', dash: [6, 4] }, truthSeries('true v')],
   }),
-  yaw: new TimePlot($('plot-yaw'), { title: 'Yaw rate', unit: '°/s', minRange: 5, series: [{ label: 'r', color: '#81c784' }] }),
-  ay: new TimePlot($('plot-ay'), { title: 'Lateral acceleration', unit: 'm/s²', minRange: 1, series: [{ label: 'ay', color: '#e57373' }] }),
-  beta: new TimePlot($('plot-beta'), { title: 'Sideslip', unit: '°', minRange: 1, series: [{ label: 'β', color: '#ba68c8' }] }),
+  yaw: new TimePlot($('plot-yaw'), { title: 'Yaw rate', unit: '°/s', minRange: 5, series: [{ label: 'r', color: '#81c784' }, truthSeries('true r')] }),
+  ay: new TimePlot($('plot-ay'), { title: 'Lateral acceleration', unit: 'm/s²', minRange: 1, series: [{ label: 'ay', color: '#e57373' }, truthSeries('true ay')] }),
+  beta: new TimePlot($('plot-beta'), { title: 'Sideslip', unit: '°', minRange: 1, series: [{ label: 'β', color: '#ba68c8' }, truthSeries('true β')] }),
 };
+function truthSeries(label) {
+  return { label, color: '#f5f5f5', dash: [2, 3], hidden: true };
+}
 
-const hook = (window.__fsd = { connected: false, topics: {}, status: [], scene: () => scene.counts(), plots: {} });
+const hook = (window.__fsd = { connected: false, topics: {}, status: [], scene: () => scene.counts(), plots: {}, truth: { on: false, samples: 0 } });
 
 function onVehicleState(m) {
   const t = seconds(m.timestamp);
@@ -48,6 +53,18 @@ function onVehicleState(m) {
   plots.beta.push(t, m.sideslip * RAD2DEG);
   for (const [k, p] of Object.entries(plots)) hook.plots[k] = { samples: p.count, t: p.last?.t, values: p.last?.values };
   scene.setCar(m.x, m.y);
+}
+
+// The truth curves go last in each plot (white, dotted), beside the stack's estimate.
+function onTruthState(m) {
+  const t = seconds(m.timestamp);
+  const last = (p) => p.series.length - 1;
+  plots.speed.pushSeries(last(plots.speed), t, m.speed * 3.6);
+  plots.yaw.pushSeries(last(plots.yaw), t, m.yaw_rate * RAD2DEG);
+  plots.ay.pushSeries(last(plots.ay), t, m.lateral_acceleration);
+  plots.beta.pushSeries(last(plots.beta), t, m.sideslip * RAD2DEG);
+  hook.truth.samples++;
+  hook.truth.last = m;
 }
 
 const AS_CLASS = { Off: 'as-off', Ready: 'as-ready', Driving: 'as-driving', Emergency: 'as-emergency', Finished: 'as-finished' };
@@ -144,6 +161,9 @@ const handlers = {
   [TOPICS.log]: (m) => addLog(m.level, m.name, m.message),
   [TOPICS.image]: onImage,
   [TOPICS.imageBoxes]: onImageBoxes,
+  [TRUTH.cones]: (m) => scene.applySceneUpdate(TRUTH.cones, m),
+  [TRUTH.car]: (m) => scene.applySceneUpdate(TRUTH.car, m),
+  [TRUTH.state]: onTruthState,
 };
 
 function setLink(state, detail) {
@@ -162,6 +182,12 @@ let panel;
 const client = new FoxgloveClient(wsUrl, Object.values(TOPICS), {
   onState: setLink,
   onServerInfo: () => panel.load(),
+  onAdvertise: () => {
+    // Only sim runs have a ground truth to overlay.
+    const available = client.hasTopic(TRUTH.state);
+    $('truth').disabled = !available;
+    $('truth').title = available ? "the simulator's ground truth over what the stack sees" : 'no ground truth: not a simulated run';
+  },
   onStatus: (msg) => {
     hook.status.push(msg);
     panel.onStatus(msg);
@@ -195,3 +221,21 @@ $('follow').addEventListener('click', (e) => {
   e.currentTarget.classList.toggle('on', scene.follow);
 });
 $('topdown').addEventListener('click', () => scene.topDown());
+
+// Truth overlay: off by default, remembered in this browser.
+function setTruthOverlay(on) {
+  hook.truth.on = on;
+  localStorage.setItem('fsd-truth-overlay', on ? '1' : '0');
+  $('truth').classList.toggle('on', on);
+  $('truth').setAttribute('aria-pressed', String(on));
+  $('legend-truth').hidden = !on;
+  for (const topic of Object.values(TRUTH)) client.setWanted(topic, on);
+  for (const p of Object.values(plots)) p.setVisible(p.series.length - 1, on);
+  if (!on) {
+    scene.removeTopic(TRUTH.cones);
+    scene.removeTopic(TRUTH.car);
+    hook.truth.samples = 0;
+  }
+}
+$('truth').addEventListener('click', () => setTruthOverlay(!hook.truth.on));
+setTruthOverlay(localStorage.getItem('fsd-truth-overlay') === '1');

@@ -1,6 +1,6 @@
 // A small canvas plot of values over time: a sliding window, autoscaled, redrawn at most once per frame.
 export class TimePlot {
-  // series: [{ label, color, dash? }]
+  // series: [{ label, color, dash?, hidden? }]; the first ones take push(), the others pushSeries()
   constructor(canvas, { title, unit, series, windowS = 30, minRange = 1 }) {
     this.canvas = canvas;
     this.ctx = canvas.getContext('2d');
@@ -38,6 +38,31 @@ export class TimePlot {
     this.count++;
     this.last = { t, values };
     this.dirty = true;
+  }
+
+  // One sample of series i alone (a curve from another topic, e.g. the ground truth).
+  pushSeries(i, t, v) {
+    const s = this.series[i];
+    if (!Number.isFinite(v)) return;
+    s.t.push(t);
+    s.v.push(v);
+    while (s.t.length && s.t[0] < t - this.windowS) {
+      s.t.shift();
+      s.v.shift();
+    }
+    this.dirty = true;
+  }
+
+  // Shows or hides series i; hiding forgets its samples.
+  setVisible(i, visible) {
+    const s = this.series[i];
+    s.hidden = !visible;
+    if (!visible) s.t.length = s.v.length = 0;
+    this.dirty = true;
+  }
+
+  samples(i) {
+    return this.series[i].t.length;
   }
 
   clear() {
@@ -111,6 +136,7 @@ export class TimePlot {
     g.textAlign = 'right';
     for (let k = this.series.length - 1; k >= 0; k--) {
       const s = this.series[k];
+      if (s.hidden) continue;
       g.strokeStyle = s.color;
       g.lineWidth = 2;
       g.setLineDash(s.dash ?? []);

@@ -1,5 +1,6 @@
-// The 3D view: renders foxglove.SceneUpdate entities (cylinders, cubes, line strips, arrows) and a
-// foxglove.PointCloud with three.js, in the map frame (z up), as Foxglove Studio's 3D panel would.
+// The 3D view: renders foxglove.SceneUpdate entities (cylinders, cubes, line strips and loops, arrows) and a
+// foxglove.PointCloud with three.js, in the map frame (z up), as Foxglove Studio's 3D panel would. Entities
+// whose metadata says render=ghost (the simulator's ground truth) are drawn as wireframes over the rest.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { Line2 } from 'three/addons/lines/Line2.js';
@@ -7,6 +8,7 @@ import { LineMaterial } from 'three/addons/lines/LineMaterial.js';
 import { LineGeometry } from 'three/addons/lines/LineGeometry.js';
 import { fromBase64 } from './foxglove.js';
 
+const GHOST_GROWTH = 1.08;
 const NUMERIC_SIZE = { 1: 1, 2: 1, 3: 2, 4: 2, 5: 4, 6: 4, 7: 4, 8: 8 };
 
 export class Scene3D {
@@ -68,9 +70,16 @@ export class Scene3D {
     this.dirty = true;
   }
 
-  material(c) {
-    const key = `${c.r},${c.g},${c.b},${c.a}`;
+  material(c, ghost = false) {
+    const key = `${c.r},${c.g},${c.b},${c.a}${ghost ? ',ghost' : ''}`;
     let m = this.materials.get(key);
+    if (!m && ghost) {
+      // A wireframe in a pale version of the colour: it shows where the truth is without hiding what the stack
+      // sees, and stays apart from the stack's solid cones where the two agree.
+      const pale = new THREE.Color(c.r, c.g, c.b).lerp(new THREE.Color(1, 1, 1), 0.55);
+      m = new THREE.MeshBasicMaterial({ color: pale, wireframe: true, transparent: true, opacity: 0.95 });
+      this.materials.set(key, m);
+    }
     if (!m) {
       // Some emission keeps the cone colours recognisable whatever side the light comes from.
       m = new THREE.MeshStandardMaterial({
@@ -113,16 +122,18 @@ export class Scene3D {
       const key = `${topic} ${e.id}`;
       this.remove(key);
       const group = new THREE.Group();
-      group.userData = { topic, id: e.id, cylinders: 0, cubes: 0, lines: 0 };
+      const ghost = (e.metadata ?? []).some((kv) => kv.key === 'render' && kv.value === 'ghost');
+      group.userData = { topic, id: e.id, cylinders: 0, cubes: 0, lines: 0, ghost };
       for (const c of e.cylinders ?? []) {
-        const m = new THREE.Mesh(this.cylinderGeometry(c.bottom_scale ?? 1, c.top_scale ?? 1), this.material(c.color));
+        const m = new THREE.Mesh(this.cylinderGeometry(c.bottom_scale ?? 1, c.top_scale ?? 1), this.material(c.color, ghost));
         Scene3D.place(m, c.pose);
-        m.scale.set(c.size.x, c.size.y, c.size.z);
+        const grow = ghost ? GHOST_GROWTH : 1;  // a ghost's wires just outside a solid body at the same place
+        m.scale.set(c.size.x * grow, c.size.y * grow, c.size.z * grow);
         group.add(m);
         group.userData.cylinders++;
       }
       for (const c of e.cubes ?? []) {
-        const m = new THREE.Mesh(this.box, this.material(c.color));
+        const m = new THREE.Mesh(this.box, this.material(c.color, ghost));
         Scene3D.place(m, c.pose);
         m.scale.set(c.size.x, c.size.y, c.size.z);
         group.add(m);
@@ -131,7 +142,8 @@ export class Scene3D {
       for (const l of e.lines ?? []) {
         if (!l.points || l.points.length < 2) continue;
         const g = new LineGeometry();
-        g.setPositions(l.points.flatMap((p) => [p.x, p.y, p.z]));
+        const pts = l.type === 1 ? [...l.points, l.points[0]] : l.points;  // LINE_LOOP closes
+        g.setPositions(pts.flatMap((p) => [p.x, p.y, p.z]));
         const mat = new LineMaterial({
           color: new THREE.Color(l.color.r, l.color.g, l.color.b),
           linewidth: l.thickness || 0.1,
@@ -154,11 +166,23 @@ export class Scene3D {
         group.add(new THREE.ArrowHelper(dir, origin, len, new THREE.Color(a.color.r, a.color.g, a.color.b),
                                         a.head_length ?? 0.2, a.head_diameter ?? 0.1));
       }
+      if (ghost) {
+        // Drawn over everything: the true car's outline must show through the stack's car box.
+        group.traverse((o) => {
+          o.renderOrder = 10;
+          if (o.material) o.material.depthTest = false;
+        });
+      }
       const life = e.lifetime ? e.lifetime.sec + e.lifetime.nsec * 1e-9 : 0;
       this.entities.set(key, { group, expires: life > 0 ? performance.now() + life * 1000 : Infinity });
       this.scene.add(group);
     }
     this.dirty = true;
+  }
+
+  // Drops every entity of a topic (a subscription turned off).
+  removeTopic(topic) {
+    for (const key of [...this.entities.keys()]) if (key.startsWith(`${topic} `)) this.remove(key);
   }
 
   remove(key) {
@@ -253,8 +277,9 @@ export class Scene3D {
     const out = {};
     for (const { group } of this.entities.values()) {
       const u = group.userData;
-      const t = (out[u.topic] ??= { entities: 0, cylinders: 0, cubes: 0, lines: 0 });
+      const t = (out[u.topic] ??= { entities: 0, cylinders: 0, cubes: 0, lines: 0, ghosts: 0 });
       t.entities++;
+      if (u.ghost) t.ghosts += u.cylinders + u.cubes + u.lines;
       t.cylinders += u.cylinders;
       t.cubes += u.cubes;
       t.lines += u.lines;

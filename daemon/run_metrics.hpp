@@ -1,0 +1,41 @@
+#pragma once
+// The run's figures on the dashboard server's /metrics (Prometheus): per-stage latency, the control loop's rate
+// and period, AS state, laps, cones hit. Everything is registered in the constructor (which takes the registry's
+// lock); the per-cycle update is wait-free (relaxed atomics), so the control loop never waits on a scrape.
+#include <chrono>
+#include <cstdint>
+
+#include "common/types.hpp"
+#include "web/metrics.hpp"
+
+namespace fsd {
+
+// What one control cycle measured; a negative latency means "this stage did not run in this cycle".
+struct CycleFigures {
+  Stamp t = 0;                    // run clock
+  double perception_s = -1;       // wall time of the perception stage (sensor frame → cone map update)
+  double planning_s = -1;         // wall time of a new plan
+  double control_s = -1;          // wall time of the path follower and supervisor
+  double end_to_end_s = -1;       // from the start of perception to the command handed to the VCU link
+  AsState as_state = AsState::Off;
+  int laps = 0;
+  int cones_hit = -1;             // -1: unknown (not a simulated run)
+};
+
+class RunMetrics {
+ public:
+  explicit RunMetrics(web::Metrics& metrics);
+  // Called by the control loop once per cycle, at its end. Wait-free.
+  void on_cycle(const CycleFigures& f);
+
+ private:
+  using clock = std::chrono::steady_clock;
+  web::Summary &perception_, &planning_, &control_, &end_to_end_, &period_;
+  web::Counter& cycles_;
+  web::Gauge &rate_, &as_state_, &laps_, &cones_hit_, &sim_time_;
+  web::Gauge* as_active_[5];
+  clock::time_point last_cycle_{}, window_start_{};
+  std::uint64_t window_cycles_ = 0;
+};
+
+}  // namespace fsd

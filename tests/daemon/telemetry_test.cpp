@@ -1,0 +1,320 @@
+// The daemon's side of the dashboard, end to end over real sockets: a headless (lockstep) SimRun on
+// epfl_track_1 publishes through Telemetry to a WebServer on 127.0.0.1, and a real WebSocket / HTTP client reads
+// what a dashboard or Prometheus would. Expectations come from the shared track file (read here with its own
+// parser), the Formula Student rules (5 s in Ready before go) and the loop's fixed rates.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "common/clock.hpp"
+#include "common/logging.hpp"
+#include "common/params.hpp"
+#include "daemon/run_metrics.hpp"
+#include "daemon/settings.hpp"
+#include "daemon/sim_run.hpp"
+#include "daemon/telemetry.hpp"
+#include "tests/web/test_client.hpp"
+#include "web/config.hpp"
+#include "web/server.hpp"
+
+namespace fsd {
+namespace {
+
+using nlohmann::json;
+using web::test::WsClient;
+namespace http = boost::beast::http;
+
+constexpr const char* kTrack = "../shared/tracks/epfl_track_1.csv";
+
+// A headless sim run of `sim_seconds` with the dashboard server, telemetry (truth channels on) and /metrics.
+struct LiveRun {
+  explicit LiveRun(double sim_seconds) : cfg(config_schema()) {
+    cfg.set("sim.enable_lidar", false, "test");
+    cfg.set("sim.enable_camera", false, "test");
+    cfg.set("run.track", kTrack, "test");
+    cfg.set("run.max_sim_time", sim_seconds, "test");
+    cfg.set("web.bind", "127.0.0.1", "test");
+    cfg.set("web.port", 0, "test");
+    params = std::make_unique<ParamRegistry>(cfg, &clock);
+    server = std::make_unique<web::WebServer>(web::web_section().read(cfg), *params, clock);
+    telemetry = std::make_unique<Telemetry>(*server, TelemetryRates{}, true);
+    metrics = std::make_unique<RunMetrics>(server->metrics());
+    server->start();
+    RunOptions o;
+    o.sim = true;
+    o.headless = true;
+    run = std::make_unique<SimRun>(cfg, o);
+    run->set_telemetry(telemetry.get());
+    run->set_metrics(metrics.get());
+  }
+  ~LiveRun() {
+    telemetry->stop();
+    server->stop();
+  }
+  int go() {
+    std::atomic<bool> stop{false};
+    return run->run(stop);
+  }
+
+  Config cfg;
+  RealClock clock;
+  std::unique_ptr<ParamRegistry> params;
+  std::unique_ptr<web::WebServer> server;
+  std::unique_ptr<Telemetry> telemetry;
+  std::unique_ptr<RunMetrics> metrics;
+  std::unique_ptr<SimRun> run;
+};
+
+// Subscribes to the given topics (subscription id = index + 1) and waits until the server has taken it.
+std::map<std::string, std::uint32_t> subscribe(WsClient& c, const std::vector<std::string>& topics) {
+  std::map<std::string, std::uint32_t> subs;
+  const auto adv = c.next_op("advertise");
+  if (!adv) return subs;
+  json list = json::array();
+  for (const auto& ch : (*adv)["channels"]) {
+    for (std::size_t i = 0; i < topics.size(); ++i) {
+      if (ch["topic"] == topics[i]) {
+        const auto id = static_cast<std::uint32_t>(i + 1);
+        list.push_back({{"id", id}, {"channelId", ch["id"]}});
+        subs[topics[i]] = id;
+      }
+    }
+  }
+  c.send_text(json{{"op", "subscribe"}, {"subscriptions", list}}.dump());
+  c.send_text(R"({"op":"getParameters","parameterNames":[],"id":"sync"})");
+  c.next_op("parameterValues");
+  return subs;
+}
+
+std::uint32_t u32_le(const std::string& b, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<std::uint8_t>(b[at + static_cast<std::size_t>(i)]);
+  return v;
+}
+
+// The next message-data payload of subscription `sub` (skipping others), parsed.
+std::optional<json> next_on(WsClient& c, std::uint32_t sub, std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until) {
+    const auto m = c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
+    if (!m) return std::nullopt;
+    if (m->size() > 13 && static_cast<std::uint8_t>((*m)[0]) == 0x01 && u32_le(*m, 1) == sub) return json::parse(m->substr(13));
+  }
+  return std::nullopt;
+}
+
+struct FileCone {
+  std::string tag;
+  double x = 0, y = 0;
+};
+
+// The track file's cones, read independently of common/track.
+std::vector<FileCone> read_cones(const std::string& path, double* start_x, double* start_y, double* start_yaw) {
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);  // header
+  std::vector<FileCone> out;
+  while (std::getline(f, line)) {
+    std::stringstream ss(line);
+    std::string tag, x, y, dir;
+    std::getline(ss, tag, ',');
+    std::getline(ss, x, ',');
+    std::getline(ss, y, ',');
+    std::getline(ss, dir, ',');
+    if (tag.empty()) continue;
+    if (tag == "car_start") {
+      *start_x = std::stod(x);
+      *start_y = std::stod(y);
+      *start_yaw = std::stod(dir);
+      continue;
+    }
+    out.push_back({tag, std::stod(x), std::stod(y)});
+  }
+  return out;
+}
+
+// Prometheus text → { "name{labels}": value }.
+std::map<std::string, double> parse_metrics(const std::string& text) {
+  std::map<std::string, double> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto sp = line.rfind(' ');
+    out[line.substr(0, sp)] = std::stod(line.substr(sp + 1));
+  }
+  return out;
+}
+
+TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
+  double sx = NAN, sy = NAN, syaw = NAN;
+  const auto file = read_cones(kTrack, &sx, &sy, &syaw);
+  ASSERT_GT(file.size(), 100u);
+
+  LiveRun live(3.0);  // the car stands in Off/Ready for the first 5 s
+  WsClient c(live.server->port());
+  ASSERT_TRUE(c.handshake_ok());
+  auto subs = subscribe(c, {"/truth/cones", "/truth/vehicle_state", "/truth/car"});
+  ASSERT_EQ(subs.size(), 3u);
+  ASSERT_EQ(live.go(), 0);
+
+  const auto cones = next_on(c, subs["/truth/cones"]);
+  ASSERT_TRUE(cones);
+  const auto& standing = (*cones)["entities"][0];
+  const auto& knocked = (*cones)["entities"][1];
+  EXPECT_EQ(standing["id"], "truth_cones");
+  EXPECT_EQ(knocked["id"], "truth_knocked_cones");
+  EXPECT_EQ(knocked["cylinders"].size(), 0u);
+  ASSERT_EQ(standing["cylinders"].size(), file.size());
+  bool labelled = false;
+  for (const auto& kv : standing["metadata"]) labelled |= kv["key"] == "source" && kv["value"] == "simulator ground truth";
+  EXPECT_TRUE(labelled);
+  // Every cone of the file has its own cylinder at its position, of the rules' size, in its colour.
+  std::vector<bool> used(file.size(), false);
+  for (const auto& fc : file) {
+    std::size_t best = file.size();
+    double best_d = 1e9;
+    for (std::size_t i = 0; i < standing["cylinders"].size(); ++i) {
+      const auto& p = standing["cylinders"][i]["pose"]["position"];
+      const double d = std::hypot(p["x"].get<double>() - fc.x, p["y"].get<double>() - fc.y);
+      if (!used[i] && d < best_d) {
+        best_d = d;
+        best = i;
+      }
+    }
+    ASSERT_LT(best_d, 1e-6) << fc.tag << " cone at " << fc.x << ", " << fc.y;
+    used[best] = true;
+    const auto& cyl = standing["cylinders"][best];
+    const bool big = fc.tag == "big_orange";
+    EXPECT_NEAR(cyl["size"]["z"].get<double>(), big ? 0.505 : 0.325, 1e-9) << fc.tag;
+    EXPECT_NEAR(cyl["size"]["x"].get<double>(), big ? 0.285 : 0.228, 1e-9) << fc.tag;
+    EXPECT_NEAR(cyl["pose"]["position"]["z"].get<double>(), (big ? 0.505 : 0.325) / 2, 1e-9);  // flat ground
+    const auto& col = cyl["color"];
+    if (fc.tag == "blue") {
+      EXPECT_GT(col["b"].get<double>(), col["r"].get<double>() + 0.5);
+    }
+    if (fc.tag == "yellow") {
+      EXPECT_GT(col["g"].get<double>(), col["b"].get<double>() + 0.5);
+    }
+    EXPECT_LT(col["a"].get<double>(), 1.0);  // a ghost over the stack's own cone map
+  }
+
+  // The car has not moved: the true pose is the file's car_start.
+  const auto state = next_on(c, subs["/truth/vehicle_state"]);
+  ASSERT_TRUE(state);
+  EXPECT_EQ((*state)["source"], "simulator ground truth");
+  EXPECT_NEAR((*state)["x"].get<double>(), sx, 0.01);
+  EXPECT_NEAR((*state)["y"].get<double>(), sy, 0.01);
+  EXPECT_NEAR((*state)["yaw"].get<double>(), syaw, 0.01);
+  EXPECT_NEAR((*state)["speed"].get<double>(), 0.0, 0.01);
+  EXPECT_EQ((*state)["cones_hit"], 0);
+  const auto car = next_on(c, subs["/truth/car"]);
+  ASSERT_TRUE(car);
+  EXPECT_EQ((*car)["entities"][0]["id"], "truth_car");
+  EXPECT_NEAR((*car)["entities"][0]["arrows"][0]["pose"]["position"]["x"].get<double>(), sx, 0.01);
+}
+
+TEST(Telemetry, MetricsOfARunAreScrapedOverHttp) {
+  // 800 control cycles (10 ms), perception frames due at 0, 0.1, …, 8.0 s: 81; Ready at ≈ 0.5 s and RES go 5.5 s
+  // later (the rules' 5 s in Ready + 0.5 s), so Driving at the end.
+  LiveRun live(8.0);
+  ASSERT_EQ(live.go(), 0);
+  const auto res = web::test::http_request(live.server->port(), http::verb::get, "/metrics");
+  ASSERT_EQ(res.status, 200u);
+  EXPECT_NE(res.body.find("# HELP fsd_as_state AS state of the VCU: 0 Off, 1 Ready, 2 Driving, 3 Emergency, 4 Finished"),
+            std::string::npos);
+  const auto m = parse_metrics(res.body);
+  auto at = [&](const std::string& key) {
+    const auto it = m.find(key);
+    EXPECT_NE(it, m.end()) << key << " missing from\n" << res.body;
+    return it == m.end() ? NAN : it->second;
+  };
+  const std::string lat = "fsd_stage_latency_seconds";
+  EXPECT_EQ(at("fsd_control_cycles_total"), 800);
+  EXPECT_EQ(at(lat + "_count{stage=\"control\"}"), 800);
+  EXPECT_EQ(at(lat + "_count{stage=\"perception\"}"), 81);
+  EXPECT_EQ(at(lat + "_count{stage=\"end_to_end\"}"), 81);
+  const double planned = at(lat + "_count{stage=\"planning\"}");
+  EXPECT_GT(planned, 0);
+  EXPECT_LE(planned, 800);
+  for (const std::string stage : {"perception", "planning", "control", "end_to_end"}) {
+    const double p50 = at(lat + "{stage=\"" + stage + "\",quantile=\"0.5\"}");
+    const double p99 = at(lat + "{stage=\"" + stage + "\",quantile=\"0.99\"}");
+    EXPECT_GT(p50, 0) << stage;
+    EXPECT_LE(p50, p99) << stage;
+    EXPECT_LT(p50, 0.05) << stage;  // a 10 ms loop
+  }
+  // End to end spans perception, planning and control of the same cycle.
+  EXPECT_GE(at(lat + "{stage=\"end_to_end\",quantile=\"0.5\"}"), at(lat + "{stage=\"perception\",quantile=\"0.5\"}"));
+  EXPECT_GT(at("fsd_control_period_seconds_count"), 700);
+  EXPECT_EQ(at("fsd_as_state"), 2);
+  EXPECT_EQ(at("fsd_as_state_active{state=\"Driving\"}"), 1);
+  EXPECT_EQ(at("fsd_as_state_active{state=\"Ready\"}"), 0);
+  EXPECT_NEAR(at("fsd_run_time_seconds"), 8.0, 1e-6);
+  EXPECT_EQ(at("fsd_laps_completed"), 0);
+  EXPECT_EQ(at("fsd_cones_hit"), 0);
+  // Every 4th cycle hands a snapshot to telemetry; the lockstep loop outruns the telemetry thread, which skips.
+  EXPECT_EQ(at("fsd_telemetry_snapshots_total"), 200);
+  EXPECT_LE(at("fsd_telemetry_snapshots_skipped_total"), 199);
+  EXPECT_EQ(at("fsd_web_clients"), 0);
+  EXPECT_EQ(at("fsd_web_outbox_depth"), at("fsd_web_outbox_depth"));  // present (a number)
+  // /api/state answers from the newest snapshot.
+  const auto state = web::test::http_request(live.server->port(), http::verb::get, "/api/state");
+  ASSERT_EQ(state.status, 200u);
+  const auto s = json::parse(state.body);
+  EXPECT_EQ(s["as_state"], "Driving");
+  EXPECT_EQ(s["mission"], "trackdrive");
+  EXPECT_GT(s["vehicle"]["speed"].get<double>(), 0.5);  // 2.5 s after go
+}
+
+TEST(Telemetry, LogLinesOfEveryLoggerReachTheLogChannel) {
+  auto early = logger("telemetry_test_early");  // exists before the forwarding is attached
+  RealClock clock;
+  Config cfg(config_schema());
+  ParamRegistry params(cfg, &clock);
+  auto wc = web::web_section().read(cfg);
+  wc.bind = "127.0.0.1";
+  wc.port = 0;
+  web::WebServer server(wc, params, clock);
+  Telemetry telemetry(server);
+  auto forwarding = std::make_unique<LogForwarding>(server, telemetry.channels().log, clock);
+  server.start();
+  auto late = logger("telemetry_test_late");  // created afterwards: inherits the sink
+
+  WsClient c(server.port());
+  ASSERT_TRUE(c.handshake_ok());
+  const auto subs = subscribe(c, {"/log"});
+  ASSERT_EQ(subs.size(), 1u);
+  const std::uint32_t sub = subs.at("/log");
+  early->set_level(spdlog::level::debug);  // the sink's own level (info) must hold the debug line back
+  early->info("early line {}", 1);
+  late->warn("late line {}", 2);
+  early->debug("below the level");
+
+  std::map<std::string, json> got;
+  while (got.size() < 2) {
+    const auto m = next_on(c, sub);
+    if (!m) break;
+    if ((*m)["name"].get<std::string>().starts_with("telemetry_test_")) got[(*m)["message"].get<std::string>()] = *m;
+  }
+  ASSERT_EQ(got.count("early line 1"), 1u);
+  ASSERT_EQ(got.count("late line 2"), 1u);
+  EXPECT_EQ(got["early line 1"]["name"], "telemetry_test_early");
+  EXPECT_EQ(got["early line 1"]["level"], 2);  // foxglove.Log INFO
+  EXPECT_EQ(got["late line 2"]["level"], 3);   // WARNING
+
+  forwarding->detach();
+  early->info("after detach");
+  late->info("after detach 2");  // neither may arrive
+  while (const auto m = next_on(c, sub, std::chrono::milliseconds(300)))
+    EXPECT_FALSE((*m)["name"].get<std::string>().starts_with("telemetry_test_")) << (*m)["message"];
+  telemetry.stop();
+  server.stop();
+}
+
+}  // namespace
+}  // namespace fsd
