@@ -2,6 +2,7 @@
 // epfl_track_1 publishes through Telemetry to a WebServer on 127.0.0.1, and a real WebSocket / HTTP client reads
 // what a dashboard or Prometheus would. Expectations come from the shared track file (read here with its own
 // parser), the Formula Student rules (5 s in Ready before go) and the loop's fixed rates.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,6 +108,22 @@ std::optional<json> next_on(WsClient& c, std::uint32_t sub, std::chrono::millise
   return std::nullopt;
 }
 
+// The first message-data payload of each subscription in `subs`, whatever order they arrive in (a message of one
+// must not be lost while waiting for another: a short run may send each only once).
+std::map<std::uint32_t, json> first_on_each(WsClient& c, const std::vector<std::uint32_t>& subs,
+                                            std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+  std::map<std::uint32_t, json> out;
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (out.size() < subs.size() && std::chrono::steady_clock::now() < until) {
+    const auto m = c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
+    if (!m) break;
+    if (m->size() <= 13 || static_cast<std::uint8_t>((*m)[0]) != 0x01) continue;
+    const std::uint32_t sub = u32_le(*m, 1);
+    if (std::find(subs.begin(), subs.end(), sub) != subs.end() && !out.count(sub)) out[sub] = json::parse(m->substr(13));
+  }
+  return out;
+}
+
 struct FileCone {
   std::string tag;
   double x = 0, y = 0;
@@ -162,7 +179,12 @@ TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   ASSERT_EQ(subs.size(), 3u);
   ASSERT_EQ(live.go(), 0);
 
-  const auto cones = next_on(c, subs["/truth/cones"]);
+  auto first = first_on_each(c, {subs["/truth/cones"], subs["/truth/vehicle_state"], subs["/truth/car"]});
+  const auto pick = [&](const char* topic) -> std::optional<json> {
+    const auto it = first.find(subs[topic]);
+    return it == first.end() ? std::nullopt : std::optional<json>(it->second);
+  };
+  const auto cones = pick("/truth/cones");
   ASSERT_TRUE(cones);
   const auto& standing = (*cones)["entities"][0];
   const auto& knocked = (*cones)["entities"][1];
@@ -204,7 +226,7 @@ TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   }
 
   // The car has not moved: the true pose is the file's car_start.
-  const auto state = next_on(c, subs["/truth/vehicle_state"]);
+  const auto state = pick("/truth/vehicle_state");
   ASSERT_TRUE(state);
   EXPECT_EQ((*state)["source"], "simulator ground truth");
   EXPECT_NEAR((*state)["x"].get<double>(), sx, 0.01);
@@ -212,7 +234,7 @@ TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   EXPECT_NEAR((*state)["yaw"].get<double>(), syaw, 0.01);
   EXPECT_NEAR((*state)["speed"].get<double>(), 0.0, 0.01);
   EXPECT_EQ((*state)["cones_hit"], 0);
-  const auto car = next_on(c, subs["/truth/car"]);
+  const auto car = pick("/truth/car");
   ASSERT_TRUE(car);
   EXPECT_EQ((*car)["entities"][0]["id"], "truth_car");
   EXPECT_NEAR((*car)["entities"][0]["arrows"][0]["pose"]["position"]["x"].get<double>(), sx, 0.01);
