@@ -24,6 +24,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "common/wire/vcu_protocol.hpp"
 #include "daemon/gnss_state.hpp"
@@ -384,19 +386,31 @@ class Devices {
   std::thread thread_;
 };
 
+// The camera is a looping 160×120 video file at 20 fps.
 TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   Devices dev;
+  const std::string video = tmp("hw_camera.avi");
+  {
+    cv::VideoWriter w(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 20.0, cv::Size(160, 120));
+    if (!w.isOpened()) GTEST_SKIP() << "this OpenCV cannot write MJPG/AVI";
+    for (int k = 0; k < 10; ++k) w.write(cv::Mat(120, 160, CV_8UC3, cv::Scalar::all(20 * k)));
+  }
   const std::string cfg = write_file(
-      "hw_sigterm.json", R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() +
-                             R"("}, "gnss": {"device": ")" + dev.gnss().slave_path() +
-                             R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(free_udp_port()) +
-                             R"(}}, "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}})");
+      "hw_sigterm.json",
+      R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() + R"("}, "gnss": {"device": ")" +
+          dev.gnss().slave_path() + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
+          std::to_string(free_udp_port()) + R"(},
+                      "camera": {"enabled": true, "source": ")" + video + R"(", "width": 160, "height": 120,
+                                 "fps": 20, "loop_file": true}},
+          "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5}})");
+  const std::string report_path = tmp("hw_sigterm_report.json");
+  std::remove(report_path.c_str());
   const auto driving_commands = [&] {
     const auto c = dev.commands();
     return std::count_if(c.begin(), c.end(), [](const auto& k) { return k.target_speed > 0 && !k.brake_hard; });
   };
 
-  Fsd run({"run", "--config", cfg, "--mission", "inspection"}, tmp("hw_sigterm.log"));
+  Fsd run({"run", "--config", cfg, "--mission", "inspection", "--report", report_path}, tmp("hw_sigterm.log"));
   const auto t0 = Clock::now();
   while (driving_commands() < 30 && Clock::now() - t0 < 30s) std::this_thread::sleep_for(20ms);
   ASSERT_GE(driving_commands(), 30) << run.output();
@@ -424,6 +438,17 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   EXPECT_NE(out.find("AS Ready -> Driving"), std::string::npos) << out;
   EXPECT_NE(out.find("stopping (signal)"), std::string::npos) << out;
   EXPECT_NE(out.find("VCU link stopped after 3 safe commands"), std::string::npos) << out;
+
+  // Without --until-finished a signal is a normal end; the camera delivered its frames at about 20 fps.
+  const auto r = nlohmann::json::parse(slurp(report_path));
+  EXPECT_EQ(r["ended_by"], "signal");
+  EXPECT_EQ(r["as_state"], "Driving");
+  const auto& cam = r["drivers"]["camera"];
+  ASSERT_TRUE(cam.is_object()) << r.dump(2);
+  EXPECT_GT(cam["frames"].get<double>(), 0.3 * 20 * r["wall_time_s"].get<double>()) << cam.dump();
+  EXPECT_EQ(cam["size_mismatches"], 0);
+  EXPECT_NE(out.find("camera "), std::string::npos) << out;
+  EXPECT_NE(out.find(" fps [dropped"), std::string::npos) << out;
 }
 
 }  // namespace
