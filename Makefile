@@ -5,7 +5,7 @@ JOBS ?= 2
 CMAKE_FLAGS ?=
 RUN_ARGS ?= run --sim
 
-.PHONY: run test build deps clean bench
+.PHONY: run test build deps clean bench fuzz
 
 deps:
 	@bash deploy/install-deps.sh
@@ -27,6 +27,11 @@ test: build
 bench: build
 	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@for b in $(BUILD)/bench/*_bench; do [ -x "$$b" ] && "$$b"; done
+
+# The libFuzzer targets (clang, ASan/UBSan) in build-fuzz/, each for FUZZ_SECONDS (default 45); findings fail the
+# step and stay in test-artifacts/fuzz/. FUZZ_RUNS=N runs N executions per target instead.
+fuzz: deps
+	@bash tests/fuzz/run.sh
 
 clean:
 	@rm -rf $(BUILD)

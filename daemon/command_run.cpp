@@ -10,6 +10,7 @@
 #include "common/params.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
+#include "daemon/hardware_run.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/run_options.hpp"
 #include "daemon/settings.hpp"
@@ -44,8 +45,10 @@ int run_command(const RunOptions& o) {
     return kExitBadInput;
   }
   if (!o.sim) {
-    std::cerr << "fsd run: only the virtual car is wired in this version: add --sim\n";
-    return kExitBadInput;
+    // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    return run_on_hardware(cfg, o, g_stop);
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

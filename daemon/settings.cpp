@@ -35,7 +35,9 @@ const ConfigSection<RunSettings>& run_section() {
           .string("localization_source", &RunSettings::localization_source, {"truth"},
                   "Where the pose comes from: truth = the virtual car's true pose.")
           .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
-                  "Headless runs give up after this much simulated time.");
+                  "Headless runs give up after this much simulated time.")
+          .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",
+                  "On the car: period of the log line with every driver's rates and error counters.");
   return s;
 }
 

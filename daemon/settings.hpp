@@ -22,6 +22,7 @@ struct RunSettings {
   std::string perception_source = "truth";
   std::string localization_source = "truth";
   double max_sim_time = 600.0;
+  double stats_period = 5.0;  // s between the per-driver rate lines of `fsd run` on the car
 };
 
 const ConfigSection<DaemonSettings>& daemon_section();

@@ -30,6 +30,7 @@ const ConfigSection<CameraDriverConfig>& camera_driver_section() {
   using C = CameraDriverConfig;
   static const auto s =
       ConfigSection<C>("drivers.camera")
+          .boolean("enabled", &C::enabled, "fsd run on the car reads frames from this camera (no camera when false).")
           .string("source", &C::source, {},
                   "V4L2 device (/dev/video0 or an index), GStreamer pipeline (contains '!'), or video file.")
           .integer("width", &C::width, 16, 8192, "px", "Image width requested from the device and expected.")

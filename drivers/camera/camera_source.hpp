@@ -27,6 +27,7 @@ class VideoCapture;
 namespace fsd {
 
 struct CameraDriverConfig {
+  bool enabled = false;                 // fsd run on the car opens the camera only when set
   std::string source = "/dev/video0";  // V4L2 device or index, GStreamer pipeline, or video file
   int width = 640;
   int height = 480;

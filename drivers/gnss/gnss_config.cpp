@@ -7,6 +7,8 @@ namespace fsd {
 const ConfigSection<GnssConfig>& gnss_section() {
   static const auto s =
       ConfigSection<GnssConfig>("drivers.gnss")
+          .string("device", &GnssConfig::device, {}, "Serial device of the GNSS-INS receiver (a pty slave in sim).")
+          .integer("baud", &GnssConfig::baud, 1200, 4000000, "baud", "Line rate, 8N1; any rate the UART supports.")
           .boolean("use_first_fix", &GnssConfig::use_first_fix,
                    "Put the local ENU origin at the rear axle of the first good fix; false: use origin_*.")
           .number("origin_lat_deg", &GnssConfig::origin_lat_deg, -90.0, 90.0, "deg",

@@ -7,6 +7,10 @@
 namespace fsd {
 
 struct GnssConfig {
+  // The receiver's serial port (fsd run on the car; the NMEA parsing below does not use these).
+  std::string device = "/dev/ttyGNSS";  // deploy/99-fsd.rules makes this symlink; a pty slave in sim
+  int baud = 115200;
+
   // Local ENU origin: the first good fix (its rear-axle point) or the geodetic point below.
   bool use_first_fix = true;
   double origin_lat_deg = 0.0;

@@ -397,7 +397,7 @@ TEST(GnssDriver, RejectsUnknownConfigChoices) {
 TEST(GnssDriver, ConfigSectionDeclaresEveryKeyWithItsDefault) {
   ConfigSchema schema;
   gnss_section().describe(schema);
-  EXPECT_EQ(schema.entries().size(), 17u);  // one per GnssConfig member
+  EXPECT_EQ(schema.entries().size(), 19u);  // one per GnssConfig member
   for (const auto& e : schema.entries()) {
     EXPECT_EQ(e.key.rfind("drivers.gnss.", 0), 0u) << e.key;
     EXPECT_FALSE(e.doc.empty()) << e.key;
@@ -409,6 +409,8 @@ TEST(GnssDriver, ConfigSectionDeclaresEveryKeyWithItsDefault) {
   EXPECT_EQ(read.max_hdop, def.max_hdop);
   EXPECT_EQ(read.antenna_z, def.antenna_z);
   EXPECT_EQ(read.use_first_fix, def.use_first_fix);
+  EXPECT_EQ(read.device, "/dev/ttyGNSS");  // the udev symlink of deploy/99-fsd.rules
+  EXPECT_EQ(read.baud, def.baud);
   ASSERT_NE(schema.find("drivers.gnss.max_hdop"), nullptr);
   EXPECT_TRUE(schema.find("drivers.gnss.max_hdop")->tunable);
 }

@@ -1,0 +1,56 @@
+#pragma once
+// `fsd run` without --sim: the stack on the car's own interfaces (DESIGN.md §3–4). One thread per driver, each
+// handing over by a latest-value slot; a control thread at 100 Hz runs the autopilot:
+//
+//   VLP-16 UDP ─► UdpReceiver thread: Vlp16ScanBuilder ─► latest Scan          (counted; no perception yet)
+//   GNSS-INS tty ─► SerialPort thread: GnssDriver ─► latest GnssSample ─┐
+//   VCU tty ◄─► VcuLink (port thread + 100 Hz sender) ─► latest VcuStatus ─┼─► control thread (100 Hz): Autopilot
+//   camera ─► CameraSource thread ─► latest Frame (when drivers.camera.enabled)  │       │
+//                                                          ControlCommand, AS request ◄─┘
+// Perception and localization have not landed: the vehicle state comes from GNSS-INS alone and there is no cone
+// source, so only missions that need no cones run (inspection); the others are refused at start.
+// SIGINT/SIGTERM (or, with --until-finished, AS Finished or Emergency) ends the run: the control thread stops,
+// the VCU link sends its safe-stop Commands (speed 0, brake) before its port closes, then the other drivers stop.
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "common/config.hpp"
+#include "common/types.hpp"
+#include "daemon/run_options.hpp"
+
+namespace fsd {
+
+// Why `mission` cannot run on the car in this version, or nullopt when it can.
+std::optional<std::string> hardware_mission_refusal(Mission mission);
+
+class HardwareRun {
+ public:
+  // Checks everything that can be checked before touching the car, throwing std::invalid_argument naming the
+  // key: the mission (see hardware_mission_refusal), the serial devices and the camera source exist, the LiDAR's
+  // UDP port can be bound (it is bound here).
+  HardwareRun(const Config& config, const RunOptions& options);
+  ~HardwareRun();
+  HardwareRun(const HardwareRun&) = delete;
+  HardwareRun& operator=(const HardwareRun&) = delete;
+
+  // Runs until `stop` becomes true or, with --until-finished, the VCU reports AS Finished or Emergency.
+  // Returns 0, or 1 with --until-finished when the mission did not end in AS Finished.
+  int run(const std::atomic<bool>& stop);
+  // After run(): mission, AS state and its transitions, how the run ended, every driver's counters, faults.
+  nlohmann::json report() const;
+  // The LiDAR's bound UDP port (resolves drivers.vlp16.data_port = 0).
+  int lidar_port() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The whole `fsd run` on hardware: run, write the report when asked, return the exit status.
+int run_on_hardware(const Config& config, const RunOptions& options, const std::atomic<bool>& stop);
+
+}  // namespace fsd

@@ -1,0 +1,455 @@
+// `fsd run` on hardware interfaces, as a user runs it: the real binary against `fsd sim` in another process (VLP-16
+// over loopback UDP, GNSS-INS and VCU on pseudo-terminals), or against pseudo-terminals this test plays itself.
+// Ground truth is what the other end did: the virtual car's VCU stand-in owns the AS state and its sensors' rates
+// are configured; the test's own VCU end decodes every Command the daemon sent.
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "common/wire/vcu_protocol.hpp"
+#include "daemon/gnss_state.hpp"
+#include "daemon/hardware_run.hpp"
+#include "daemon/hardware_stats.hpp"
+#include "drivers/serial/pseudo_terminal.hpp"
+#include "drivers/sim/gnss_model.hpp"
+#include "drivers/sim/vcu_standin.hpp"
+#include "drivers/sim/vehicle_truth.hpp"
+
+namespace fsd {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+std::string tmp(const std::string& name) { return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name; }
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The fsd binary in a child process, stdout and stderr to a file.
+class Fsd {
+ public:
+  Fsd(const std::vector<std::string>& args, std::string log) : log_(std::move(log)) {
+    std::ofstream(log_, std::ios::trunc).flush();  // never read an earlier run's output
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      FILE* f = std::freopen(log_.c_str(), "w", stdout);
+      if (!f || ::dup2(::fileno(stdout), 2) < 0) ::_exit(127);
+      std::vector<char*> argv{const_cast<char*>(FSD_BINARY)};
+      for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      ::execv(FSD_BINARY, argv.data());
+      ::_exit(127);
+    }
+  }
+  ~Fsd() {
+    if (pid_ > 0 && status_ < 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  void signal(int sig) const { ::kill(pid_, sig); }
+  // Exit status, or -1 when the process is still running after `timeout` (then it is killed).
+  int wait(std::chrono::duration<double> timeout) {
+    const auto end = Clock::now() + timeout;
+    while (status_ < 0 && Clock::now() < end) {
+      int st = 0;
+      if (::waitpid(pid_, &st, WNOHANG) == pid_) status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+      else std::this_thread::sleep_for(20ms);
+    }
+    return status_;
+  }
+  std::string output() const { return slurp(log_); }
+  // Waits until the output matches `re`; returns the first capture group (empty on timeout or exit).
+  std::string wait_for(const std::regex& re, std::chrono::duration<double> timeout) {
+    const auto end = Clock::now() + timeout;
+    std::smatch m;
+    for (;;) {
+      const bool exited = wait(0s) >= 0;
+      const std::string out = output();
+      if (std::regex_search(out, m, re)) return m.size() > 1 ? m[1].str() : m[0].str();
+      if (exited || Clock::now() >= end) return {};
+      std::this_thread::sleep_for(50ms);
+    }
+  }
+
+ private:
+  std::string log_;
+  pid_t pid_ = -1;
+  int status_ = -1;
+};
+
+// A UDP port nobody uses right now on the loopback (the kernel picks it).
+int free_udp_port() {
+  const int s = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t n = sizeof a;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &n);
+  ::close(s);
+  return ntohs(a.sin_port);
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = tmp(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Hand-computed: 2 m/s along a course 0.1 rad left of the heading is vx = 2 cos 0.1, vy = 2 sin 0.1.
+TEST(GnssState, BodyVelocityFromSpeedCourseAndHeading) {
+  GnssSample s;
+  s.stamp = 12.5;
+  s.enu = Vec3(3.0, -4.0, 0.2);
+  s.heading = 1.2;
+  s.course = 1.3;
+  s.speed = 2.0;
+  s.velocity_valid = true;
+  s.yaw_rate = 0.25;
+  s.yaw_rate_valid = true;
+  const VehicleState v = state_from_gnss(s, -0.05);
+  EXPECT_EQ(v.stamp, 12.5);
+  EXPECT_DOUBLE_EQ(v.pose.x, 3.0);
+  EXPECT_DOUBLE_EQ(v.pose.y, -4.0);
+  EXPECT_DOUBLE_EQ(v.pose.yaw, 1.2);
+  EXPECT_NEAR(v.vx, 1.9900083305, 1e-9);
+  EXPECT_NEAR(v.vy, 0.1996668332, 1e-9);
+  EXPECT_EQ(v.yaw_rate, 0.25);
+  EXPECT_EQ(v.steering, -0.05);
+
+  s.velocity_valid = false;  // no VTG/RMC in the epoch: no velocity rather than a stale one
+  s.yaw_rate_valid = false;
+  const VehicleState w = state_from_gnss(s, 0.0);
+  EXPECT_EQ(w.vx, 0.0);
+  EXPECT_EQ(w.vy, 0.0);
+  EXPECT_EQ(w.yaw_rate, 0.0);
+}
+
+TEST(GnssState, PoseNeedsFixHeadingAndOrigin) {
+  GnssSample s;
+  s.fix_quality = 1;
+  s.heading_valid = true;
+  EXPECT_TRUE(gnss_pose_usable(s, true));
+  EXPECT_FALSE(gnss_pose_usable(s, false));
+  s.fix_quality = 0;
+  EXPECT_FALSE(gnss_pose_usable(s, true));
+  s.fix_quality = 4;
+  s.heading_valid = false;
+  EXPECT_FALSE(gnss_pose_usable(s, true));
+}
+
+// Rates over the period between two snapshots, error counters as totals.
+TEST(HardwareStats, RatesLineFromTwoSnapshots) {
+  HardwareCounters a, b;
+  a.t = 10.0;
+  b.t = 12.0;
+  a.lidar.udp.datagrams = 100;
+  b.lidar.udp.datagrams = 100 + 2 * 754;
+  b.lidar.scans = 20;
+  b.lidar.udp.kernel_drops = 7;
+  a.gnss.nmea.samples = 5;
+  b.gnss.nmea.samples = 105;
+  b.gnss.nmea.good_samples = 90;
+  b.gnss.nmea.bad_checksum = 3;
+  b.vcu.session.statuses = 200;
+  b.vcu.session.commands_sent = 198;
+  b.control_cycles = 200;
+  const std::string line = rates_line(a, b);
+  EXPECT_NE(line.find("lidar 754 pkt/s 10.0 scan/s [kernel drops 7,"), std::string::npos) << line;
+  EXPECT_NE(line.find("gnss 50.0 Hz, good 45.0 Hz [bad checksum 3,"), std::string::npos) << line;
+  EXPECT_NE(line.find("vcu status 100 Hz, command 99 Hz"), std::string::npos) << line;
+  EXPECT_EQ(line.find("camera"), std::string::npos) << line;  // none configured
+  EXPECT_NE(line.find("control 100 Hz"), std::string::npos) << line;
+  b.camera = CameraStats{};
+  b.camera->frames = 40;
+  EXPECT_NE(rates_line(a, b).find("camera 20.0 fps"), std::string::npos);
+}
+
+TEST(HardwareRun, OnlyInspectionRunsWithoutPerception) {
+  EXPECT_FALSE(hardware_mission_refusal(Mission::Inspection));
+  for (Mission m : {Mission::Trackdrive, Mission::Autocross, Mission::Acceleration, Mission::Skidpad,
+                    Mission::EbsTest}) {
+    const auto why = hardware_mission_refusal(m);
+    ASSERT_TRUE(why) << to_string(m);
+    EXPECT_NE(why->find("needs perception"), std::string::npos) << *why;
+    EXPECT_NE(why->find("use --sim"), std::string::npos) << *why;
+  }
+}
+
+// Refused before any device is touched: the default config's /dev/ttyVCU does not exist here either.
+TEST(HardwareRun, MissionsNeedingConesAreRefusedWithExitTwo) {
+  for (const char* m : {"trackdrive", "autocross", "acceleration", "skidpad", "ebs_test"}) {
+    Fsd run({"run", "--mission", m}, tmp(std::string("refuse_") + m + ".log"));
+    EXPECT_EQ(run.wait(20s), 2) << m;
+    const std::string out = run.output();
+    EXPECT_NE(out.find(std::string("mission '") + m + "' needs perception"), std::string::npos) << out;
+    EXPECT_NE(out.find("use --sim"), std::string::npos) << out;
+  }
+}
+
+TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
+  const std::string vcu_missing = write_file("hw_missing_vcu.json", R"({"drivers": {"vcu": {"device": "/nonexistent/ttyVCU_test"}}})");
+  Fsd a({"run", "--config", vcu_missing, "--mission", "inspection"}, tmp("missing_vcu.log"));
+  EXPECT_EQ(a.wait(20s), 2);
+  EXPECT_NE(a.output().find("drivers.vcu.device: no such device '/nonexistent/ttyVCU_test'"), std::string::npos)
+      << a.output();
+
+  PseudoTerminal vcu;  // a VCU that is there, so the GNSS-INS device is the one found missing
+  const std::string gnss_missing = write_file(
+      "hw_missing_gnss.json", R"({"drivers": {"vcu": {"device": ")" + vcu.slave_path() +
+                                  R"("}, "gnss": {"device": "/nonexistent/ttyGNSS_test"}}})");
+  Fsd b({"run", "--config", gnss_missing, "--mission", "inspection"}, tmp("missing_gnss.log"));
+  EXPECT_EQ(b.wait(20s), 2);
+  EXPECT_NE(b.output().find("drivers.gnss.device: no such device '/nonexistent/ttyGNSS_test'"), std::string::npos)
+      << b.output();
+
+  // A regular file is not a serial port.
+  const std::string not_tty = write_file("hw_not_a_tty", "");
+  const std::string cfg = write_file("hw_not_tty.json", R"({"drivers": {"vcu": {"device": ")" + not_tty + R"("}}})");
+  Fsd c({"run", "--config", cfg, "--mission", "inspection"}, tmp("not_tty.log"));
+  EXPECT_EQ(c.wait(20s), 2);
+  EXPECT_NE(c.output().find("is not a character device"), std::string::npos) << c.output();
+}
+
+// The inspection mission end to end: fsd sim plays the car (its VCU stand-in owns the AS state and moves the car
+// on the daemon's Commands), fsd run drives it over the real transports until AS Finished.
+TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
+  const int port = free_udp_port();
+  const std::string sim_cfg = write_file(
+      "hw_sim.json", R"({"sim": {"enable_camera": false,
+                                 "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0}},
+                         "drivers": {"vlp16": {"data_port": )" + std::to_string(port) + "}}}");
+  Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_track_1.csv", "--duration", "120"},
+          tmp("hw_sim.log"));
+  const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
+  const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
+  ASSERT_FALSE(gnss.empty()) << sim.output();
+  ASSERT_FALSE(vcu.empty()) << sim.output();
+
+  constexpr double kInspection = 3.0;  // s of steering sweep at control.mission.inspection_speed (1 m/s)
+  // Both ends' watchdogs (VCU heartbeat, VCU status, pose) get 1 s instead of 0.1–0.2 s: on a loaded 2-core CI
+  // machine the real-time sim and the daemon can each stall for a few hundred ms, and this test is about the
+  // wiring. The watchdogs themselves are tested in test_control and test_drivers.
+  const std::string run_cfg = write_file(
+      "hw_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"("}, "gnss": {"device": ")" + gnss +
+                         R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
+                         R"(}}, "control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
+                         R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
+                         "run": {"stats_period": 1.0}})");
+  const std::string report_path = tmp("hw_report.json");
+  std::remove(report_path.c_str());
+  Fsd run({"run", "--config", run_cfg, "--mission", "inspection", "--until-finished", "--report", report_path},
+          tmp("hw_run.log"));
+  const int rc = run.wait(90s);
+  const std::string log = run.output();
+  sim.signal(SIGTERM);
+  EXPECT_EQ(sim.wait(20s), 0);
+  ASSERT_EQ(rc, 0) << log;
+
+  const auto r = nlohmann::json::parse(slurp(report_path));
+  EXPECT_EQ(r["mode"], "hardware");
+  EXPECT_EQ(r["mission"], "inspection");
+  EXPECT_EQ(r["as_state"], "Finished");
+  EXPECT_EQ(r["ended_by"], "finished");
+  EXPECT_TRUE(r["mission_succeeded"]);
+  // The stand-in's state machine, as its Status frames reported it: exactly Off → Ready → Driving → Finished.
+  std::vector<std::string> states;
+  for (const auto& t : r["as_transitions"]) states.push_back(t["from"].get<std::string>() + ">" + t["to"].get<std::string>());
+  EXPECT_EQ(states, (std::vector<std::string>{"Off>Ready", "Ready>Driving", "Driving>Finished"})) << r.dump(2);
+  // The RES go came ≥ ready_to_drive_s after Ready; the sweep lasted inspection_duration before the stop.
+  const auto& tr = r["as_transitions"];
+  ASSERT_EQ(tr.size(), 3u);
+  EXPECT_GE(tr[1]["t"].get<double>() - tr[0]["t"].get<double>(), 1.0);
+  EXPECT_GE(tr[2]["t"].get<double>() - tr[1]["t"].get<double>(), kInspection);
+  EXPECT_LT(tr[2]["t"].get<double>() - tr[1]["t"].get<double>(), kInspection + 10.0);
+  // The car moved on the daemon's commands: about 1 m/s for 3 s, seen by the GNSS-INS.
+  EXPECT_GT(r["max_distance_from_start_m"].get<double>(), 1.0);
+  EXPECT_LT(r["max_distance_from_start_m"].get<double>(), 6.0);
+
+  // Every stream arrived at about the virtual car's rates (VLP-16 at 600 rpm: 754 packets/s; GNSS-INS 50 Hz;
+  // VCU Status 100 Hz), all of it valid. Loose bounds: a loaded machine slows the real-time sim.
+  const double wall = r["wall_time_s"];
+  const auto& d = r["drivers"];
+  const auto lidar = d["vlp16"]["datagrams"].get<double>();
+  EXPECT_GT(lidar, 0.4 * 754 * wall) << d.dump(2);
+  EXPECT_LT(lidar, 1.1 * 754 * wall);
+  EXPECT_EQ(d["vlp16"]["packets"], d["vlp16"]["datagrams"]);
+  EXPECT_EQ(d["vlp16"]["rejected"], 0);
+  EXPECT_GT(d["vlp16"]["scans"].get<double>(), 0.4 * 10 * wall);
+  EXPECT_GT(d["gnss"]["samples"].get<double>(), 0.4 * 50 * wall) << d.dump(2);
+  EXPECT_LT(d["gnss"]["samples"].get<double>(), 1.1 * 50 * wall);
+  EXPECT_EQ(d["gnss"]["bad_checksum"], 0);
+  EXPECT_GT(d["vcu"]["statuses"].get<double>(), 0.4 * 100 * wall);
+  EXPECT_EQ(d["vcu"]["rejected"], 0);
+  EXPECT_GT(d["vcu"]["commands_sent"].get<double>(), 0.4 * 100 * wall);
+  EXPECT_EQ(d["control"]["overruns"].get<double>() < 0.2 * d["control"]["cycles"].get<double>(), true);
+
+  // The sim sent at least what the daemon received.
+  const std::string sent = sim.wait_for(std::regex("fsd sim: (\\d+) LiDAR packets"), 5s);
+  ASSERT_FALSE(sent.empty()) << sim.output();
+  EXPECT_GE(std::stod(sent), lidar);
+  // The log shows the per-driver rates and the transitions.
+  EXPECT_NE(log.find("pkt/s"), std::string::npos) << log;
+  EXPECT_NE(log.find("AS Ready -> Driving"), std::string::npos) << log;
+}
+
+// SIGTERM mid-run, while driving: the daemon exits 0 and the last Commands the VCU sees are safe ones (speed 0,
+// brake). This test plays both devices with the virtual car's models, the car standing at the origin: the GNSS-INS
+// on one pseudo-terminal, the VCU stand-in (RES go 0.3 s after Ready) on the other, and it decodes every Command.
+class Devices {
+ public:
+  Devices() : vcu_standin_(standin_config(), [this](Stamp, std::span<const std::uint8_t> b) { vcu_.write(b); }) {
+    thread_ = std::thread([this] { loop(); });
+  }
+  ~Devices() {
+    done_ = true;
+    thread_.join();
+  }
+  const PseudoTerminal& vcu() const { return vcu_; }
+  const PseudoTerminal& gnss() const { return gnss_; }
+  std::vector<wire::vcu::Command> commands() const {
+    std::lock_guard lock(m_);
+    return commands_;
+  }
+  AsState as_state() const {
+    std::lock_guard lock(m_);
+    return vcu_standin_.state();
+  }
+
+ private:
+  static sim::VcuStandinConfig standin_config() {
+    sim::VcuStandinConfig c;
+    c.ready_to_drive_s = 0.2;
+    c.res_go_at_s = 0.3;
+    c.heartbeat_timeout = 1.0;  // a loaded machine may stall the daemon's sender for a few hundred ms
+    return c;
+  }
+  void loop() {
+    wire::vcu::Decoder decoder({[this](const wire::vcu::Command& c, std::uint16_t) { commands_.push_back(c); },
+                                nullptr, nullptr});
+    sim::GnssModel gnss_model(sim::GnssModelConfig{}, 7);
+    std::array<std::uint8_t, 1024> buf{};
+    const auto t0 = Clock::now();
+    while (!done_) {
+      const std::size_t n = vcu_.read(buf, 0.002);
+      const Stamp t = std::chrono::duration<double>(Clock::now() - t0).count();
+      sim::VehicleTruth truth;
+      truth.t = t;
+      {
+        std::lock_guard lock(m_);
+        if (n) {
+          decoder.feed(std::span(buf.data(), n));
+          vcu_standin_.feed(t, std::span(buf.data(), n));
+        }
+        vcu_standin_.step(t, truth);
+      }
+      gnss_model.advance_to(t, [](Stamp at) {
+        sim::VehicleTruth standing;
+        standing.t = at;
+        return standing;
+      }, [this](Stamp, std::span<const std::uint8_t> b) { gnss_.write(b); });
+    }
+  }
+
+  PseudoTerminal vcu_, gnss_;
+  mutable std::mutex m_;
+  sim::VcuStandin vcu_standin_;                 // guarded by m_
+  std::vector<wire::vcu::Command> commands_;    // guarded by m_
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+// The camera is a looping 160×120 video file at 20 fps.
+TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
+  Devices dev;
+  const std::string video = tmp("hw_camera.avi");
+  {
+    cv::VideoWriter w(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 20.0, cv::Size(160, 120));
+    if (!w.isOpened()) GTEST_SKIP() << "this OpenCV cannot write MJPG/AVI";
+    for (int k = 0; k < 10; ++k) w.write(cv::Mat(120, 160, CV_8UC3, cv::Scalar::all(20 * k)));
+  }
+  const std::string cfg = write_file(
+      "hw_sigterm.json",
+      R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() + R"("}, "gnss": {"device": ")" +
+          dev.gnss().slave_path() + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
+          std::to_string(free_udp_port()) + R"(},
+                      "camera": {"enabled": true, "source": ")" + video + R"(", "width": 160, "height": 120,
+                                 "fps": 20, "loop_file": true}},
+          "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5}})");
+  const std::string report_path = tmp("hw_sigterm_report.json");
+  std::remove(report_path.c_str());
+  const auto driving_commands = [&] {
+    const auto c = dev.commands();
+    return std::count_if(c.begin(), c.end(), [](const auto& k) { return k.target_speed > 0 && !k.brake_hard; });
+  };
+
+  Fsd run({"run", "--config", cfg, "--mission", "inspection", "--report", report_path}, tmp("hw_sigterm.log"));
+  const auto t0 = Clock::now();
+  while (driving_commands() < 30 && Clock::now() - t0 < 30s) std::this_thread::sleep_for(20ms);
+  ASSERT_GE(driving_commands(), 30) << run.output();
+  ASSERT_EQ(dev.as_state(), AsState::Driving);
+  run.signal(SIGTERM);
+  const int rc = run.wait(10s);
+  std::this_thread::sleep_for(200ms);  // the last frames in flight
+  EXPECT_EQ(rc, 0) << run.output();
+
+  const auto commands = dev.commands();
+  ASSERT_GE(commands.size(), 33u);
+  // The inspection sweep was under way (control.mission.inspection_speed 1 m/s) with the mission selected...
+  const auto& last_driving = *std::find_if(commands.rbegin(), commands.rend(), [](const auto& k) {
+    return k.target_speed > 0;
+  });
+  EXPECT_EQ(last_driving.target_speed, 1.0);
+  EXPECT_FALSE(last_driving.brake_hard);
+  EXPECT_EQ(last_driving.mission, Mission::Inspection);
+  // ...and the end is drivers.vcu.stop_frames (3) safe Commands, nothing after them.
+  for (std::size_t i = commands.size() - 3; i < commands.size(); ++i) {
+    EXPECT_EQ(commands[i].target_speed, 0.0) << i;
+    EXPECT_TRUE(commands[i].brake_hard) << i;
+  }
+  const std::string out = run.output();
+  EXPECT_NE(out.find("AS Ready -> Driving"), std::string::npos) << out;
+  EXPECT_NE(out.find("stopping (signal)"), std::string::npos) << out;
+  EXPECT_NE(out.find("VCU link stopped after 3 safe commands"), std::string::npos) << out;
+
+  // Without --until-finished a signal is a normal end; the camera delivered its frames at about 20 fps.
+  const auto r = nlohmann::json::parse(slurp(report_path));
+  EXPECT_EQ(r["ended_by"], "signal");
+  EXPECT_EQ(r["as_state"], "Driving");
+  const auto& cam = r["drivers"]["camera"];
+  ASSERT_TRUE(cam.is_object()) << r.dump(2);
+  EXPECT_GT(cam["frames"].get<double>(), 0.3 * 20 * r["wall_time_s"].get<double>()) << cam.dump();
+  EXPECT_EQ(cam["size_mismatches"], 0);
+  EXPECT_NE(out.find("camera "), std::string::npos) << out;
+  EXPECT_NE(out.find(" fps [dropped"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace fsd
