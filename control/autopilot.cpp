@@ -111,6 +111,35 @@ void Autopilot::finish(Stamp now) {
   (void)now;
 }
 
+void Autopilot::detect_open_end() {
+  // Only the first time round on real-time plans: a loop's recorded lap never ends.
+  if (run_out_ || finished_ || !plan_ || !state_ || plan_->points.size() < 2 || !lap_counter_ ||
+      lap_counter_->laps_completed() > 0 || config_.mission.open_end_sight <= 0 ||
+      odometer_ < config_.mission.open_end_min_travel)
+    return;
+  const PathPoint& end = plan_->points.back();
+  const Vec2 dir(std::cos(end.yaw), std::sin(end.yaw));
+  // The walk stopped well inside what the sensors see: if the track went on, its next cones (≤ 5 m apart by the
+  // rules) would be mapped beyond the last crossing.
+  if ((end.p - state_->pose.position()).norm() > config_.mission.open_end_sight) return;
+  if ((end.p - lap_counter_->line().mid()).norm() < config_.laps.hysteresis) return;  // a loop closing
+  for (const auto& c : cones_) {
+    if (!c.position.allFinite()) continue;
+    const Vec2 d = c.position.head<2>() - end.p;
+    if (d.dot(dir) > 1.0 && d.norm() < 10.0) return;
+  }
+  Path out = *plan_;
+  out.closed = false;
+  open_end_s_ = out.length();
+  const double ds = std::max(0.05, config_.planner.ds);
+  for (double s = ds; s <= config_.mission.stop_distance + 1e-9; s += ds)
+    out.points.push_back({end.p + s * dir, 0, 0, 0, 0});
+  compute_geometry(out);
+  SpeedProfile(config_.speed.realtime()).apply(out, std::max(0.0, state_->speed()), 0.0);
+  run_out_ = std::move(out);
+  follower_.reset();
+}
+
 void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out) {
   const VehicleState& st = *state_;
   const Vec2 pos = st.pose.position();
@@ -121,6 +150,14 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
       const auto ev = lap_counter_->update(now, pos);
       if (!was_timing && lap_counter_->timing() && !lap1_start_) lap1_start_ = lap_counter_->last_crossing();
       if (lap_counter_->laps_completed() == 0) trajectory_.record(st);
+      // An open layout ends at its last cones: one run, timed from the start of the mission.
+      if (run_out_ && !finished_ && last_follow && last_follow->ok && last_follow->s >= open_end_s_) {
+        const double t = now - lap1_start_.value_or(mission_start_);
+        lap_times_.push_back(t);
+        out.lap = LapEvent{1, now, t};
+        finish(now);
+        break;
+      }
       if (ev) {
         lap_times_.push_back(ev->time_s);
         out.lap = ev;
@@ -178,6 +215,10 @@ const Path* Autopilot::select_path(Stamp now, PathSource& source) {
   switch (mission_) {
     case Mission::Trackdrive:
     case Mission::Autocross: {
+      if (run_out_) {
+        source = PathSource::Straight;
+        return &*run_out_;
+      }
       const bool lap2 = lap_path_ && lap_counter_ && lap_counter_->laps_completed() >= 1;
       const bool gnss_ok = gnss_good_ && gnss_good_since_ && now - *gnss_good_since_ <= config_.gnss_timeout;
       if (lap2) {
@@ -221,7 +262,10 @@ ControlOutput Autopilot::step(Stamp now) {
   if (driving && !started_ && state_) start_mission(now);
 
   // Paths of the mission: real-time plan, acceleration straight, skid pad figure of eight.
-  if (uses_planner()) plan_realtime(now, out);
+  if (uses_planner()) {
+    plan_realtime(now, out);
+    if (started_ && out.plan_ok) detect_open_end();
+  }
   if (state_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest) && new_cones_ && !finished_) {
     new_cones_ = false;
     const Pose2 origin = started_ ? start_pose_ : state_->pose;
@@ -263,7 +307,7 @@ ControlOutput Autopilot::step(Stamp now) {
   }
   // The fixed paths count as plans for the watchdog while they exist.
   if ((straight_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest)) ||
-      (mission_ == Mission::Skidpad && (skidpad_plan_ || entry_)))
+      (mission_ == Mission::Skidpad && (skidpad_plan_ || entry_)) || run_out_)
     supervisor_.heartbeat(InputStream::Plan, now);
 
   // Follow the mission's path.

@@ -93,6 +93,8 @@ const ConfigSection<MissionConfig>& mission_section() {
           .number("acceleration_length", &C::acceleration_length, 10, 500, "m", "Acceleration: start line to finish line.")
           .number("acceleration_stop_distance", &C::acceleration_stop_distance, 5, 500, "m", "Acceleration: stop within this after the finish.")
           .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m", "Start pose to start line when no timing cones are seen.")
+          .number("open_end_sight", &C::open_end_sight, 0, 50, "m", "Open layout: a plan ending this near with no cone beyond ends the track (0: off).")
+          .number("open_end_min_travel", &C::open_end_min_travel, 0, 1000, "m", "Open layout: driven this far before an end of the track is believed.")
           .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m", "EBS test: ask for Emergency this far past the start line.")
           .number("skidpad_exit_length", &C::skidpad_exit_length, 5, 100, "m", "Skid pad exit lane past the crossing.")
           .number("skidpad_entry_speed", &C::skidpad_entry_speed, 0.5, 20, "m/s", "Skid pad speed until the circles are fitted.", true)
