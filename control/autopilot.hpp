@@ -95,7 +95,7 @@ class Autopilot {
   void plan_realtime(Stamp now, ControlOutput& out);
   void update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out);
   void finish(Stamp now);
-  void detect_open_end();
+  void detect_open_end(Stamp now);
   const Path* select_path(Stamp now, PathSource& source);
   bool uses_planner() const { return mission_ == Mission::Trackdrive || mission_ == Mission::Autocross; }
   int target_laps() const { return mission_ == Mission::Autocross ? 1 : config_.mission.laps; }
