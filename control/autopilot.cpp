@@ -111,6 +111,38 @@ void Autopilot::finish(Stamp now) {
   (void)now;
 }
 
+void Autopilot::detect_open_end(Stamp now) {
+  // Only the first time round on real-time plans: a loop's recorded lap never ends.
+  if (run_out_ || finished_ || !plan_ || !state_ || plan_->points.size() < 2 || !lap_counter_ ||
+      lap_counter_->laps_completed() > 0 || config_.mission.open_end_sight <= 0 ||
+      odometer_ < config_.mission.open_end_min_travel)
+    return;
+  // Only on a fresh view: with the sensors silent, no cones beyond the plan proves nothing.
+  if (now - cones_stamp_ > 0.3) return;
+  const PathPoint& end = plan_->points.back();
+  const Vec2 dir(std::cos(end.yaw), std::sin(end.yaw));
+  // The walk stopped well inside what the sensors see: if the track went on, its next cones (≤ 5 m apart by the
+  // rules) would be mapped beyond the last crossing.
+  if ((end.p - state_->pose.position()).norm() > config_.mission.open_end_sight) return;
+  const TimingLine& line = lap_counter_->line();
+  if ((end.p - line.mid()).norm() < config_.laps.hysteresis && dir.dot(line.forward) > 0.5) return;  // loop closing
+  for (const auto& c : cones_) {
+    if (!c.position.allFinite()) continue;
+    const Vec2 d = c.position.head<2>() - end.p;
+    if (d.dot(dir) > 1.0 && d.norm() < 10.0) return;
+  }
+  Path out = *plan_;
+  out.closed = false;
+  open_end_s_ = out.length();
+  const double ds = std::max(0.05, config_.planner.ds);
+  for (double s = ds; s <= config_.mission.stop_distance + 1e-9; s += ds)
+    out.points.push_back({end.p + s * dir, 0, 0, 0, 0});
+  compute_geometry(out);
+  SpeedProfile(config_.speed.realtime()).apply(out, std::max(0.0, state_->speed()), 0.0);
+  run_out_ = std::move(out);
+  follower_.reset();
+}
+
 void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out) {
   const VehicleState& st = *state_;
   const Vec2 pos = st.pose.position();
@@ -121,10 +153,39 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
       const auto ev = lap_counter_->update(now, pos);
       if (!was_timing && lap_counter_->timing() && !lap1_start_) lap1_start_ = lap_counter_->last_crossing();
       if (lap_counter_->laps_completed() == 0) trajectory_.record(st);
+      // An open layout ends at its last cones: one run, timed from the start of the mission.
+      if (run_out_ && !finished_ && last_follow && last_follow->ok && last_follow->s >= open_end_s_) {
+        const double t = now - lap1_start_.value_or(mission_start_);
+        lap_times_.push_back(t);
+        out.lap = LapEvent{1, now, t};
+        finish(now);
+        break;
+      }
+      // Shortly before the end of lap 1, close the lap with the plan ahead and take it: the car then crosses the
+      // line at the lap's speed, so lap 2 is a flying lap.
+      const double early = config_.trajectory.early_build_distance;
+      if (!lap_path_ && !ev && early > 0 && target_laps() > 1 && lap_counter_->laps_completed() == 0 &&
+          lap_counter_->timing() && plan_ && odometer_ > config_.trajectory.min_lap_length) {
+        const TimingLine& line = lap_counter_->line();
+        const double before = -line.past(pos);
+        const bool across = std::abs((pos - line.mid()).dot(Vec2(-line.forward.y(), line.forward.x()))) <
+                            0.5 * (line.b - line.a).norm() + config_.laps.line_margin;
+        const Vec2 heading(std::cos(st.pose.yaw), std::sin(st.pose.yaw));
+        if (before > 0 && before < early && across && heading.dot(line.forward) > 0.7) {
+          std::vector<Vec2> ahead;
+          for (const auto& q : plan_->points) ahead.push_back(q.p);
+          const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), now, cones_, convention_,
+                                               SpeedProfile(config_.speed.known()), ahead);
+          if (built.path) {
+            lap_path_ = *built.path;
+            follower_.reset();
+          }
+        }
+      }
       if (ev) {
         lap_times_.push_back(ev->time_s);
         out.lap = ev;
-        if (ev->lap == 1 && target_laps() > 1) {
+        if (ev->lap == 1 && target_laps() > 1 && !lap_path_) {
           const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), ev->t, cones_, convention_,
                                                SpeedProfile(config_.speed.known()));
           if (built.path) lap_path_ = *built.path;
@@ -178,7 +239,11 @@ const Path* Autopilot::select_path(Stamp now, PathSource& source) {
   switch (mission_) {
     case Mission::Trackdrive:
     case Mission::Autocross: {
-      const bool lap2 = lap_path_ && lap_counter_ && lap_counter_->laps_completed() >= 1;
+      if (run_out_) {
+        source = PathSource::Straight;
+        return &*run_out_;
+      }
+      const bool lap2 = lap_path_ && lap_counter_ && target_laps() > 1;  // from shortly before the first line
       const bool gnss_ok = gnss_good_ && gnss_good_since_ && now - *gnss_good_since_ <= config_.gnss_timeout;
       if (lap2) {
         supervisor_.report(now, "gnss", "fix lost", "fallback to real-time planning", !gnss_ok);
@@ -221,8 +286,15 @@ ControlOutput Autopilot::step(Stamp now) {
   if (driving && !started_ && state_) start_mission(now);
 
   // Paths of the mission: real-time plan, acceleration straight, skid pad figure of eight.
-  if (uses_planner()) plan_realtime(now, out);
-  if (state_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest) && new_cones_ && !finished_) {
+  if (uses_planner()) {
+    plan_realtime(now, out);
+    if (started_ && out.plan_ok) detect_open_end(now);
+  }
+  // The lane is refitted as more of it is seen, until the car is well down it: at speed a refit's sideways jump
+  // would only shake the car.
+  const bool lane_settled = straight_ && straight_timing_start_ && progress_s_ > straight_start_s_ + 30.0;
+  if (state_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest) && new_cones_ && !finished_ &&
+      !lane_settled) {
     new_cones_ = false;
     const Pose2 origin = started_ ? start_pose_ : state_->pose;
     const double length = 2.0 * config_.mission.acceleration_length + config_.mission.acceleration_stop_distance;
@@ -252,7 +324,9 @@ ControlOutput Autopilot::step(Stamp now) {
       if (on_entry) {
         if (auto g = fit_skidpad(cones_, origin, convention_)) {
           SkidpadPlan plan = skidpad_path(*g, origin, config_.mission.skidpad_exit_length, config_.planner.ds);
-          SpeedProfile(config_.speed.known()).apply(plan.path, speed, 0.0);
+          SpeedLimits limits = config_.speed.known();
+          limits.mu = config_.speed.mu * config_.speed.mu_margin_skidpad;
+          SpeedProfile(limits).apply(plan.path, speed, 0.0);
           plan.path.stamp = cones_stamp_;
           skidpad_ = g;
           skidpad_plan_ = std::move(plan);
@@ -263,7 +337,7 @@ ControlOutput Autopilot::step(Stamp now) {
   }
   // The fixed paths count as plans for the watchdog while they exist.
   if ((straight_ && (mission_ == Mission::Acceleration || mission_ == Mission::EbsTest)) ||
-      (mission_ == Mission::Skidpad && (skidpad_plan_ || entry_)))
+      (mission_ == Mission::Skidpad && (skidpad_plan_ || entry_)) || run_out_)
     supervisor_.heartbeat(InputStream::Plan, now);
 
   // Follow the mission's path.

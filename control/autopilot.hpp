@@ -81,6 +81,7 @@ class Autopilot {
   const std::vector<double>& lap_times() const { return lap_times_; }
   const std::vector<Cone>& cones() const { return cones_; }
   const std::optional<SkidpadGeometry>& skidpad() const { return skidpad_; }
+  bool open_end_seen() const { return run_out_.has_value(); }  // an open layout's end is in sight
   AsState as_state() const { return supervisor_.as_state(); }
   const AutopilotConfig& config() const { return config_; }
 
@@ -94,6 +95,7 @@ class Autopilot {
   void plan_realtime(Stamp now, ControlOutput& out);
   void update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out);
   void finish(Stamp now);
+  void detect_open_end(Stamp now);
   const Path* select_path(Stamp now, PathSource& source);
   bool uses_planner() const { return mission_ == Mission::Trackdrive || mission_ == Mission::Autocross; }
   int target_laps() const { return mission_ == Mission::Autocross ? 1 : config_.mission.laps; }
@@ -131,6 +133,8 @@ class Autopilot {
   std::optional<SkidpadGeometry> skidpad_;
   std::optional<SkidpadPlan> skidpad_plan_;
   std::optional<Path> entry_;
+  std::optional<Path> run_out_;  // open layout: the last plan, then straight on to a stop past the end line
+  double open_end_s_ = 0;        // arc length of the end line on run_out_
   int skidpad_mark_ = 0;
   std::optional<Stamp> skidpad_mark_time_;
   std::vector<double> lap_times_;

@@ -63,6 +63,7 @@ const ConfigSection<FollowerConfig>& follower_section() {
           .number("lqr_dt", &C::lqr_dt, 0.005, 0.5, "s", "LQR discretisation step.")
           .number("lqr_preview", &C::lqr_preview, 0, 2, "s", "LQR curvature feed-forward taken this far ahead.", true)
           .number("speed_preview", &C::speed_preview, 0, 3, "s", "Target speed taken this far ahead on the path.", true)
+          .number("speed_lead", &C::speed_lead, 0, 3, "s", "Target speed leads by the path's acceleration times this (1 / VCU speed-loop gain).", true)
           .number("search_window", &C::search_window, 1, 100, "m", "Projection window around the last foot point.")
           .number("max_offset", &C::max_offset, 0.5, 20, "m", "Farther from the path is off path (stop).");
   return s;
@@ -75,6 +76,7 @@ const ConfigSection<SpeedConfig>& speed_section() {
           .number("mu", &C::mu, 0.1, 3, "", "Tyre-road friction coefficient of the car.", true)
           .number("mu_margin_realtime", &C::mu_margin_realtime, 0.1, 1, "", "Share of mu when planning on what is seen.", true)
           .number("mu_margin_known", &C::mu_margin_known, 0.1, 1, "", "Share of mu on a known path (lap 2, skid pad).", true)
+          .number("mu_margin_skidpad", &C::mu_margin_skidpad, 0.1, 1, "", "Share of mu on the skid pad.", true)
           .number("a_accel_max", &C::a_accel_max, 0.1, 30, "m/s²", "Traction acceleration limit.", true)
           .number("a_brake_max", &C::a_brake_max, 0.1, 30, "m/s²", "Service brake deceleration limit.", true)
           .number("power_max", &C::power_max, 0, 1e6, "W", "Power at the wheels; 0 = no power limit.")
@@ -93,6 +95,8 @@ const ConfigSection<MissionConfig>& mission_section() {
           .number("acceleration_length", &C::acceleration_length, 10, 500, "m", "Acceleration: start line to finish line.")
           .number("acceleration_stop_distance", &C::acceleration_stop_distance, 5, 500, "m", "Acceleration: stop within this after the finish.")
           .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m", "Start pose to start line when no timing cones are seen.")
+          .number("open_end_sight", &C::open_end_sight, 0, 50, "m", "Open layout: a plan ending this near with no cone beyond ends the track (0: off).")
+          .number("open_end_min_travel", &C::open_end_min_travel, 0, 1000, "m", "Open layout: driven this far before an end of the track is believed.")
           .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m", "EBS test: ask for Emergency this far past the start line.")
           .number("skidpad_exit_length", &C::skidpad_exit_length, 5, 100, "m", "Skid pad exit lane past the crossing.")
           .number("skidpad_entry_speed", &C::skidpad_entry_speed, 0.5, 20, "m/s", "Skid pad speed until the circles are fitted.", true)
@@ -143,7 +147,8 @@ const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
           .number("max_closure_gap", &C::max_closure_gap, 0.5, 50, "m", "The lap must come back this close to its start.")
           .number("min_lap_length", &C::min_lap_length, 1, 10000, "m", "Shorter recorded laps are rejected.")
           .boolean("recentre", &C::recentre, "Pull the lap onto the middle of the mapped cones.")
-          .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m", "Cones this close along and across count for recentring.");
+          .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m", "Cones this close along and across count for recentring.")
+          .number("early_build_distance", &C::early_build_distance, 0, 50, "m", "Lap 1's path is built and taken this far before the line (0: at the line).");
   return s;
 }
 

@@ -32,8 +32,9 @@ struct FollowerConfig {
   double lqr_q_heading = 1.0;          // 1/rad²
   double lqr_r = 3.0;                  // 1/rad²
   double lqr_dt = 0.05;                // s: discretisation of the error model
-  double lqr_preview = 0.0;            // s: curvature feed-forward taken this far ahead (extra anticipation)
+  double lqr_preview = 0.1;            // s: curvature feed-forward taken this far ahead (steering actuator lag)
   double speed_preview = 0.4;          // s: the target speed is the path's speed this far ahead
+  double speed_lead = 0.0;             // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)
   double search_window = 15.0;         // m: projection window around the last foot point on the same path
   double max_offset = 4.0;             // m: farther from the path is "off path" (result not ok)
 };

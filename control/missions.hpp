@@ -16,7 +16,8 @@ namespace fsd {
 struct SpeedConfig {
   double mu = 1.2;                  // tyre–road friction of the car (estimate, or the virtual car's)
   double mu_margin_realtime = 0.6;  // share of μ when planning on what is seen (lap 1, fallback, autocross)
-  double mu_margin_known = 0.92;    // share of μ on a known path (lap 2 and later, skid pad)
+  double mu_margin_known = 0.92;    // share of μ on a known path (lap 2 and later)
+  double mu_margin_skidpad = 0.92;  // share of μ on the skid pad (its curvature flips at the crossing)
   double a_accel_max = 6.0;         // m/s², traction
   double a_brake_max = 8.0;         // m/s², service brakes
   double power_max = 0.0;           // W at the wheels; 0 = no power limit
@@ -34,6 +35,8 @@ struct MissionConfig {
   double acceleration_length = 75.0;     // m: start line to finish line
   double acceleration_stop_distance = 70.0;  // m: stop within this after the finish (the braking zone is 100 m)
   double acceleration_start_offset = 0.0;    // m from the start pose to the start line when no timing cones are seen
+  double open_end_sight = 12.0;          // m: a plan ending this near with no cone beyond is an open layout's end
+  double open_end_min_travel = 20.0;     // m driven before an end of the track is believed
   double ebs_trigger_distance = 40.0;    // m past the start line where the EBS test asks for Emergency
   double skidpad_exit_length = 25.0;     // m of exit lane past the crossing
   double skidpad_entry_speed = 4.0;      // m/s until the circles are fitted

@@ -56,13 +56,17 @@ double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const Colou
 }
 
 TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector<Cone>& map_cones,
-                                           const ColourConvention& convention, const SpeedProfile& speed) const {
+                                           const ColourConvention& convention, const SpeedProfile& speed,
+                                           const std::vector<Vec2>& ahead) const {
   TrajectoryResult r;
   Path raw;
   raw.closed = true;
   raw.stamp = t1;
   for (const auto& s : samples_)
     if (s.t >= t0 && s.t <= t1) raw.points.push_back({s.p, 0, 0, 0, 0});
+  for (const auto& q : ahead)
+    if (q.allFinite() && (raw.points.empty() || (q - raw.points.back().p).norm() >= config_.sample_spacing))
+      raw.points.push_back({q, 0, 0, 0, 0});
   if (raw.points.size() < 10) {
     r.reason = "too few recorded poses for a lap (" + std::to_string(raw.points.size()) + ")";
     return r;

@@ -22,6 +22,7 @@ struct RecordedTrajectoryConfig {
   double min_lap_length = 30.0;      // m
   bool recentre = true;              // pull the line to the middle of the mapped cones
   double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
+  double early_build_distance = 0.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
 };
 
 struct TrajectoryResult {
@@ -41,8 +42,10 @@ class RecordedTrajectory {
 
   // The closed lap from the samples stamped within [t0, t1] (the lap's line crossings, or the run start).
   // `map_cones` (map frame) are used for recentring when enabled; may be empty.
+  // `ahead` (optional): the planned line from the car on, appended to close a lap that is not yet complete (the
+  // lap path is built shortly before the line, so that the car crosses it at the lap's speed).
   TrajectoryResult build(Stamp t0, Stamp t1, const std::vector<Cone>& map_cones, const ColourConvention& convention,
-                         const SpeedProfile& speed) const;
+                         const SpeedProfile& speed, const std::vector<Vec2>& ahead = {}) const;
 
   const RecordedTrajectoryConfig& config() const { return config_; }
 

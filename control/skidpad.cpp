@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "control/smoothing.hpp"
+
 namespace fsd {
 
 namespace {
@@ -100,7 +102,8 @@ std::optional<SkidpadGeometry> fit_skidpad(const std::vector<Cone>& cones, const
   return g;
 }
 
-SkidpadPlan skidpad_path(const SkidpadGeometry& g, const Pose2& start, double exit_length, double ds) {
+SkidpadPlan skidpad_path(const SkidpadGeometry& g, const Pose2& start, double exit_length, double ds,
+                         double transition) {
   SkidpadPlan plan;
   Path& p = plan.path;
   auto add = [&](const Vec2& q) {
@@ -130,6 +133,13 @@ SkidpadPlan skidpad_path(const SkidpadGeometry& g, const Pose2& start, double ex
   circle(g.left.centre, false);
   idx[4] = p.points.size();
   for (double s = 0; s <= exit_length + 1e-9; s += ds) add(g.crossing + s * g.forward);
+  // Points are (nearly) uniformly spaced, so the smoother keeps each index where it was along the figure.
+  if (transition > 0) {
+    std::vector<Vec2> pts;
+    for (const auto& q : p.points) pts.push_back(q.p);
+    pts = whittaker_smooth(pts, false, whittaker_lambda(transition, ds));
+    for (std::size_t i = 0; i < pts.size(); ++i) p.points[i].p = pts[i];
+  }
   compute_geometry(p);
   for (std::size_t k = 0; k < 5; ++k) plan.crossing_s[k] = p.points[std::min(idx[k], p.points.size() - 1)].s;
   return plan;

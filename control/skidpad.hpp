@@ -42,7 +42,11 @@ struct SkidpadPlan {
 };
 
 // The figure-of-eight path (open, speeds zero: the speed profile runs after) from the start pose's foot on the
-// entry axis to exit_length past the crossing.
-SkidpadPlan skidpad_path(const SkidpadGeometry& g, const Pose2& start, double exit_length, double ds);
+// entry axis to exit_length past the crossing. The curvature steps at the crossing (straight → right circle,
+// right → left, left → straight) are smoothed over about `transition` m: a steering actuator with a rate limit
+// cannot follow a step, and the lag would carry the car wide by metres at the circle's speed. The smoothed path
+// leaves the circles by a few centimetres around the crossing only.
+SkidpadPlan skidpad_path(const SkidpadGeometry& g, const Pose2& start, double exit_length, double ds,
+                         double transition = 6.0);
 
 }  // namespace fsd

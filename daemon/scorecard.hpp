@@ -36,6 +36,9 @@ class Scorecard {
  public:
   // `laps_to_finish`: timed laps of the mission (trackdrive N, autocross 1, acceleration 1, skid pad 4).
   // `stop_zone_m`: how far past the last timing line the car must come to rest.
+  // An open layout (trackdrive or autocross on boundaries that do not close, docs/control.md) is one run: timed
+  // from the car's first motion to the line across the last pair of boundary cones, whatever `laps_to_finish`.
+  // The EBS test is over when the AS goes to Emergency after the start line; it must stop on the lane.
   Scorecard(const Track& track, Mission mission, int laps_to_finish, double stop_zone_m, int seed);
 
   // Called at every simulation step with the true state (monotonic time).
@@ -50,6 +53,7 @@ class Scorecard {
   void set_section(const std::string& key, const nlohmann::json& value);
 
   bool finished() const { return finished_; }
+  bool open_layout() const { return open_; }
   bool stopped_after_finish() const { return stopped_after_finish_; }
   int laps_completed() const { return static_cast<int>(laps_.size()); }
   const std::vector<LapRecord>& laps() const { return laps_; }
@@ -65,13 +69,18 @@ class Scorecard {
   int seed_;
   sim::ReferenceLine ref_;
   sim::TimingGates gates_;
+  bool open_ = false;
+  sim::Gate end_gate_;  // open layouts: across the last left and right boundary cones
+  sim::Gate finish_;    // the gate the finish was crossed at
+  double ebs_trigger_speed_ = 0;
+  std::optional<Vec2> ebs_trigger_at_;
+  double ebs_stop_distance_ = 0;
   std::optional<sim::VehicleTruth> last_;
   std::optional<Stamp> lap_start_;
   double cte_sq_ = 0, cte_max_ = 0, v_max_ = 0;
   std::size_t cte_n_ = 0;
   std::vector<LapRecord> laps_;
   bool finished_ = false, stopped_after_finish_ = false, left_stop_zone_ = false;
-  std::size_t finish_gate_ = 0;
   double sim_time_ = 0, wall_time_s_ = 0;
   int cones_hit_ = 0;
   AsState as_state_ = AsState::Off;
