@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "drivers/camera/camera_calibration.hpp"
+#include "tests/daemon/fsd_process.hpp"
 
 namespace fsd {
 namespace {
@@ -22,13 +23,9 @@ struct Result {
 };
 
 Result fsd(const std::string& args) {
-  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int rc = pclose(p);
-  return {WEXITSTATUS(rc), out};
+  Result r;
+  r.status = test::run_fsd(args, &r.out);
+  return r;
 }
 
 class CalibrateHomographyCommand : public ::testing::Test {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "daemon/settings.hpp"
+#include "tests/daemon/fsd_process.hpp"
 
 namespace fsd {
 namespace {
@@ -21,13 +22,9 @@ struct Result {
 };
 
 Result run(const std::string& args) {
-  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int rc = pclose(p);
-  return {WEXITSTATUS(rc), out};
+  Result r;
+  r.status = test::run_fsd(args, &r.out);
+  return r;
 }
 
 TEST(Cli, HelpAndVersion) {

@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/daemon/fsd_process.hpp"
+
 namespace fsd {
 namespace {
 
@@ -27,24 +29,20 @@ struct FsdRun {
   json report;
 };
 
-std::string tmp(const std::string& name) { return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name; }
+using test::temp_path;
 
 // Runs fsd on epfl_track_1 with `faults` as the sim.faults section; `lidar`: simulate the VLP-16 (slower);
 // `max_sim_time` > 0 ends the run early (the mission is then not finished).
 FsdRun run_with_faults(const std::string& name, const json& faults, bool lidar = false, double max_sim_time = 0) {
-  const std::string config = tmp(name + ".json"), out = tmp(name + "_report.json");
+  const std::string config = temp_path(name + ".json"), out = temp_path(name + "_report.json");
   json cfg = {{"sim", {{"enable_camera", false}, {"enable_lidar", lidar}}}};
   if (!faults.is_null()) cfg["sim"]["faults"] = faults;
   if (max_sim_time > 0) cfg["run"] = {{"max_sim_time", max_sim_time}};
   std::ofstream(config) << cfg.dump();
-  const std::string cmd = std::string(FSD_BINARY) +
-                          " run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv"
-                          " --laps 2 --config " + config + " --report " + out + " 2>&1";
+  const std::string args = "run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv"
+                           " --laps 2 --config " + config + " --report " + out;
   FsdRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.log += buf.data();
-  r.rc = WEXITSTATUS(pclose(p));
+  r.rc = test::run_fsd(args, &r.log);
   std::ifstream f(out);
   if (f) r.report = json::parse(f);
   return r;

@@ -12,22 +12,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/daemon/fsd_process.hpp"
+
 namespace fsd {
 namespace {
 
-int run(const std::string& args, std::string* out = nullptr) {
-  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  std::string text;
-  while (std::fgets(buf.data(), buf.size(), p)) text += buf.data();
-  const int rc = pclose(p);
-  if (out) *out = text;
-  return WEXITSTATUS(rc);
-}
-
-// Tests run as separate processes under ctest -j: files get the process id in their names.
-std::string tmp(const std::string& name) { return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name; }
+using test::run_fsd;
+using test::temp_path;
 
 nlohmann::json report(const std::string& path) {
   std::ifstream f(path);
@@ -36,15 +27,15 @@ nlohmann::json report(const std::string& path) {
 
 std::string fast_config() {
   // Truth perception needs neither LiDAR nor camera; leaving them out makes the run ~10× faster.
-  const std::string path = tmp("fsd_fast.json");
+  const std::string path = temp_path("fsd_fast.json");
   std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
   return path;
 }
 
 TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
-  const std::string out = tmp("track1.json");
+  const std::string out = temp_path("track1.json");
   std::string log;
-  ASSERT_EQ(run("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 --report " +
+  ASSERT_EQ(run_fsd("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 --report " +
                     out,
                 &log),
             0)
@@ -69,11 +60,11 @@ TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
 }
 
 TEST(SimRun, HeadlessRunsAreDeterministic) {
-  const std::string a = tmp("det_a.json"), b = tmp("det_b.json");
+  const std::string a = temp_path("det_a.json"), b = temp_path("det_b.json");
   const std::string args = "run --sim --headless --until-finished --config " + fast_config() +
                            " --track ../shared/tracks/epfl_track_5.csv --seed 3 --report ";
-  ASSERT_EQ(run(args + a), 0);
-  ASSERT_EQ(run(args + b), 0);
+  ASSERT_EQ(run_fsd(args + a), 0);
+  ASSERT_EQ(run_fsd(args + b), 0);
   const auto ra = report(a), rb = report(b);
   EXPECT_EQ(ra["laps"], rb["laps"]);
   EXPECT_EQ(ra["sim_time_s"], rb["sim_time_s"]);
@@ -82,8 +73,8 @@ TEST(SimRun, HeadlessRunsAreDeterministic) {
 TEST(SimRun, OtherLoopsFinishCleanly) {
   for (const char* track : {"epfl_track_2", "epfl_fsds_competition_1", "epfl_fsds_default", "epfl_21_05_2023"}) {
     SCOPED_TRACE(track);
-    const std::string out = tmp(std::string(track) + ".json");
-    ASSERT_EQ(run("run --sim --headless --until-finished --config " + fast_config() + " --track ../shared/tracks/" +
+    const std::string out = temp_path(std::string(track) + ".json");
+    ASSERT_EQ(run_fsd("run --sim --headless --until-finished --config " + fast_config() + " --track ../shared/tracks/" +
                   track + ".csv --report " + out),
               0);
     const auto r = report(out);
@@ -96,8 +87,8 @@ TEST(SimRun, OtherLoopsFinishCleanly) {
 TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
   for (const char* track : {"epfl_acceleration", "amz_fssim_acceleration"}) {
     SCOPED_TRACE(track);
-    const std::string out = tmp(std::string(track) + ".json");
-    ASSERT_EQ(run("run --sim --headless --until-finished --mission acceleration --config " + fast_config() +
+    const std::string out = temp_path(std::string(track) + ".json");
+    ASSERT_EQ(run_fsd("run --sim --headless --until-finished --mission acceleration --config " + fast_config() +
                   " --track ../shared/tracks/" + track + ".csv --report " + out),
               0);
     const auto r = report(out);
@@ -114,20 +105,20 @@ TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
 
 TEST(SimRun, BadInputExitsTwoNamingIt) {
   std::string log;
-  EXPECT_EQ(run("run --sim --headless --track /nonexistent.csv", &log), 2);
+  EXPECT_EQ(run_fsd("run --sim --headless --track /nonexistent.csv", &log), 2);
   EXPECT_NE(log.find("/nonexistent.csv"), std::string::npos) << log;
-  EXPECT_EQ(run("run --sim --headless --mission drifting", &log), 2);
+  EXPECT_EQ(run_fsd("run --sim --headless --mission drifting", &log), 2);
   EXPECT_NE(log.find("run.mission"), std::string::npos) << log;
-  EXPECT_EQ(run("run --sim --headless --laps 0", &log), 2);
+  EXPECT_EQ(run_fsd("run --sim --headless --laps 0", &log), 2);
   EXPECT_NE(log.find("run.laps"), std::string::npos) << log;
 }
 
 TEST(SimCommand, WritesAPcapTheDriverReads) {
-  const std::string pcap = tmp("sim.pcap");
+  const std::string pcap = temp_path("sim.pcap");
   std::string log;
-  ASSERT_EQ(run("sim --track ../shared/tracks/epfl_track_1.csv --duration 2 --fast --lidar-pcap " + pcap, &log), 0)
+  ASSERT_EQ(run_fsd("sim --track ../shared/tracks/epfl_track_1.csv --duration 2 --fast --lidar-pcap " + pcap, &log), 0)
       << log;
-  ASSERT_EQ(run("lidar-dump " + pcap, &log), 0) << log;
+  ASSERT_EQ(run_fsd("lidar-dump " + pcap, &log), 0) << log;
   // 2 s at 754 packets/s (one packet period is 1327.104 µs): 1507 complete packets.
   EXPECT_NE(log.find("data packets:     1507 accepted, 0 rejected"), std::string::npos) << log;
 }

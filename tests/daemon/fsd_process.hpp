@@ -1,0 +1,33 @@
+#pragma once
+// The fsd binary run as a user runs it, for the daemon's end-to-end tests: exit status and everything it printed
+// (stdout and stderr). And temporary file names unique to the test process, since ctest -j runs tests in parallel
+// processes that share TempDir().
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fsd::test {
+
+// Runs `FSD_BINARY args` through the shell; returns its exit status, and its output in *out when given.
+inline int run_fsd(const std::string& args, std::string* out = nullptr) {
+  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return -1;
+  std::array<char, 4096> buf{};
+  std::string text;
+  while (std::fgets(buf.data(), buf.size(), p)) text += buf.data();
+  const int rc = pclose(p);
+  if (out) *out = std::move(text);
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+inline std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name;
+}
+
+}  // namespace fsd::test
