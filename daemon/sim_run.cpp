@@ -82,6 +82,7 @@ struct SimRun::Impl {
   std::shared_ptr<const ConeDetections> last_detections;
   std::shared_ptr<const std::vector<std::uint8_t>> last_image;
   std::vector<Vec2> lap1_trail, lap2_trail;
+  std::optional<Stamp> lap_started;  // for the dashboard's running lap time: go, then each line crossing
   std::vector<FaultRecord> link_faults;
   std::shared_ptr<spdlog::logger> log = logger("run");
 
@@ -164,6 +165,7 @@ struct SimRun::Impl {
     s.as.lap = static_cast<int>(autopilot->lap_times().size());
     s.as.laps_total = mission_timing(mission, run.laps).first;
     s.as.lap_times = autopilot->lap_times();
+    s.as.lap_time = lap_started && !out.finished ? t - *lap_started : 0.0;
     s.as.control_mode = std::string(to_string(out.source));
     s.as.finished = out.finished;
     if (const auto st = vcu->status()) {
@@ -237,6 +239,8 @@ struct SimRun::Impl {
       card->latency("control").add(out.control_time);
 
       const std::size_t laps_done = autopilot->lap_times().size();
+      if (out.lap) lap_started = out.lap->t;
+      else if (!lap_started && car->vcu().state() == AsState::Driving) lap_started = t;
       if (car->vcu().state() == AsState::Driving && (cycle % 10) == 0)
         (laps_done == 0 ? lap1_trail : lap2_trail).push_back(truth.pose.position());
       card->set_as_state(car->vcu().state());

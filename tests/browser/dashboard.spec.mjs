@@ -153,6 +153,12 @@ test('the plots move: the car drives off after the 5 s in Ready', async () => {
   assert.notEqual(b.values[0], a.values[0], 'the speed curve changes');
   for (const k of ['yaw', 'ay', 'beta']) assert.ok((await page.evaluate((k) => window.__fsd.plots[k].samples, k)) > 10, k);
   assert.equal(await page.textContent('#as-state'), 'DRIVING');
+  // The running lap time counts up while driving (m:ss.ss).
+  const secs = (txt) => { const [m, s] = txt.split(':'); return Number(m) * 60 + Number(s); };
+  const lt0 = secs(await page.textContent('#lap-time'));
+  await page.waitForTimeout(1000);
+  const lt1 = secs(await page.textContent('#lap-time'));
+  assert.ok(lt0 > 0 && lt1 > lt0 + 0.5, `lap time ${lt0} → ${lt1}`);
   await waitFor(page, () => (window.__fsd.scene().topics['/planning/paths']?.lines ?? 0) >= 1, null, 'a planned path');
   await page.click('#topdown');
   await page.waitForTimeout(400);
