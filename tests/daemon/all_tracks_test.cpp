@@ -40,16 +40,15 @@ struct Lap2Exception {
   double margin;   // share over the reference lap time
 };
 const Lap2Exception kLap2Exceptions[] = {
-    {"epfl_track_1", kLap2CteRms, 0.065},             // +6.0 %
-    {"epfl_track_2", kLap2CteRms, 0.065},             // +6.0 %
-    {"epfl_track_3", kLap2CteRms, 0.065},             // +5.8 %
-    {"epfl_track_4", kLap2CteRms, 0.060},             // +5.5 %
-    {"epfl_track_5", kLap2CteRms, 0.070},             // +6.5 %
-    {"epfl_fsds_competition_1", kLap2CteRms, 0.075},  // +7.1 %
-    {"epfl_fsds_competition_2", 0.155, kLap2Margin},  // RMS 0.150 m
-    {"epfl_fsds_competition_3", 0.160, kLap2Margin},  // RMS 0.155 m
-    {"epfl_fsds_default", 0.163, kLap2Margin},        // RMS 0.158 m
-    {"epfl_21_05_2023", kLap2CteRms, 0.090},          // +8.3 %
+    {"epfl_track_2", kLap2CteRms, 0.060},             // +5.6 %
+    {"epfl_track_3", kLap2CteRms, 0.056},             // +5.1 %
+    {"epfl_track_4", kLap2CteRms, 0.057},             // +5.2 %
+    {"epfl_track_5", kLap2CteRms, 0.065},             // +6.0 %
+    {"epfl_fsds_competition_1", 0.157, kLap2Margin},  // RMS 0.152 m
+    {"epfl_fsds_competition_2", 0.162, kLap2Margin},  // RMS 0.157 m
+    {"epfl_fsds_competition_3", 0.165, kLap2Margin},  // RMS 0.160 m
+    {"epfl_fsds_default", 0.164, kLap2Margin},        // RMS 0.159 m
+    {"epfl_21_05_2023", kLap2CteRms, 0.057},          // +5.2 %
 };
 Lap2Exception lap2_bounds(const std::string& name) {
   for (const auto& e : kLap2Exceptions)
