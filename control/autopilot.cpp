@@ -24,6 +24,7 @@ Autopilot::Autopilot(AutopilotConfig config, Mission mission, ColourConvention c
       convention_(convention),
       planner_(config.planner, convention, config.speed.realtime()),
       follower_(config.follower),
+      lap2_follower_(config.lap2.follower(config.follower)),
       supervisor_(config.supervisor),
       trajectory_(config.trajectory) {
   supervisor_.set_mission(mission);
@@ -37,6 +38,7 @@ void Autopilot::set_config(const AutopilotConfig& config) {
   planner_.set_config(config.planner);
   planner_.set_speed_limits(config.speed.realtime());
   follower_.set_config(config.follower);
+  lap2_follower_.set_config(config.lap2.follower(config.follower));
   supervisor_.set_config(config.supervisor);
   // The stored lap's speeds follow the car's limits (μ, margins, v_max) as they are tuned.
   if (lap_path_) SpeedProfile(config.speed.known()).apply(*lap_path_, 0, 0);
@@ -175,10 +177,10 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
           std::vector<Vec2> ahead;
           for (const auto& q : plan_->points) ahead.push_back(q.p);
           const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), now, cones_, convention_,
-                                               SpeedProfile(config_.speed.known()), ahead);
+                                               SpeedProfile(lap2_limits()), ahead);
           if (built.path) {
             lap_path_ = *built.path;
-            follower_.reset();
+            lap2_follower_.reset();
           }
         }
       }
@@ -187,7 +189,7 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
         out.lap = ev;
         if (ev->lap == 1 && target_laps() > 1 && !lap_path_) {
           const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), ev->t, cones_, convention_,
-                                               SpeedProfile(config_.speed.known()));
+                                               SpeedProfile(lap2_limits()));
           if (built.path) lap_path_ = *built.path;
           else supervisor_.report(now, "mission", "lap-2 trajectory not built: " + built.reason,
                                   "keep real-time planning");
@@ -233,6 +235,12 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
     case Mission::None:
       break;
   }
+}
+
+SpeedLimits Autopilot::lap2_limits() const {
+  SpeedLimits l = config_.speed.known();
+  l.mu = config_.speed.mu * config_.lap2.mu_margin;
+  return l;
 }
 
 const Path* Autopilot::select_path(Stamp now, PathSource& source) {
@@ -345,7 +353,10 @@ ControlOutput Autopilot::step(Stamp now) {
   const Path* path = state_ ? select_path(now, source) : nullptr;
   FollowResult follow;
   if (path && state_) {
-    follow = follower_.follow(*path, *state_, now, config_.speed.v_max);
+    PathFollower& f = source == PathSource::Recorded ? lap2_follower_ : follower_;
+    // Back on a path after another one (GNSS regained): the follower's projection hint is from long ago.
+    if (source != last_source_) f.reset();
+    follow = f.follow(*path, *state_, now, config_.speed.v_max);
     if (follow.ok) progress_s_ = follow.s;
   }
   if (driving && started_ && state_) update_mission(now, path ? &follow : nullptr, out);
@@ -390,6 +401,7 @@ ControlOutput Autopilot::step(Stamp now) {
   last_steering_ = cmd.steering;
   out.command = cmd;
   out.source = source;
+  last_source_ = source;
   out.path = path;
   out.follow = follow;
   out.finished = finished_;

@@ -21,6 +21,7 @@
 #include "common/types.hpp"
 #include "control/as_supervisor.hpp"
 #include "control/follower.hpp"
+#include "control/lap2_config.hpp"
 #include "control/lap_counter.hpp"
 #include "control/midline_planner.hpp"
 #include "control/missions.hpp"
@@ -37,6 +38,7 @@ struct AutopilotConfig {
   SupervisorConfig supervisor;
   LapCounterConfig laps;
   RecordedTrajectoryConfig trajectory;
+  Lap2Config lap2;
   double replan_period = 0.1;   // s: the real-time plan is refreshed at least this often (on new cones at once)
   double gnss_timeout = 0.5;    // s without a good GNSS fix: lap 2 falls back to real-time planning
 };
@@ -97,6 +99,7 @@ class Autopilot {
   void finish(Stamp now);
   void detect_open_end(Stamp now);
   const Path* select_path(Stamp now, PathSource& source);
+  SpeedLimits lap2_limits() const;
   bool uses_planner() const { return mission_ == Mission::Trackdrive || mission_ == Mission::Autocross; }
   int target_laps() const { return mission_ == Mission::Autocross ? 1 : config_.mission.laps; }
 
@@ -105,6 +108,7 @@ class Autopilot {
   ColourConvention convention_;
   MidlinePlanner planner_;
   PathFollower follower_;
+  PathFollower lap2_follower_;  // on the recorded lap path (its own gains)
   AsSupervisor supervisor_;
   RecordedTrajectory trajectory_;
 
@@ -145,6 +149,7 @@ class Autopilot {
   Stamp mission_start_ = 0;
   double last_steering_ = 0;
   double progress_s_ = 0;
+  PathSource last_source_ = PathSource::None;
 };
 
 }  // namespace fsd

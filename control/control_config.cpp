@@ -64,6 +64,7 @@ const ConfigSection<FollowerConfig>& follower_section() {
           .number("lqr_preview", &C::lqr_preview, 0, 2, "s", "LQR curvature feed-forward taken this far ahead.", true)
           .number("speed_preview", &C::speed_preview, 0, 3, "s", "Target speed taken this far ahead on the path.", true)
           .number("speed_lead", &C::speed_lead, 0, 3, "s", "Target speed leads by the path's acceleration times this (1 / VCU speed-loop gain).", true)
+          .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s", "The same lead where the path slows down.", true)
           .number("search_window", &C::search_window, 1, 100, "m", "Projection window around the last foot point.")
           .number("max_offset", &C::max_offset, 0.5, 20, "m", "Farther from the path is off path (stop).");
   return s;
@@ -75,7 +76,7 @@ const ConfigSection<SpeedConfig>& speed_section() {
       ConfigSection<C>("control.speed")
           .number("mu", &C::mu, 0.1, 3, "", "Tyre-road friction coefficient of the car.", true)
           .number("mu_margin_realtime", &C::mu_margin_realtime, 0.1, 1, "", "Share of mu when planning on what is seen.", true)
-          .number("mu_margin_known", &C::mu_margin_known, 0.1, 1, "", "Share of mu on a known path (lap 2, skid pad).", true)
+          .number("mu_margin_known", &C::mu_margin_known, 0.1, 1, "", "Share of mu on a known straight (acceleration, EBS test).", true)
           .number("mu_margin_skidpad", &C::mu_margin_skidpad, 0.1, 1, "", "Share of mu on the skid pad.", true)
           .number("a_accel_max", &C::a_accel_max, 0.1, 30, "m/s²", "Traction acceleration limit.", true)
           .number("a_brake_max", &C::a_brake_max, 0.1, 30, "m/s²", "Service brake deceleration limit.", true)
@@ -152,6 +153,20 @@ const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
   return s;
 }
 
+const ConfigSection<Lap2Config>& lap2_section() {
+  using C = Lap2Config;
+  static const auto s =
+      ConfigSection<C>("control.lap2")
+          .number("mu_margin", &C::mu_margin, 0.1, 1, "", "Share of mu of the lap-2 speed profile (recorded line).", true)
+          .number("lqr_q_lateral", &C::lqr_q_lateral, 0, 1e4, "1/m²", "Lap-2 LQR weight of lateral error.", true)
+          .number("lqr_q_heading", &C::lqr_q_heading, 0, 1e4, "1/rad²", "Lap-2 LQR weight of heading error.", true)
+          .number("lqr_r", &C::lqr_r, 1e-4, 1e4, "1/rad²", "Lap-2 LQR weight of steering.", true)
+          .number("speed_preview", &C::speed_preview, 0, 3, "s", "Lap 2: target speed taken this far ahead.", true)
+          .number("speed_lead", &C::speed_lead, 0, 3, "s", "Lap 2: target speed leads by the path's acceleration times this.", true)
+          .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s", "Lap 2: the same lead where the path slows down.", true);
+  return s;
+}
+
 const ConfigSection<AutopilotConfig>& autopilot_section() {
   using C = AutopilotConfig;
   static const auto s =
@@ -169,6 +184,7 @@ void describe_control(ConfigSchema& schema) {
   supervisor_section().describe(schema);
   lap_counter_section().describe(schema);
   trajectory_section().describe(schema);
+  lap2_section().describe(schema);
   autopilot_section().describe(schema);
 }
 
@@ -181,6 +197,7 @@ AutopilotConfig read_control(const Config& config) {
   c.supervisor = supervisor_section().read(config);
   c.laps = lap_counter_section().read(config);
   c.trajectory = trajectory_section().read(config);
+  c.lap2 = lap2_section().read(config);
   return c;
 }
 

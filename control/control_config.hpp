@@ -13,6 +13,7 @@ const ConfigSection<MissionConfig>& mission_section();               // control.
 const ConfigSection<SupervisorConfig>& supervisor_section();         // control.supervisor
 const ConfigSection<LapCounterConfig>& lap_counter_section();        // control.laps
 const ConfigSection<RecordedTrajectoryConfig>& trajectory_section(); // control.trajectory
+const ConfigSection<Lap2Config>& lap2_section();                     // control.lap2
 const ConfigSection<AutopilotConfig>& autopilot_section();           // control (loop timing)
 
 // Every control section into a schema, and all of them back into one AutopilotConfig.

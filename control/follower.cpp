@@ -89,10 +89,11 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
   // Acceleration feed-forward: a proportional speed loop only accelerates (or brakes) on an error, so the target
   // leads the profile by its acceleration a = d(v²)/2ds times the loop's time constant.
   double target = ahead.v;
-  if (config_.speed_lead > 0) {
+  if (config_.speed_lead > 0 || config_.speed_lead_brake > 0) {
     constexpr double kDs = 1.0;  // m over which the profile's acceleration is taken
     const double v2 = sample(path, proj->s + preview + kDs).v;
-    target += config_.speed_lead * (v2 * v2 - ahead.v * ahead.v) / (2 * kDs);
+    const double a = (v2 * v2 - ahead.v * ahead.v) / (2 * kDs);
+    target += (a > 0 ? config_.speed_lead : config_.speed_lead_brake) * a;
   }
   r.command.target_speed = std::clamp(target, 0.0, std::max(0.0, speed_cap));
   r.ok = true;

@@ -35,6 +35,8 @@ struct FollowerConfig {
   double lqr_preview = 0.1;            // s: curvature feed-forward taken this far ahead (steering actuator lag)
   double speed_preview = 0.4;          // s: the target speed is the path's speed this far ahead
   double speed_lead = 0.0;             // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)
+  double speed_lead_brake = 0.0;       // s: the same where the path slows down (braking already at the friction
+                                       // circle's limit; a lead there over-brakes into the corner entry)
   double search_window = 15.0;         // m: projection window around the last foot point on the same path
   double max_offset = 4.0;             // m: farther from the path is "off path" (result not ok)
 };

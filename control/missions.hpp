@@ -16,7 +16,7 @@ namespace fsd {
 struct SpeedConfig {
   double mu = 1.2;                  // tyre–road friction of the car (estimate, or the virtual car's)
   double mu_margin_realtime = 0.6;  // share of μ when planning on what is seen (lap 1, fallback, autocross)
-  double mu_margin_known = 0.92;    // share of μ on a known path (lap 2 and later)
+  double mu_margin_known = 0.92;    // share of μ on a known straight (acceleration, EBS test); lap 2: control.lap2
   double mu_margin_skidpad = 0.92;  // share of μ on the skid pad (its curvature flips at the crossing)
   double a_accel_max = 6.0;         // m/s², traction
   double a_brake_max = 8.0;         // m/s², service brakes

@@ -22,7 +22,7 @@ struct RecordedTrajectoryConfig {
   double min_lap_length = 30.0;      // m
   bool recentre = true;              // pull the line to the middle of the mapped cones
   double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
-  double early_build_distance = 0.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
+  double early_build_distance = 25.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
 };
 
 struct TrajectoryResult {

@@ -41,5 +41,21 @@ TEST(ControlConfig, OverridesAndBounds) {
   EXPECT_TRUE(schema->find("control.follower.pp_gain")->tunable);
 }
 
+TEST(ControlConfig, LapTwoHasItsOwnGainsAndFrictionShare) {
+  auto schema = std::make_shared<ConfigSchema>();
+  describe_control(*schema);
+  Config cfg(schema);
+  cfg.merge(nlohmann::json::parse(
+                R"({"control": {"follower": {"lqr_r": 5, "max_steer": 0.45}, "lap2": {"lqr_r": 0.7, "mu_margin": 0.9}}})"),
+            "test");
+  const AutopilotConfig c = read_control(cfg);
+  EXPECT_DOUBLE_EQ(c.follower.lqr_r, 5.0);  // lap 1 keeps its own
+  EXPECT_DOUBLE_EQ(c.lap2.mu_margin, 0.9);
+  const FollowerConfig f2 = c.lap2.follower(c.follower);
+  EXPECT_DOUBLE_EQ(f2.lqr_r, 0.7);
+  EXPECT_DOUBLE_EQ(f2.max_steer, 0.45);  // the car's limits come from control.follower
+  EXPECT_THROW(cfg.set("control.lap2.mu_margin", 1.5, "test"), ConfigError);
+}
+
 }  // namespace
 }  // namespace fsd

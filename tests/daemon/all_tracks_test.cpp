@@ -26,11 +26,35 @@ namespace {
 
 const std::string kTracks = "../shared/tracks/";
 
-// Lap 2 against the issue's figures. NOT MET YET (docs/control.md, "Open points"): the issue asks for CTE RMS
-// ≤ 0.15 m and a lap within 5 % of the friction-limited time; the stack measures RMS ≤ 0.19 m and +1 … +10.3 %.
-// These bounds hold today's state so that a regression fails; tighten them to the issue's as the gap closes.
-constexpr double kLap2CteRms = 0.20;  // issue: 0.15
-constexpr double kLap2Margin = 0.11;  // issue: 0.05
+// Lap 2 against the issue's figures: CTE RMS ≤ 0.15 m, max ≤ 0.5 m, within 5 % of the friction-limited time.
+constexpr double kLap2CteRms = 0.15;
+constexpr double kLap2CteMax = 0.5;
+constexpr double kLap2Margin = 0.05;
+
+// Loops that do NOT meet the issue's figures yet (docs/control.md, "Open points"), each with its own bound: the
+// measured value (seed 1, default configuration) plus a little, so that a regression still fails. Remove a line
+// as soon as its loop meets the issue's figure.
+struct Lap2Exception {
+  const char* name;
+  double cte_rms;  // m
+  double margin;   // share over the reference lap time
+};
+const Lap2Exception kLap2Exceptions[] = {
+    {"epfl_track_2", kLap2CteRms, 0.060},             // +5.6 %
+    {"epfl_track_3", kLap2CteRms, 0.056},             // +5.1 %
+    {"epfl_track_4", kLap2CteRms, 0.057},             // +5.2 %
+    {"epfl_track_5", kLap2CteRms, 0.065},             // +6.0 %
+    {"epfl_fsds_competition_1", 0.157, kLap2Margin},  // RMS 0.152 m
+    {"epfl_fsds_competition_2", 0.162, kLap2Margin},  // RMS 0.157 m
+    {"epfl_fsds_competition_3", 0.165, kLap2Margin},  // RMS 0.160 m
+    {"epfl_fsds_default", 0.164, kLap2Margin},        // RMS 0.159 m
+    {"epfl_21_05_2023", kLap2CteRms, 0.057},          // +5.2 %
+};
+Lap2Exception lap2_bounds(const std::string& name) {
+  for (const auto& e : kLap2Exceptions)
+    if (name == e.name) return e;
+  return {nullptr, kLap2CteRms, kLap2Margin};
+}
 
 // Files the stack does not drive cleanly yet, with the reason (docs/control.md). They run and print their
 // figures but are skipped instead of failing CI.
@@ -355,8 +379,9 @@ TEST_P(AllTracks, CompletesItsMission) {
   // Trackdrive lap 2 on the recorded line.
   const auto& l1 = laps[0];
   const auto& l2 = laps[1];
-  EXPECT_LE(l2["cte_rms_m"].get<double>(), kLap2CteRms);
-  EXPECT_LE(l2["cte_max_m"].get<double>(), 0.5);
+  const Lap2Exception bounds = lap2_bounds(c.name);
+  EXPECT_LE(l2["cte_rms_m"].get<double>(), bounds.cte_rms);
+  EXPECT_LE(l2["cte_max_m"].get<double>(), kLap2CteMax);
   EXPECT_LE(l2["time_s"].get<double>(), 0.8 * l1["time_s"].get<double>());
   const auto& v = r["vehicle"];
   const Limits lim{v["mu"].get<double>(), v["a_accel_max"].get<double>(), v["a_brake_max"].get<double>(),
@@ -365,7 +390,7 @@ TEST_P(AllTracks, CompletesItsMission) {
   const double reference = friction_limited_lap_time(read_cones(file), lim);
   std::printf("%s: lap 2 %.3f s, friction-limited %.3f s (%+.1f %%)\n", c.name, l2["time_s"].get<double>(),
               reference, 100.0 * (l2["time_s"].get<double>() / reference - 1.0));
-  EXPECT_LE(l2["time_s"].get<double>(), (1.0 + kLap2Margin) * reference);
+  EXPECT_LE(l2["time_s"].get<double>(), (1.0 + bounds.margin) * reference);
   // Much faster than the friction limit would mean the reference or the timing is wrong.
   EXPECT_GE(l2["time_s"].get<double>(), 0.85 * reference);
 }
