@@ -21,6 +21,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/daemon/fsd_process.hpp"
+
 namespace fsd {
 namespace {
 
@@ -123,21 +125,11 @@ const char* mission_of(Kind k) {
 
 // ---------------------------------------------------------------------------------------------------------------
 // Running the binary.
-int run(const std::string& args, std::string* out = nullptr) {
-  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  std::string text;
-  while (std::fgets(buf.data(), buf.size(), p)) text += buf.data();
-  const int rc = pclose(p);
-  if (out) *out = text;
-  return WEXITSTATUS(rc);
-}
-
-std::string tmp(const std::string& name) { return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name; }
+using test::run_fsd;
+using test::temp_path;
 
 std::string fast_config() {
-  const std::string path = tmp("fsd_fast_all.json");
+  const std::string path = temp_path("fsd_fast_all.json");
   std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
   return path;
 }
@@ -329,9 +321,9 @@ TEST(AllTracksList, ReferenceLapTimeOfACircleIsHandComputed) {
 TEST_P(AllTracks, CompletesItsMission) {
   const TrackCase c = GetParam();
   const std::string file = kTracks + c.name + ".csv";
-  const std::string out = tmp(std::string(c.name) + "_all.json");
+  const std::string out = temp_path(std::string(c.name) + "_all.json");
   std::string log;
-  const int rc = run(std::string("run --sim --headless --until-finished --laps 2 --config ") + fast_config() +
+  const int rc = run_fsd(std::string("run --sim --headless --until-finished --laps 2 --config ") + fast_config() +
                          " --mission " + mission_of(c.kind) + " --track " + file + " --report " + out,
                      &log);
   std::ifstream f(out);
