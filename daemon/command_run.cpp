@@ -37,6 +37,18 @@ Config load_config(const RunOptions& o) {
   return cfg;
 }
 
+// Writes the run's report (`--report`) when asked; the run's exit status unless the file cannot be written.
+int finish(int rc, const std::string& path, const nlohmann::json& report) {
+  if (path.empty()) return rc;
+  std::ofstream f(path);
+  if (!f) {
+    std::cerr << "fsd run: cannot write the report to " << path << "\n";
+    return kExitBadInput;
+  }
+  f << report.dump(2) << "\n";
+  return rc;
+}
+
 int run_command(const RunOptions& o) {
   Config cfg = load_config(o);
   init_logging(daemon_section().read(cfg).log_level);
@@ -44,14 +56,14 @@ int run_command(const RunOptions& o) {
     std::cerr << "fsd run: recording and replay (--record, --replay) are not available in this version\n";
     return kExitBadInput;
   }
-  if (!o.sim) {
-    // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    return run_on_hardware(cfg, o, g_stop);
-  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  if (!o.sim) {
+    // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
+    HardwareRun run(cfg, o);
+    const int rc = run.run(g_stop);
+    return finish(rc, o.report, run.report());
+  }
 
   SimRun run(cfg, o);
   RealClock clock;
@@ -84,15 +96,7 @@ int run_command(const RunOptions& o) {
   if (telemetry) telemetry->stop();
   if (server) server->stop();
   if (log_forwarding) log_forwarding->detach();
-  if (!o.report.empty()) {
-    std::ofstream f(o.report);
-    if (!f) {
-      std::cerr << "fsd run: cannot write the report to " << o.report << "\n";
-      return kExitBadInput;
-    }
-    f << run.scorecard().to_json().dump(2) << "\n";
-  }
-  return rc;
+  return finish(rc, o.report, run.scorecard().to_json());
 }
 
 }  // namespace

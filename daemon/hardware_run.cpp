@@ -2,8 +2,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -191,8 +189,7 @@ struct HardwareRun::Impl {
     vh.on_event = [this](const VcuLinkEvent& e) {
       std::lock_guard lock(result_m);
       if (link_faults.size() < 256)
-        link_faults.push_back({{"t", e.t}, {"source", "vcu"}, {"what", std::string(to_string(e.kind)) +
-                                                                          (e.what.empty() ? "" : ": " + e.what)}});
+        link_faults.push_back({{"t", e.t}, {"source", "vcu"}, {"what", describe(e)}});
     };
     vcu = std::make_unique<VcuLink>(vcu_cfg, clock, std::move(vh));
     vcu->set_mission(mission);
@@ -367,19 +364,5 @@ HardwareRun::~HardwareRun() = default;
 int HardwareRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
 nlohmann::json HardwareRun::report() const { return impl_->report(); }
 int HardwareRun::lidar_port() const { return impl_->lidar_rx->port(); }
-
-int run_on_hardware(const Config& config, const RunOptions& options, const std::atomic<bool>& stop) {
-  HardwareRun run(config, options);
-  const int rc = run.run(stop);
-  if (!options.report.empty()) {
-    std::ofstream f(options.report);
-    if (!f) {
-      std::cerr << "fsd run: cannot write the report to " << options.report << "\n";
-      return kExitBadInput;
-    }
-    f << run.report().dump(2) << "\n";
-  }
-  return rc;
-}
 
 }  // namespace fsd

@@ -50,7 +50,4 @@ class HardwareRun {
   std::unique_ptr<Impl> impl_;
 };
 
-// The whole `fsd run` on hardware: run, write the report when asked, return the exit status.
-int run_on_hardware(const Config& config, const RunOptions& options, const std::atomic<bool>& stop);
-
 }  // namespace fsd

@@ -114,8 +114,7 @@ struct SimRun::Impl {
     faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
 
     vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), 0.0, [this](const VcuLinkEvent& e) {
-      link_faults.push_back({e.t, "vcu", std::string(to_string(e.kind)) + (e.what.empty() ? "" : ": " + e.what),
-                             "supervisor watchdog"});
+      link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog"});
     });
     vcu->set_mission(mission);
 

@@ -19,6 +19,12 @@ std::string_view to_string(VcuLinkEventKind k) {
   return "?";
 }
 
+std::string describe(const VcuLinkEvent& e) {
+  std::string s(to_string(e.kind));
+  if (!e.what.empty()) s += ": " + e.what;
+  return s;
+}
+
 VcuSession::VcuSession(const VcuLinkConfig& cfg, Stamp start, EventHandler on_event)
     : cfg_(cfg),
       on_event_(std::move(on_event)),

@@ -33,6 +33,8 @@ struct VcuLinkEvent {
   Duration gap = 0;
   std::string what;
 };
+// "kind: what" (or the kind alone), as fault logs and reports show an event.
+std::string describe(const VcuLinkEvent& e);
 
 struct VcuSessionCounters {
   std::uint64_t commands_sent = 0;
