@@ -8,16 +8,7 @@
 namespace fsd {
 namespace {
 
-std::vector<Cone> cones_of(const Track& t) {
-  std::vector<Cone> out;
-  for (const auto& c : t.cones) {
-    Cone k;
-    k.position = Vec3(c.position.x(), c.position.y(), 0);
-    k.colour = c.colour;
-    out.push_back(k);
-  }
-  return out;
-}
+using test::cones_of;
 
 TEST(LapCounter, CountsForwardCrossingsWithInterpolatedTimes) {
   // Line across x = 0 (from y = +2 to y = −2), travel +x. The car drives a 100 m loop at 10 m/s: straight

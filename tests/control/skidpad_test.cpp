@@ -12,16 +12,7 @@
 namespace fsd {
 namespace {
 
-std::vector<Cone> cones_of(const Track& t) {
-  std::vector<Cone> out;
-  for (const auto& c : t.cones) {
-    Cone k;
-    k.position = Vec3(c.position.x(), c.position.y(), 0);
-    k.colour = c.colour;
-    out.push_back(k);
-  }
-  return out;
-}
+using test::cones_of;
 
 TEST(Skidpad, EpflCirclesMatchTheRules) {
   const Track t = test::shared_track("epfl_skidpad");
