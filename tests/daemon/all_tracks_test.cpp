@@ -13,7 +13,6 @@
 #include <limits>
 #include <numbers>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/daemon/track_csv.hpp"
 
 namespace fsd {
 namespace {
@@ -153,20 +153,11 @@ struct TrueCones {
 
 TrueCones read_cones(const std::string& file) {
   TrueCones t;
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string tag, x, y, dir;
-    std::getline(ss, tag, ',');
-    std::getline(ss, x, ',');
-    std::getline(ss, y, ',');
-    std::getline(ss, dir, ',');
-    const P2 p{std::stod(x), std::stod(y)};
-    if (tag == "blue") t.left.push_back(p);
-    else if (tag == "yellow") t.right.push_back(p);
-    else if (tag == "car_start") t.start = p, t.yaw = std::stod(dir);
+  for (const auto& r : test::read_track_csv(file)) {
+    const P2 p{r.x, r.y};
+    if (r.tag == "blue") t.left.push_back(p);
+    else if (r.tag == "yellow") t.right.push_back(p);
+    else if (r.tag == "car_start") t.start = p, t.yaw = r.direction;
   }
   return t;
 }

@@ -2,11 +2,10 @@
 // epfl_track_1 publishes through Telemetry to a WebServer on 127.0.0.1, and a real WebSocket / HTTP client reads
 // what a dashboard or Prometheus would. Expectations come from the shared track file (read here with its own
 // parser), the Formula Student rules (5 s in Ready before go) and the loop's fixed rates.
-#include <algorithm>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -18,6 +17,7 @@
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
 #include "daemon/telemetry.hpp"
+#include "tests/daemon/track_csv.hpp"
 #include "tests/web/test_client.hpp"
 #include "web/config.hpp"
 #include "web/server.hpp"
@@ -131,25 +131,15 @@ struct FileCone {
 
 // The track file's cones, read independently of common/track.
 std::vector<FileCone> read_cones(const std::string& path, double* start_x, double* start_y, double* start_yaw) {
-  std::ifstream f(path);
-  std::string line;
-  std::getline(f, line);  // header
   std::vector<FileCone> out;
-  while (std::getline(f, line)) {
-    std::stringstream ss(line);
-    std::string tag, x, y, dir;
-    std::getline(ss, tag, ',');
-    std::getline(ss, x, ',');
-    std::getline(ss, y, ',');
-    std::getline(ss, dir, ',');
-    if (tag.empty()) continue;
-    if (tag == "car_start") {
-      *start_x = std::stod(x);
-      *start_y = std::stod(y);
-      *start_yaw = std::stod(dir);
+  for (const auto& r : test::read_track_csv(path)) {
+    if (r.tag == "car_start") {
+      *start_x = r.x;
+      *start_y = r.y;
+      *start_yaw = r.direction;
       continue;
     }
-    out.push_back({tag, std::stod(x), std::stod(y)});
+    out.push_back({r.tag, r.x, r.y});
   }
   return out;
 }
