@@ -231,8 +231,10 @@ struct SimRun::Impl {
       if (params_changed.exchange(false)) apply_params();
       const ControlOutput out = autopilot->step(t);
       vcu->set_command(out.command, t);
-      if (frame_start)
+      if (frame_start) {
         fig.end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - *frame_start).count();
+        card->latency("end_to_end").add(fig.end_to_end_s);
+      }
       vcu->set_as_request(out.request);
       if (out.planned) card->latency("planning").add(out.planning_time);
       card->latency("control").add(out.control_time);

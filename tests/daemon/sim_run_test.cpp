@@ -53,7 +53,7 @@ TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
   EXPECT_LE(l2["cte_rms_m"].get<double>(), 0.15);
   EXPECT_LE(l2["cte_max_m"].get<double>(), 0.5);
   EXPECT_LE(l2["time_s"].get<double>(), 0.8 * l1["time_s"].get<double>());  // lap 2 at least 20 % faster
-  for (const char* stage : {"planning", "control", "perception"})
+  for (const char* stage : {"planning", "control", "perception", "end_to_end"})
     EXPECT_GT(r["latency_ms"][stage]["n"].get<int>(), 0) << stage;
   // Every sensor ran through its real decoder: the run lasted longer than the 6 s of Ready.
   EXPECT_GT(r["sim_time_s"].get<double>(), 30.0);
