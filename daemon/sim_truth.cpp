@@ -23,9 +23,6 @@ web::TruthState truth_state(const sim::VirtualCar& car) {
 }
 
 std::vector<web::TruthCone> truth_cones(const sim::World& world) {
-  // The same placement as the world's bodies (World::cone_body): upright along the ground normal, or tilted
-  // so that one side lies on the ground with the tip towards fall_yaw.
-  const Eigen::Matrix3d ground = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), world.ground_normal()).toRotationMatrix();
   std::vector<web::TruthCone> out;
   out.reserve(world.cones().size());
   for (const auto& c : world.cones()) {
@@ -36,8 +33,7 @@ std::vector<web::TruthCone> truth_cones(const sim::World& world) {
     k.top_width = 2 * shape.top_radius;
     k.height = shape.height;
     k.knocked = c.knocked;
-    k.base.linear() = c.knocked ? Eigen::Matrix3d(ground * sim::lying_cone_rotation(shape, c.fall_yaw)) : ground;
-    k.base.translation() = c.knocked ? Vec3(c.base + world.ground_normal() * sim::lying_cone_axis_height(shape)) : c.base;
+    k.base = world.cone_pose(c);  // the world's own placement, upright or fallen
     out.push_back(k);
   }
   return out;

@@ -47,10 +47,6 @@ ConePaintColours cone_colours(ConeColour c) {
   return {kGrey, kWhite};
 }
 
-Eigen::Matrix3d ground_frame(const World& world) {
-  return Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), world.ground_normal()).toRotationMatrix();
-}
-
 Vec3 ground_point(const World& world, const Vec2& p) { return {p.x(), p.y(), world.ground_height(p.x(), p.y())}; }
 
 // Facets around the axis for a body of this apparent radius (px): enough for a smooth silhouette, few for specks.
@@ -77,13 +73,9 @@ Solid cone_solid(const World& world, int index) {
   s.r0 = shape.base_radius;
   s.r1 = shape.top_radius;
   s.h = shape.height;
-  const Eigen::Matrix3d frame = ground_frame(world);
-  s.to_map = frame;
-  s.origin = c.base;
-  if (c.knocked) {  // as World places the fallen body
-    s.to_map = frame * lying_cone_rotation(shape, c.fall_yaw);
-    s.origin = c.base + world.ground_normal() * lying_cone_axis_height(shape);
-  }
+  const Pose3 pose = world.cone_pose(c);  // as World places the body, upright or fallen
+  s.to_map = pose.linear();
+  s.origin = pose.translation();
   double z = 0.0;
   for (int i = 0; i < shape.stripe_count; ++i) {
     const auto& band = shape.stripes[static_cast<std::size_t>(i)];
@@ -99,7 +91,7 @@ Solid cone_solid(const World& world, int index) {
 
 std::vector<Solid> distractor_solids(const World& world, int index) {
   const Distractor& d = world.distractors()[static_cast<std::size_t>(index)];
-  const Eigen::Matrix3d frame = ground_frame(world);
+  const Eigen::Matrix3d& frame = world.ground_frame();
   const Vec3 base = ground_point(world, d.position);
   Solid s;
   s.to_map = frame;

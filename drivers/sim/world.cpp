@@ -61,15 +61,23 @@ World::Body World::cone_body(int index) const {
   b.a = shape.base_radius;
   b.b = shape.top_radius;
   b.h = shape.height;
-  Eigen::Matrix3d to_map = ground_frame_;
-  b.origin = c.base;
-  if (c.knocked) {
-    to_map = ground_frame_ * lying_cone_rotation(shape, c.fall_yaw);
-    b.origin = c.base + ground_.normal() * lying_cone_axis_height(shape);
-  }
-  b.to_local = to_map.transpose();
+  const Pose3 pose = cone_pose(c);
+  b.origin = pose.translation();
+  b.to_local = pose.linear().transpose();
   finish_body(b);
   return b;
+}
+
+Pose3 World::cone_pose(const WorldCone& c) const {
+  Pose3 T = Pose3::Identity();
+  T.linear() = ground_frame_;
+  T.translation() = c.base;
+  if (c.knocked) {
+    const ConeShape& shape = cone_shape(c.big);
+    T.linear() = ground_frame_ * lying_cone_rotation(shape, c.fall_yaw);
+    T.translation() = c.base + ground_.normal() * lying_cone_axis_height(shape);
+  }
+  return T;
 }
 
 void World::add_distractor_bodies(int index) {

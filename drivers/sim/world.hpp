@@ -60,6 +60,11 @@ class World {
 
   double ground_height(double x, double y) const { return ground_.height(x, y); }
   Vec3 ground_normal() const { return ground_.normal(); }
+  // Rotation ground-aligned (z = ground normal) → map.
+  const Eigen::Matrix3d& ground_frame() const { return ground_frame_; }
+  // Map ← cone body frame (z along the cone's axis): upright on its base, or a knocked cone lying on its side with
+  // the tip towards fall_yaw. One placement for the ray caster, the camera and the truth channel.
+  Pose3 cone_pose(const WorldCone& c) const;
   Surface ground_surface(double x, double y) const { return ground_.surface(x, y); }
   double ground_reflectivity(double x, double y) const { return ground_.reflectivity(x, y); }
   // Distance from the nearest track boundary (both boundaries, joined cone to cone).
