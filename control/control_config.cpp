@@ -65,6 +65,8 @@ const ConfigSection<FollowerConfig>& follower_section() {
           .number("speed_preview", &C::speed_preview, 0, 3, "s", "Target speed taken this far ahead on the path.", true)
           .number("speed_lead", &C::speed_lead, 0, 3, "s", "Target speed leads by the path's acceleration times this (1 / VCU speed-loop gain).", true)
           .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s", "The same lead where the path slows down.", true)
+          .number("governor_offset", &C::governor_offset, 0, 5, "m", "Farther off the path (or steering at its limit) the car does not speed up.", true)
+          .number("governor_gain", &C::governor_gain, 0, 20, "m/s/m", "... and slows by this per metre beyond the offset; 0 = off.", true)
           .number("search_window", &C::search_window, 1, 100, "m", "Projection window around the last foot point.")
           .number("max_offset", &C::max_offset, 0.5, 20, "m", "Farther from the path is off path (stop).");
   return s;
@@ -83,7 +85,8 @@ const ConfigSection<SpeedConfig>& speed_section() {
           .number("power_max", &C::power_max, 0, 1e6, "W", "Power at the wheels; 0 = no power limit.")
           .number("mass", &C::mass, 50, 2000, "kg", "Vehicle mass (for the power limit).")
           .number("v_max", &C::v_max, 0.5, 60, "m/s", "Target speed cap.", true)
-          .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).", true);
+          .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).", true)
+          .number("kappa_rate_max", &C::kappa_rate_max, 0, 10, "1/(m·s)", "Fastest curvature change of the steering (rate / wheelbase); 0 = no limit.", true);
   return s;
 }
 

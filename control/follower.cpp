@@ -95,6 +95,11 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
     const double a = (v2 * v2 - ahead.v * ahead.v) / (2 * kDs);
     target += (a > 0 ? config_.speed_lead : config_.speed_lead_brake) * a;
   }
+  if (config_.governor_gain > 0) {
+    const double excess = proj->distance() - config_.governor_offset;
+    const bool saturated = std::abs(delta) >= config_.max_steer;
+    if (excess > 0 || saturated) target = std::min(target, v - config_.governor_gain * std::max(0.0, excess));
+  }
   r.command.target_speed = std::clamp(target, 0.0, std::max(0.0, speed_cap));
   r.ok = true;
   return r;

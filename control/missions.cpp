@@ -14,6 +14,7 @@ SpeedLimits SpeedConfig::realtime() const {
   l.power_max = power_max;
   l.mass = mass;
   l.v_max = std::min(v_max, v_max_realtime);
+  l.kappa_rate_max = kappa_rate_max;
   return l;
 }
 

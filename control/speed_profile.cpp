@@ -12,7 +12,36 @@ double SpeedProfile::curvature_limit(double kappa) const {
   return std::min(limits_.v_max, std::sqrt(limits_.mu * limits_.g / k));
 }
 
+double SpeedProfile::curvature_rate_limit(double dkappa_ds) const {
+  const double k = std::abs(dkappa_ds);
+  if (limits_.kappa_rate_max <= 0 || k < 1e-12) return limits_.v_max;
+  return std::min(limits_.v_max, limits_.kappa_rate_max / k);
+}
+
 namespace {
+// Caps every point's speed by the steering rate: dκ/ds over the window centred on it (the follower looks ahead
+// and the steering starts turning before the bend, so the rate is judged over a stretch, not between neighbours).
+void cap_by_curvature_rate(const SpeedProfile& profile, Path& path) {
+  const SpeedLimits& l = profile.limits();
+  auto& pts = path.points;
+  const std::size_t n = pts.size();
+  if (l.kappa_rate_max <= 0 || n < 3) return;
+  const double half = 0.5 * l.kappa_rate_window;
+  const double len = path.length();
+  if (len < 1e-6) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = pts[i].s;
+    double a = s - half, b = s + half;
+    if (!path.closed) {
+      a = std::max(a, 0.0);
+      b = std::min(b, len);
+    }
+    if (b - a < 1e-6) continue;
+    const double dk = sample(path, b).kappa - sample(path, a).kappa;
+    pts[i].v = std::min(pts[i].v, profile.curvature_rate_limit(dk / (b - a)));
+  }
+}
+
 // Longitudinal grip left by the lateral acceleration v²κ on the friction circle.
 double friction_left(const SpeedLimits& l, double v, double kappa) {
   const double total = l.mu * l.g;
@@ -36,6 +65,7 @@ void SpeedProfile::apply(Path& path, double v_start, double v_end) const {
   const std::size_t n = pts.size();
   if (n == 0) return;
   for (auto& p : pts) p.v = curvature_limit(p.kappa);
+  cap_by_curvature_rate(*this, path);
   if (n == 1) {
     pts[0].v = std::min(pts[0].v, std::max(0.0, v_start));
     return;

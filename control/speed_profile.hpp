@@ -1,6 +1,7 @@
 #pragma once
 // Speed along a path under the car's limits: a forward–backward pass with the friction circle
-// (√(ax² + ay²) ≤ μg, ay = v²κ), the motor's acceleration and power limits, the brake limit and v_max.
+// (√(ax² + ay²) ≤ μg, ay = v²κ), the motor's acceleration and power limits, the brake limit, v_max, and the
+// steering's rate limit where the curvature changes fast (an S-bend: v·|dκ/ds| ≤ κ̇max).
 // Open paths run from the car's current speed to an end speed; closed paths (laps) are periodic.
 #include "control/path.hpp"
 
@@ -14,6 +15,10 @@ struct SpeedLimits {
   double power_max = 0.0;     // power at the wheels, W; 0 = no power limit
   double mass = 230.0;        // kg, with driver-less payload; used with power_max only
   double v_max = 20.0;        // m/s
+  // Fastest change of path curvature the steering can make, 1/(m·s): the steering rate over the wheelbase
+  // (δ ≈ L·κ, so δ̇ ≈ L·κ̇; exact at small angles, cautious at large ones). 0 = no limit.
+  double kappa_rate_max = 0.0;
+  double kappa_rate_window = 4.0;  // m: dκ/ds is taken over this much path (the steering starts early)
 };
 
 class SpeedProfile {
@@ -23,6 +28,8 @@ class SpeedProfile {
 
   // Highest steady speed on curvature kappa: √(μg/|κ|), capped at v_max.
   double curvature_limit(double kappa) const;
+  // Highest speed at which the steering keeps up with a curvature changing by dkappa_ds (1/m²).
+  double curvature_rate_limit(double dkappa_ds) const;
   // Largest acceleration (≥ 0) at speed v on curvature kappa: friction circle, traction and power.
   double max_acceleration(double v, double kappa) const;
   // Largest deceleration (≥ 0) at speed v on curvature kappa: friction circle and brakes.

@@ -51,7 +51,7 @@ struct VehicleParams {
   // Steering actuator (front wheel angle)
   double steer_dead_time = 0.05;     // s
   double steer_max_rate = 1.2;       // rad/s
-  double steer_max_angle = 0.4;      // rad
+  double steer_max_angle = 0.5;      // rad (≈ 29°: the rules' 9 m hairpin on a 3 m track needs ≥ 0.47)
   // VCU speed controller: acceleration = kp·e + ki·∫e plus drag and rolling-resistance feed-forward
   double speed_kp = 2.0;             // 1/s
   double speed_ki = 0.2;             // 1/s²
