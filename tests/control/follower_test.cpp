@@ -163,5 +163,36 @@ TEST(Follower, TargetSpeedIsCappedAndTakenAhead) {
   EXPECT_NEAR(follower.follow(line, s, 0, 2.0).command.target_speed, 2.0, 1e-9);
 }
 
+TEST(Follower, OffTheLineOrOutOfSteeringTheCarDoesNotSpeedUp) {
+  // A straight at 15 m/s; the car drives 10 m/s parallel to it.
+  Path line;
+  for (int i = 0; i <= 100; ++i) line.points.push_back({Vec2(i, 0.0), 0, 0, 0, 15.0});
+  compute_geometry(line);
+  FollowerConfig fc;
+  fc.latency = 0;
+  fc.governor_offset = 0.5;
+  fc.governor_gain = 3.0;
+  PathFollower follower(fc);
+  VehicleState s;
+  s.vx = 10.0;
+  s.pose = {20.0, 0.3, 0};  // inside the offset: the path's speed
+  EXPECT_NEAR(follower.follow(line, s, 0, 30.0).command.target_speed, 15.0, 1e-9);
+  s.pose = {20.0, 1.5, 0};  // 1 m beyond it: 10 - 3·1 = 7 m/s
+  auto f = follower.follow(line, s, 0, 30.0);
+  EXPECT_NEAR(f.command.target_speed, 7.0, 1e-6);
+  s.pose = {20.0, -1.0, 0};  // the other side, 0.5 m beyond: 8.5 m/s
+  EXPECT_NEAR(follower.follow(line, s, 0, 30.0).command.target_speed, 8.5, 1e-6);
+  // Heading 1 rad off the line at 0.4 m: the steering saturates, so no more than the car's speed.
+  s.pose = {20.0, 0.4, 1.0};
+  f = follower.follow(line, s, 0, 30.0);
+  EXPECT_NEAR(std::abs(f.command.steering), fc.max_steer, 1e-12);
+  EXPECT_NEAR(f.command.target_speed, 10.0, 1e-6);
+  // Off: the path's speed whatever the offset.
+  fc.governor_gain = 0;
+  PathFollower plain(fc);
+  s.pose = {20.0, 1.5, 0};
+  EXPECT_NEAR(plain.follow(line, s, 0, 30.0).command.target_speed, 15.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace fsd

@@ -87,6 +87,46 @@ TEST(SpeedProfile, FrictionCircleLeavesNoBrakingAtTheCorneringLimit) {
   EXPECT_NEAR(sp.max_deceleration(0.5 * v, k), std::min(8.0, 9.81 * std::sqrt(1 - 0.0625)), 1e-9);
 }
 
+TEST(SpeedProfile, SteeringRateCapsTheSpeedThroughAnSBend) {
+  // Straight, then the curvature runs linearly from +0.2 to -0.2 1/m over 4 m (an S-bend's flick), then a
+  // straight again: points every 0.05 m built by integrating the heading.
+  Path p;
+  Vec2 q(0, 0);
+  double yaw = 0;
+  const double ds = 0.05;
+  auto kappa_at = [](double s) {
+    if (s < 30.0) return 0.0;
+    if (s < 32.0) return 0.1 * (s - 30.0);  // into the left bend
+    if (s < 36.0) return 0.2 - 0.1 * (s - 32.0);  // the flick: dκ/ds = -0.1 1/m²
+    if (s < 38.0) return -0.2 + 0.1 * (s - 36.0);
+    return 0.0;
+  };
+  for (int i = 0; i <= 1400; ++i) {
+    p.points.push_back({q, 0, 0, 0, 0});
+    yaw += kappa_at(i * ds) * ds;
+    q += ds * Vec2(std::cos(yaw), std::sin(yaw));
+  }
+  compute_geometry(p);
+  SpeedLimits l = limits(1.2, 6, 8, 30);
+  l.kappa_rate_max = 0.5;  // 1/(m·s)
+  l.kappa_rate_window = 4.0;
+  SpeedProfile(l).apply(p, 30, 30);
+  // At the flick's middle (s = 34) the window 32…36 sees Δκ = -0.4 over 4 m: v ≤ 0.5 / 0.1 = 5 m/s, far below
+  // the friction limit there (κ = 0: none) and at its ends (√(1.2·9.81/0.2) = 7.67 m/s).
+  const PathPoint mid = sample(p, 34.0);
+  EXPECT_NEAR(mid.v, 5.0, 0.15);
+  // Off: the friction circle alone allows 7.67 m/s at the bend's peaks and more between them.
+  l.kappa_rate_max = 0;
+  SpeedProfile(l).apply(p, 30, 30);
+  EXPECT_GT(sample(p, 34.0).v, 7.6);
+  // On a constant-radius circle the rate limit never binds.
+  Path c = test::circle_path({0, 0}, 20.0, 400);
+  SpeedLimits lc = limits(0.8, 5, 8, 30);
+  lc.kappa_rate_max = 0.5;
+  SpeedProfile(lc).apply(c, 0, 0);
+  for (const auto& pt : c.points) EXPECT_NEAR(pt.v, std::sqrt(0.8 * 9.81 * 20.0), 1e-6);
+}
+
 TEST(SpeedProfile, ClosedLapIsPeriodic) {
   // A stadium: two straights of 50 m joined by half circles of 10 m.
   Path p;

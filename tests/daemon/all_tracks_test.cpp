@@ -40,6 +40,7 @@ struct Lap2Exception {
   const char* name;
   double cte_rms;  // m
   double margin;   // share over the reference lap time
+  double cte_max = kLap2CteMax;  // m
 };
 const Lap2Exception kLap2Exceptions[] = {
     {"epfl_track_2", kLap2CteRms, 0.060},             // +5.6 %
@@ -50,12 +51,12 @@ const Lap2Exception kLap2Exceptions[] = {
     {"epfl_fsds_competition_2", 0.162, kLap2Margin},  // RMS 0.157 m
     {"epfl_fsds_competition_3", 0.165, kLap2Margin},  // RMS 0.160 m
     {"epfl_fsds_default", 0.164, kLap2Margin},        // RMS 0.159 m
-    {"epfl_21_05_2023", kLap2CteRms, 0.057},          // +5.2 %
+    {"amz_fssim_thin", 0.21, 0.125, 0.8},             // RMS 0.204 m, max 0.77 m, +11.9 % (docs/control.md)
 };
 Lap2Exception lap2_bounds(const std::string& name) {
   for (const auto& e : kLap2Exceptions)
     if (name == e.name) return e;
-  return {nullptr, kLap2CteRms, kLap2Margin};
+  return {nullptr, kLap2CteRms, kLap2Margin, kLap2CteMax};
 }
 
 // Files the stack does not drive cleanly yet, with the reason (docs/control.md). They run and print their
@@ -64,7 +65,6 @@ const char* known_open(const std::string& name) {
   if (name == "epfl_autoX_Vaudoise_Sponso")
     return "hairpin of 3 m centre-line radius: the virtual car's 0.4 rad steering sweeps 4.9 m with its outer front "
            "corner, the cones stand 4.5 m from the hairpin's centre";
-  if (name == "amz_fssim_thin") return "narrow layout with a 14 m gap in one boundary: lap 1 leaves the lane";
   return nullptr;
 }
 
@@ -162,8 +162,8 @@ TrueCones read_cones(const std::string& file) {
   return t;
 }
 
-// Boundary cones in driving order: from the cone nearest the start (not behind it), first step forwards, then
-// always the nearest cone not yet taken.
+// Boundary cones of a loop in driving order: from the cone nearest the start (not behind it), first step
+// forwards, then always the nearest cone not yet taken; then untangled.
 std::vector<P2> order_boundary(std::vector<P2> pts, P2 start, double yaw) {
   const P2 fwd{std::cos(yaw), std::sin(yaw)};
   std::vector<P2> out;
@@ -186,6 +186,22 @@ std::vector<P2> order_boundary(std::vector<P2> pts, P2 start, double yaw) {
     out.push_back(pts[pick]);
     pts.erase(pts.begin() + static_cast<long>(pick));
   }
+  // The greedy order can jump across a narrow island (amz_fssim_thin) and come back later: shorten the loop by
+  // reversing stretches (2-opt) until no reversal helps, keeping the first cone first and the driving direction.
+  const std::size_t n = out.size();
+  for (bool again = n >= 5; again;) {
+    again = false;
+    for (std::size_t i = 1; i + 1 < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const std::size_t k = (j + 1) % n;
+        if (k == i - 1) continue;
+        if (norm(out[i - 1] - out[j]) + norm(out[i] - out[k]) < norm(out[i - 1] - out[i]) + norm(out[j] - out[k]) - 1e-9) {
+          std::reverse(out.begin() + static_cast<long>(i), out.begin() + static_cast<long>(j) + 1);
+          again = true;
+        }
+      }
+  }
+  if (n >= 2 && dot(out[1] - out[0], fwd) < 0) std::reverse(out.begin() + 1, out.end());
   return out;
 }
 
@@ -364,7 +380,7 @@ TEST_P(AllTracks, CompletesItsMission) {
   const auto& l2 = laps[1];
   const Lap2Exception bounds = lap2_bounds(c.name);
   EXPECT_LE(l2["cte_rms_m"].get<double>(), bounds.cte_rms);
-  EXPECT_LE(l2["cte_max_m"].get<double>(), kLap2CteMax);
+  EXPECT_LE(l2["cte_max_m"].get<double>(), bounds.cte_max);
   EXPECT_LE(l2["time_s"].get<double>(), 0.8 * l1["time_s"].get<double>());
   const auto& v = r["vehicle"];
   const Limits lim{v["mu"].get<double>(), v["a_accel_max"].get<double>(), v["a_brake_max"].get<double>(),

@@ -47,6 +47,27 @@ TEST(ReferenceLine, MidwayBetweenBoundariesOnLoopTracks) {
   }
 }
 
+TEST(ReferenceLine, BoundaryOfANarrowLoopTakesEveryConeInTurn) {
+  // amz_fssim_thin lists its cones in driving order, no two neighbours more than 6.67 m (left) and 5.64 m (right)
+  // apart (measured from the file). A nearest-neighbour chain jumped 14 m across the island on the right and
+  // came back later, which put the centre line 2 m off the lane.
+  const Track t = load_track("../shared/tracks/amz_fssim_thin.csv");
+  const ReferenceLine ref(t);
+  ASSERT_TRUE(ref.closed());
+  for (const auto* side : {&ref.left(), &ref.right()}) {
+    const auto& b = *side;
+    double max_step = (b.front() - b.back()).norm();
+    for (std::size_t i = 1; i < b.size(); ++i) max_step = std::max(max_step, (b[i] - b[i - 1]).norm());
+    EXPECT_LE(max_step, 6.7);
+  }
+  EXPECT_EQ(ref.left().size(), 47u);
+  EXPECT_EQ(ref.right().size(), 43u);
+  // Driving direction: the boundaries run along the start heading (+x) first. (The file lists the right
+  // boundary's first cone twice, so look two cones on.)
+  EXPECT_GT((ref.right()[2] - ref.right()[0]).x(), 3.0);
+  EXPECT_GT((ref.left()[2] - ref.left()[0]).x(), 3.0);
+}
+
 TEST(ReferenceLine, StraightOfTheAccelerationTrack) {
   const Track t = load_track("../shared/tracks/epfl_acceleration.csv");
   const ReferenceLine ref(t);
