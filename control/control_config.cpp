@@ -61,6 +61,7 @@ const ConfigSection<FollowerConfig>& follower_section() {
           .number("lqr_q_heading", &C::lqr_q_heading, 0, 1e4, "1/rad²", "LQR weight of heading error.", true)
           .number("lqr_r", &C::lqr_r, 1e-4, 1e4, "1/rad²", "LQR weight of steering.", true)
           .number("lqr_dt", &C::lqr_dt, 0.005, 0.5, "s", "LQR discretisation step.")
+          .number("lqr_sideslip_gain", &C::lqr_sideslip_gain, 0, 0.1, "rad·s²/m", "LQR: rear slip angle per lateral acceleration, taken off the heading error.", true)
           .number("lqr_preview", &C::lqr_preview, 0, 2, "s", "LQR curvature feed-forward taken this far ahead.", true)
           .number("speed_preview", &C::speed_preview, 0, 3, "s", "Target speed taken this far ahead on the path.", true)
           .number("speed_lead", &C::speed_lead, 0, 3, "s", "Target speed leads by the path's acceleration times this (1 / VCU speed-loop gain).", true)

@@ -32,6 +32,8 @@ struct FollowerConfig {
   double lqr_q_heading = 1.0;          // 1/rad²
   double lqr_r = 3.0;                  // 1/rad²
   double lqr_dt = 0.05;                // s: discretisation of the error model
+  double lqr_sideslip_gain = 0.008;    // rad per m/s²: rear slip angle per lateral acceleration (virtual car: 0.004
+                                       // from its tyres' linear stiffness, 0.008 measured nearer the grip limit)
   double lqr_preview = 0.1;            // s: curvature feed-forward taken this far ahead (steering actuator lag)
   double speed_preview = 0.4;          // s: the target speed is the path's speed this far ahead
   double speed_lead = 0.0;             // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)

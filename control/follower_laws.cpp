@@ -65,9 +65,13 @@ double PathFollower::lqr(const Path& path, const PathProjection& proj, const Pos
     if (done) break;
   }
   const Eigen::RowVector2d K = (B.transpose() * P * A) / (R + B.dot(P * B));
-  const Eigen::Vector2d x(proj.lateral, wrap_angle(pose.yaw - proj.yaw));
   // Feed-forward from the curvature a little ahead: the steering actuator needs time to wind on.
   const double kappa_ff = sample(path, proj.s + v * std::max(0.0, config_.lqr_preview)).kappa;
+  // Cornering, the rear tyres run at a slip angle: the rear axle moves along the path while the car points
+  // into the corner by that angle. Regulating the heading error to zero would push the car wide; its steady
+  // value (slip per lateral acceleration × v²κ) is taken off first (Kapania & Gerdes' sideslip feed-forward).
+  const double heading_ss = config_.lqr_sideslip_gain * v * v * proj.kappa;
+  const Eigen::Vector2d x(proj.lateral, wrap_angle(pose.yaw - proj.yaw - heading_ss));
   return std::atan(L * kappa_ff) - K.dot(x);
 }
 

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <numbers>
 
 #include "control/follower.hpp"
 #include "control/smoothing.hpp"
 #include "control/speed_profile.hpp"
 #include "tests/control/bicycle_sim.hpp"
+#include "tests/control/path_helpers.hpp"
 #include "tests/control/track_truth.hpp"
 
 namespace fsd {
@@ -86,6 +88,7 @@ TEST_P(FollowerOnTrack1, TracksTheCentreLineAtModerateSpeed) {
   FollowerConfig fc;
   fc.type = GetParam();
   fc.latency = car.delay + car.steer_tau;  // the follower knows the car's delay
+  fc.lqr_sideslip_gain = 0;                // a kinematic bicycle: no tyre slip
   const LoopResult r = drive(fc, path, centre, car, 70.0);
   std::printf("  %-12s distance %.0f m  cte max %.3f m  rms %.3f m\n", GetParam().c_str(), r.distance, r.max_cte,
               r.rms_cte);
@@ -161,6 +164,27 @@ TEST(Follower, TargetSpeedIsCappedAndTakenAhead) {
   s.pose.x = 7.0;  // preview reaches x = 11 where the path slows to 3
   EXPECT_NEAR(follower.follow(line, s, 0, 20.0).command.target_speed, 3.0, 1e-9);
   EXPECT_NEAR(follower.follow(line, s, 0, 2.0).command.target_speed, 2.0, 1e-9);
+}
+
+TEST(Follower, LqrHoldsTheCarPointingIntoTheCornerByTheRearSlip) {
+  // On a circle of radius 20 m at 10 m/s (a_y = 5 m/s²) with gain 0.008 rad per m/s², a car on the line that
+  // points 0.04 rad into the corner is where it should be: the LQR steers the pure feed-forward atan(L/R).
+  Path circle = test::circle_path({0, 0}, 20.0, 2000);
+  for (auto& q : circle.points) q.v = 10.0;
+  FollowerConfig fc;
+  fc.type = "lqr";
+  fc.latency = 0;
+  fc.lqr_preview = 0;
+  fc.lqr_sideslip_gain = 0.008;
+  VehicleState s;
+  s.vx = 10.0;
+  const double slip = 0.008 * 10.0 * 10.0 / 20.0;  // 0.04 rad
+  s.pose = {20.0, 0.0, std::numbers::pi / 2 + slip};  // on the circle at angle 0, heading along it (+y) plus slip
+  const double ff = std::atan(fc.wheelbase / 20.0);
+  EXPECT_NEAR(PathFollower(fc).follow(circle, s, 0, 30.0).command.steering, ff, 2e-3);
+  // Without the feed-forward the same pose is a heading error the LQR steers out of the corner against.
+  fc.lqr_sideslip_gain = 0;
+  EXPECT_LT(PathFollower(fc).follow(circle, s, 0, 30.0).command.steering, ff - 0.01);
 }
 
 TEST(Follower, OffTheLineOrOutOfSteeringTheCarDoesNotSpeedUp) {
