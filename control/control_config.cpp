@@ -68,6 +68,7 @@ const ConfigSection<FollowerConfig>& follower_section() {
           .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s", "The same lead where the path slows down.", true)
           .number("governor_offset", &C::governor_offset, 0, 5, "m", "Farther off the path (or steering at its limit) the car does not speed up.", true)
           .number("governor_gain", &C::governor_gain, 0, 20, "m/s/m", "... and slows by this per metre beyond the offset; 0 = off.", true)
+          .number("governor_floor", &C::governor_floor, 0, 10, "m/s", "... but never asks for less than this (a crawl back to the line).", true)
           .number("search_window", &C::search_window, 1, 100, "m", "Projection window around the last foot point.")
           .number("max_offset", &C::max_offset, 0.5, 20, "m", "Farther from the path is off path (stop).");
   return s;

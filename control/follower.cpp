@@ -98,7 +98,9 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
   if (config_.governor_gain > 0) {
     const double excess = proj->distance() - config_.governor_offset;
     const bool saturated = std::abs(delta) >= config_.max_steer;
-    if (excess > 0 || saturated) target = std::min(target, v - config_.governor_gain * std::max(0.0, excess));
+    // Never below a crawl: a car standing off the line must still be able to drive back onto it.
+    const double cap = std::max(v - config_.governor_gain * std::max(0.0, excess), config_.governor_floor);
+    if (excess > 0 || saturated) target = std::min(target, cap);
   }
   r.command.target_speed = std::clamp(target, 0.0, std::max(0.0, speed_cap));
   r.ok = true;

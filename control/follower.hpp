@@ -40,10 +40,12 @@ struct FollowerConfig {
   double speed_lead_brake = 0.0;       // s: the same where the path slows down (braking already at the friction
                                        // circle's limit; a lead there over-brakes into the corner entry)
   // Tracking governor: farther than governor_offset from the path, or with the steering at its limit, the
-  // target speed is held at or below the car's speed, less governor_gain per metre beyond the offset. A car
+  // target speed is held at or below the car's speed, less governor_gain per metre beyond the offset (but not
+  // below governor_floor, so that a car standing off the line still drives back onto it). A car
   // pushed wide at the grip limit only gets back by slowing down; accelerating there spins or leaves the track.
   double governor_offset = 0.5;        // m (0.5 m is the largest allowed cross-track error on lap 2)
   double governor_gain = 3.0;          // m/s per m beyond the offset; 0 = governor off
+  double governor_floor = 2.0;         // m/s: the governor never asks for less
   double search_window = 15.0;         // m: projection window around the last foot point on the same path
   double max_offset = 4.0;             // m: farther from the path is "off path" (result not ok)
 };

@@ -211,6 +211,12 @@ TEST(Follower, OffTheLineOrOutOfSteeringTheCarDoesNotSpeedUp) {
   f = follower.follow(line, s, 0, 30.0);
   EXPECT_NEAR(std::abs(f.command.steering), fc.max_steer, 1e-12);
   EXPECT_NEAR(f.command.target_speed, 10.0, 1e-6);
+  // Standing 1 m off the line, the car may still crawl back at the floor speed (2 m/s), not be held at rest.
+  s.vx = 0.0;
+  s.pose = {20.0, 1.5, 0};
+  EXPECT_NEAR(follower.follow(line, s, 0, 30.0).command.target_speed, fc.governor_floor, 1e-9);
+  EXPECT_GT(fc.governor_floor, 0.0);
+  s.vx = 10.0;
   // Off: the path's speed whatever the offset.
   fc.governor_gain = 0;
   PathFollower plain(fc);
