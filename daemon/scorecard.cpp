@@ -1,5 +1,6 @@
 #include "daemon/scorecard.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +17,12 @@ Scorecard::Scorecard(const Track& track, Mission mission, int laps_to_finish, do
       gates_(track) {
   open_ = (mission == Mission::Trackdrive || mission == Mission::Autocross) && !ref_.closed() &&
           ref_.left().size() >= 2 && ref_.right().size() >= 2;
+  if (mission == Mission::Skidpad && !gates_.gates().empty()) {
+    // The circles' centres lie on the timing line, one driving radius either side of the crossing.
+    skidpad_gate_ = gates_.gates().front();
+    const Vec2 lat(-skidpad_gate_.forward.y(), skidpad_gate_.forward.x());
+    skidpad_centres_ = {skidpad_gate_.centre + kSkidpadRadius * lat, skidpad_gate_.centre - kSkidpadRadius * lat};
+  }
   if (open_) {
     laps_to_finish_ = 1;
     // The end line joins the last cone of each boundary; its forward side is the one with the left boundary on
@@ -26,6 +33,15 @@ Scorecard::Scorecard(const Track& track, Mission mission, int laps_to_finish, do
     end_gate_.forward = Vec2(across.y(), -across.x()).normalized();
     end_gate_.half_width = 0.5 * across.norm() + 1.0;
   }
+}
+
+double Scorecard::centre_distance(const Vec2& p) const {
+  if (skidpad_centres_.empty()) return ref_.distance(p);
+  // The nearer circle, or the entry/exit axis through the crossing (tangent to both circles there).
+  const Vec2 lat(-skidpad_gate_.forward.y(), skidpad_gate_.forward.x());
+  double d = std::fabs((p - skidpad_gate_.centre).dot(lat));
+  for (const Vec2& c : skidpad_centres_) d = std::min(d, std::fabs((p - c).norm() - kSkidpadRadius));
+  return d;
 }
 
 namespace {
@@ -97,7 +113,7 @@ void Scorecard::on_truth(const sim::VehicleTruth& truth) {
     ebs_trigger_speed_ = truth.speed();
   }
   if (lap_start_ && !finished_) {
-    const double cte = ref_.distance(pos);
+    const double cte = centre_distance(pos);
     cte_sq_ += cte * cte;
     cte_max_ = std::max(cte_max_, cte);
     ++cte_n_;

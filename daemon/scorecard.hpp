@@ -17,6 +17,10 @@
 
 namespace fsd {
 
+// Radius of the skid pad's driving circles: 18.25 m diameter by the Formula Student rules (the shared files' cones
+// stand at 7.47-7.62 m inside and 10.6-10.8 m outside it).
+inline constexpr double kSkidpadRadius = 9.125;
+
 struct FaultRecord {
   Stamp t = 0;
   std::string source, what, action;
@@ -71,6 +75,10 @@ class Scorecard {
   sim::TimingGates gates_;
   bool open_ = false;
   sim::Gate end_gate_;  // open layouts: across the last left and right boundary cones
+  // Skid pad: its centre line is two circles (and the entry/exit axis), not a loop between the boundaries.
+  std::vector<Vec2> skidpad_centres_;
+  sim::Gate skidpad_gate_;
+  double centre_distance(const Vec2& p) const;
   sim::Gate finish_;    // the gate the finish was crossed at
   double ebs_trigger_speed_ = 0;
   std::optional<Vec2> ebs_trigger_at_;

@@ -59,6 +59,33 @@ TEST(Scorecard, LapsCrossTrackErrorAndStopOnAHandMadeDrive) {
     EXPECT_TRUE(j.contains(key)) << key;
 }
 
+TEST(Scorecard, SkidPadCrossTrackErrorIsMeasuredFromItsCircles) {
+  // epfl_skidpad: start at the origin heading +y, the timing line at y = 15, the right circle's centre at
+  // (9.125, 15), the left one's at (-9.125, 15) (18.25 m driving diameter, the rules'). Drive 0.3 m outside
+  // the right circle once round, clockwise from the crossing: one lap with a CTE of 0.3 m all the way.
+  const Track track = load_track("../shared/tracks/epfl_skidpad.csv");
+  Scorecard card(track, Mission::Skidpad, 4, 25.0, 1);
+  sim::VehicleTruth truth;
+  truth.vx = 5.0;
+  const Vec2 c(9.125, 15.0);
+  const double r = 9.125 + 0.3;
+  // Up the entry axis to just before the line, then round the circle (starting at angle π, going clockwise).
+  for (double y = 5.0; y < 14.99; y += 0.5) {
+    truth.pose = {0.0, y, 1.5707963};
+    card.on_truth(truth);
+    truth.t += 0.1;
+  }
+  for (int k = 0; k <= 2 * 400; ++k) {  // twice round: the second crossing ends lap 1
+    const double a = 3.14159265 - 2 * 3.14159265 * k / 400.0;
+    truth.pose = {c.x() + r * std::cos(a), c.y() + r * std::sin(a), a - 1.5707963};
+    card.on_truth(truth);
+    truth.t += 0.02;
+  }
+  ASSERT_GE(card.laps().size(), 1u);
+  EXPECT_NEAR(card.laps()[0].cte_rms_m, 0.3, 0.02);
+  EXPECT_NEAR(card.laps()[0].cte_max_m, 0.3, 0.02);
+}
+
 TEST(Scorecard, HitConeOrNoStopFailsTheMission) {
   const Track track = load_track("../shared/tracks/epfl_acceleration.csv");
   Scorecard card(track, Mission::Acceleration, 1, 100.0, 1);
