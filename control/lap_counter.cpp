@@ -48,14 +48,32 @@ std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones,
       ++nr;
     }
   }
-  if (nl == 0 || nr == 0) return std::nullopt;
+  if (nl == 0 && nr == 0) return std::nullopt;
+  const Vec2 heading(std::cos(start.yaw), std::sin(start.yaw));
+  if (nl == 0 || nr == 0) {
+    // Timing cones on one side only: a cone map merges a start line's doubled cones with the boundary cone
+    // beside them and may vote that one the boundary's colour. The line then runs across the start heading from
+    // the side that is seen, one nominal track width over to the other.
+    constexpr double kNominalWidth = 3.5;
+    const Vec2 left(-heading.y(), heading.x());
+    TimingLine line;
+    line.forward = heading;
+    if (nl > 0) {
+      line.a = left_sum / nl;
+      line.b = line.a - kNominalWidth * left;
+    } else {
+      line.b = right_sum / nr;
+      line.a = line.b + kNominalWidth * left;
+    }
+    return line;
+  }
   TimingLine line;
   line.a = left_sum / nl;
   line.b = right_sum / nr;
   const Vec2 across = line.a - line.b;  // right → left
   if (across.norm() < 1.0) return std::nullopt;
   line.forward = Vec2(across.y(), -across.x()).normalized();
-  if (line.forward.dot(Vec2(std::cos(start.yaw), std::sin(start.yaw))) < 0) line.forward = -line.forward;
+  if (line.forward.dot(heading) < 0) line.forward = -line.forward;
   return line;
 }
 

@@ -21,7 +21,8 @@ struct TimingLine {
 
 // The timing line nearest ahead of (or just behind) `start` from the timing-coloured cones, pairing the cones
 // left and right of the start heading. `index` picks the 0th, 1st, ... group along the heading (an
-// acceleration track has a start and a finish line). nullopt without a left and a right timing cone.
+// acceleration track has a start and a finish line). With timing cones on one side only, the line runs across the
+// start heading from them one nominal track width (3.5 m) towards the other side; nullopt without any.
 std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones, const Pose2& start,
                                                  const ColourConvention& convention, int index = 0,
                                                  double search_behind = 10.0, double search_ahead = 40.0);

@@ -77,6 +77,41 @@ TEST(LapCounter, TimingLinesOfTheSharedTracks) {
   EXPECT_NEAR(across.past(vsv.start.position() + Vec2(0, 1)), 1.0, 1e-12);
 }
 
+TEST(LapCounter, TimingConesOnOneSideStillGiveALineAcrossTheStartHeading) {
+  // epfl_autoX_Vaudoise_Sponso doubles its start line: big orange at x = ±1.5, y = 7 and 8, with a blue and two
+  // yellow boundary cones at y = 7.5 between them. A cone map merges each side into one cone and may vote the
+  // right one yellow: only the left timing cone is left. The line must still lie at y = 7.5, across the track.
+  const Track ax = test::shared_track("epfl_autoX_Vaudoise_Sponso");
+  std::vector<Cone> mapped;
+  for (const Cone& c : cones_of(ax)) {
+    const bool start_line = std::abs(c.position.y() - 7.5) <= 0.5 && std::abs(std::abs(c.position.x()) - 1.5) < 0.01;
+    if (!start_line) mapped.push_back(c);
+  }
+  Cone left;
+  left.position = Vec3(-1.5, 7.5, 0);
+  left.colour = ax.convention.timing;
+  mapped.push_back(left);
+  Cone right = left;
+  right.position = Vec3(1.5, 7.5, 0);
+  right.colour = ax.convention.right;
+  mapped.push_back(right);
+  const auto line = timing_line_from_cones(mapped, ax.start, ax.convention);
+  ASSERT_TRUE(line);
+  EXPECT_NEAR(line->forward.y(), 1.0, 1e-5);
+  EXPECT_NEAR(line->past(ax.start.position()), -9.0, 1e-5);  // start at y = −1.5
+  // Its ends span the lane (x from −1.5 to +2): a car on the centre line crosses it between them.
+  EXPECT_NEAR(line->a.x(), -1.5, 1e-5);
+  EXPECT_NEAR(line->b.x(), 2.0, 1e-5);
+  LapCounter lc(*line, {10.0, 5.0, 1.0});
+  EXPECT_FALSE(lc.update(0.0, {0.0, -5.0}));
+  EXPECT_FALSE(lc.update(1.0, {0.0, 6.5}));
+  EXPECT_FALSE(lc.timing());
+  lc.update(2.0, {0.0, 8.5});  // crosses y = 7.5 at t = 1.5: the first lap starts
+  EXPECT_TRUE(lc.timing());
+  ASSERT_TRUE(lc.last_crossing());
+  EXPECT_NEAR(*lc.last_crossing(), 1.5, 1e-5);
+}
+
 TEST(LapCounter, StartPastTheLineTimesTheFirstLapFromTheStart) {
   TimingLine line{{0, 2}, {0, -2}, {1, 0}};
   LapCounter lc(line, {10.0, 5.0, 1.0});
