@@ -121,6 +121,15 @@ Track parse_track(const std::string& text, const std::string& origin, const Colo
     cone.position = {x, y};
     cone.colour = convention.colour_of(cone.role);
     cone.covariance << number(4), number(6), number(6), number(5);
+    // Some shared files list a cone twice. Two cones cannot stand in one place: keep the first, so that the
+    // virtual car does not knock over (and count) one cone twice.
+    const bool repeated = std::any_of(track.cones.begin(), track.cones.end(), [&](const TrackCone& c) {
+      return (c.position - cone.position).squaredNorm() < 1e-4;
+    });
+    if (repeated) {
+      ++track.duplicates_dropped;
+      continue;
+    }
     track.cones.push_back(cone);
   }
   if (!have_header) throw TrackError(origin + ": empty file, expected a header line");

@@ -38,6 +38,7 @@ struct Track {
   Pose2 start;                 // car_start row
   ColourConvention convention;
   std::vector<TrackCone> cones;
+  int duplicates_dropped = 0;  // rows that repeat a cone already listed (within 1 cm): one physical cone
 
   std::size_t count(ConeRole role) const;
 };

@@ -41,6 +41,9 @@ int run_sim(const SimOptions& o) {
   init_logging(daemon_section().read(cfg).log_level);
   const RunSettings run = run_section().read(cfg);
   const Track track = load_track(run.track, ColourConvention::named(run.colours));
+  if (track.duplicates_dropped > 0)
+    logger("sim")->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
+                        track.duplicates_dropped);
   const auto vlp = vlp16_section().read(cfg);
 
   boost::asio::io_context io;

@@ -97,6 +97,9 @@ struct SimRun::Impl {
     if (!m) throw std::invalid_argument("unknown mission '" + run.mission + "'");
     mission = *m;
     track = load_track(run.track, ColourConvention::named(run.colours));
+    if (track.duplicates_dropped > 0)
+      logger("run")->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
+                          track.duplicates_dropped);
     car_settings = sim::read_virtual_car_settings(cfg);
     // The simulated RES operator presses go shortly after the rules' 5 s in Ready unless configured otherwise.
     if (car_settings.vcu.res_go_at_s < 0) car_settings.vcu.res_go_at_s = car_settings.vcu.ready_to_drive_s + 0.5;

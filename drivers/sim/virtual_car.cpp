@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/logging.hpp"
+
 namespace fsd::sim {
 
 const ConfigSection<SimRunConfig>& sim_run_section() {
@@ -97,6 +99,17 @@ VehicleTruth VirtualCar::truth_at(Stamp t) const {
   return r;
 }
 
+void VirtualCar::log_new_hits() {
+  // Which cone and where the car was: a cone count alone does not say which corner went wrong.
+  const VehicleTruth& v = vehicle_.truth();
+  std::vector<const WorldCone*> fresh;
+  for (const auto& c : world_.cones())
+    if (c.knocked && c.hit_time == v.t) fresh.push_back(&c);
+  for (const WorldCone* c : fresh)
+    logger("sim")->info("cone hit at {:.2f} s: {} cone at ({:.2f}, {:.2f}); car at ({:.2f}, {:.2f}) heading {:.2f} rad, {:.1f} m/s",
+                        v.t, to_string(c->colour), c->base.x(), c->base.y(), v.pose.x, v.pose.y, v.pose.yaw, v.speed());
+}
+
 void VirtualCar::advance_to(Stamp t) {
   while (vehicle_.truth().t + dt_ <= t + 1e-9) {
     const Stamp now = vehicle_.truth().t;
@@ -110,7 +123,7 @@ void VirtualCar::advance_to(Stamp t) {
     prev_ = vehicle_.truth();
     vehicle_.step(dt_, cmd);
     const auto fp = vehicle_.footprint();
-    world_.update_hits(fp, vehicle_.truth().t);
+    if (world_.update_hits(fp, vehicle_.truth().t) > 0) log_new_hits();
     const Stamp t1 = vehicle_.truth().t;
     faults_.on_truth(t1, vehicle_.truth().pose.position());
     if (gnss_ && !gnss_outage_set_) {

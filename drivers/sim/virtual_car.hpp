@@ -74,6 +74,7 @@ class VirtualCar {
 
  private:
   VehicleTruth truth_at(Stamp t) const;  // interpolated between the last two physics steps
+  void log_new_hits();                     // one line per cone knocked over in the last physics step
 
   VirtualCarSettings s_;
   World world_;

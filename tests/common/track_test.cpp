@@ -1,5 +1,6 @@
 // Track loader on every shared track file. Expected counts were counted independently with
-// `grep -c '^blue,' FILE` (and likewise per tag) and the start rows read with `grep car_start`.
+// `grep -c '^blue,' FILE` (and likewise per tag) less the rows that repeat an earlier row's x,y (a cone listed
+// twice is one cone; counted with awk on the x,y columns), and the start rows read with `grep car_start`.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,38 +13,39 @@ namespace {
 struct Expected {
   const char* name;
   std::size_t blue, yellow, orange, big_orange;
+  int repeated;  // rows dropped as repeats
   double x, y, yaw;
 };
 
 constexpr Expected kTracks[] = {
-    {"amz_fssim_acceleration", 14, 14, 42, 8, -2.0000, 0.0000, 0.087000},
-    {"amz_fssim_skidpad", 29, 29, 12, 4, -16.5000, 0.0000, 0.000000},
-    {"amz_fssim_thin", 47, 43, 0, 4, 0.0000, 0.0000, 0.000000},
-    {"epfl_21_05_2023", 28, 28, 0, 4, 0.0000, 0.0000, -1.570796},
-    {"epfl_VSV", 23, 23, 0, 0, 0.0000, 0.0000, 1.570796},
-    {"epfl_VSV_XL", 23, 23, 0, 0, 0.0000, 0.0000, 1.570796},
-    {"epfl_VSV_XS", 17, 17, 0, 0, 0.0000, 0.0000, 1.570796},
-    {"epfl_acceleration", 14, 14, 42, 8, 0.0000, 0.0000, 1.570796},
-    {"epfl_acceleration_4_5m", 16, 16, 46, 8, 0.0000, 0.0000, 1.570796},
-    {"epfl_acceleration_4m", 18, 18, 52, 8, 0.0000, 0.0000, 1.570796},
-    {"epfl_acceleration_5_5m", 13, 13, 38, 8, 0.0000, 0.0000, 1.570796},
-    {"epfl_acceleration_large", 14, 14, 42, 8, 0.0000, 0.0000, 1.570796},
-    {"epfl_autoX_Vaudoise_Sponso", 32, 39, 0, 4, 0.0000, -1.5000, 1.570796},
-    {"epfl_ebs_test_fss", 14, 14, 42, 8, 0.0000, 0.0000, 1.570796},
-    {"epfl_fsds_competition_1", 85, 85, 0, 4, -0.2740, 5.5719, 1.570796},
-    {"epfl_fsds_competition_2", 115, 115, 0, 4, -0.1899, 6.4212, 1.470796},
-    {"epfl_fsds_competition_3", 90, 90, 0, 4, 0.2114, 9.1460, 1.581541},
-    {"epfl_fsds_default", 96, 96, 0, 4, 1.2930, 9.1173, 1.575284},
-    {"epfl_short_skidpad", 29, 29, 18, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_skidpad", 30, 30, 18, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_skidpad_minimalist", 30, 30, 0, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_skidpad_reversed", 30, 30, 18, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_skidpad_v2", 30, 30, 18, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_track_1", 102, 96, 0, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_track_2", 117, 111, 0, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_track_3", 147, 141, 0, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_track_4", 139, 132, 0, 4, 0.0000, 0.0000, 1.570796},
-    {"epfl_track_5", 109, 103, 0, 4, 0.0000, 0.0000, 1.570796},
+    {"amz_fssim_acceleration", 14, 14, 41, 8, 1, -2.0000, 0.0000, 0.087000},
+    {"amz_fssim_skidpad", 29, 29, 11, 4, 1, -16.5000, 0.0000, 0.000000},
+    {"amz_fssim_thin", 47, 42, 0, 4, 1, 0.0000, 0.0000, 0.000000},
+    {"epfl_21_05_2023", 28, 28, 0, 4, 0, 0.0000, 0.0000, -1.570796},
+    {"epfl_VSV", 23, 23, 0, 0, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_VSV_XL", 23, 23, 0, 0, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_VSV_XS", 17, 17, 0, 0, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_acceleration", 14, 14, 42, 8, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_acceleration_4_5m", 16, 16, 46, 8, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_acceleration_4m", 18, 18, 52, 8, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_acceleration_5_5m", 13, 13, 38, 8, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_acceleration_large", 13, 13, 42, 8, 2, 0.0000, 0.0000, 1.570796},
+    {"epfl_autoX_Vaudoise_Sponso", 24, 29, 0, 4, 18, 0.0000, -1.5000, 1.570796},
+    {"epfl_ebs_test_fss", 13, 13, 42, 8, 2, 0.0000, 0.0000, 1.570796},
+    {"epfl_fsds_competition_1", 85, 85, 0, 4, 0, -0.2740, 5.5719, 1.570796},
+    {"epfl_fsds_competition_2", 115, 115, 0, 4, 0, -0.1899, 6.4212, 1.470796},
+    {"epfl_fsds_competition_3", 90, 90, 0, 4, 0, 0.2114, 9.1460, 1.581541},
+    {"epfl_fsds_default", 96, 96, 0, 4, 0, 1.2930, 9.1173, 1.575284},
+    {"epfl_short_skidpad", 29, 29, 18, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_skidpad", 30, 30, 18, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_skidpad_minimalist", 30, 30, 0, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_skidpad_reversed", 30, 30, 18, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_skidpad_v2", 30, 30, 18, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_track_1", 102, 96, 0, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_track_2", 117, 111, 0, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_track_3", 147, 141, 0, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_track_4", 139, 132, 0, 4, 0, 0.0000, 0.0000, 1.570796},
+    {"epfl_track_5", 109, 103, 0, 4, 0, 0.0000, 0.0000, 1.570796},
 };
 
 TEST(TrackLoader, EverySharedTrackHasTheCountedConesAndStart) {
@@ -57,6 +59,7 @@ TEST(TrackLoader, EverySharedTrackHasTheCountedConesAndStart) {
     EXPECT_EQ(t.count(ConeRole::Other), e.orange);
     EXPECT_EQ(t.count(ConeRole::Timing), e.big_orange);
     EXPECT_EQ(t.cones.size(), e.blue + e.yellow + e.orange + e.big_orange);
+    EXPECT_EQ(t.duplicates_dropped, e.repeated);
     EXPECT_NEAR(t.start.x, e.x, 1e-9);
     EXPECT_NEAR(t.start.y, e.y, 1e-9);
     EXPECT_NEAR(t.start.yaw, e.yaw, 1e-9);
@@ -127,6 +130,16 @@ TEST(TrackLoader, AcceptsCrLfAndOptionalCovarianceColumns) {
   ASSERT_EQ(t.cones.size(), 1u);
   EXPECT_EQ(t.cones[0].role, ConeRole::Right);
   EXPECT_DOUBLE_EQ(t.start.yaw, 0.5);
+}
+
+TEST(TrackLoader, ARowRepeatingAConeIsOneCone) {
+  // Two rows 5 mm apart are one physical cone (the first row's role wins); 5 cm apart are two cones.
+  const Track t = parse_track(
+      "tag,x,y,direction\ncar_start,0,0,0\nyellow,3,4,0\nblue,3.005,4,0\nyellow,3.05,4,0\n", "repeat.csv");
+  ASSERT_EQ(t.cones.size(), 2u);
+  EXPECT_EQ(t.cones[0].role, ConeRole::Right);
+  EXPECT_DOUBLE_EQ(t.cones[1].position.x(), 3.05);
+  EXPECT_EQ(t.duplicates_dropped, 1);
 }
 
 }  // namespace
