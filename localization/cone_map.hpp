@@ -1,7 +1,8 @@
 #pragma once
 // The cone map (DESIGN.md §3 "mapping"): cone positions and colours in the map frame, built from detections and
 // the vehicle pose. Each detection is associated with the nearest mapped cone inside a gate (else starts a new
-// cone); positions are fused in information form, colours by vote.
+// cone); positions are fused in information form, colours by vote. A detection whose colour differs from the mapped
+// cone's has a tighter gate: a start line's doubled orange cones stand 0.5 m from the boundary cone between them.
 #include <array>
 #include <vector>
 
@@ -11,7 +12,8 @@
 namespace fsd {
 
 struct ConeMapConfig {
-  double association_gate = 1.0;  // m
+  double association_gate = 0.7;  // m: under the 1 m between a start line's cones, 7σ of 0.1 m detection noise
+  double colour_conflict_gate = 0.4;  // m: a detection of another colour than the mapped cone's is that cone only this close
   int min_observations = 2;       // a cone is reported once seen this often
   double max_range = 20.0;        // detections farther than this are ignored (m)
 };

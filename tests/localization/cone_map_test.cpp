@@ -66,5 +66,44 @@ TEST(ConeMap, ColourByMajorityAndGhostsNeedConfirmation) {
   EXPECT_NEAR(cones[0].confidence, 2.0 / 3.0, 1e-12);
 }
 
+TEST(ConeMap, ADoubledStartLineKeepsItsOrangeConesApartFromTheBoundaryCone) {
+  // epfl_autoX_Vaudoise_Sponso: big orange cones 0.5 m before and after a boundary cone on each side of the start
+  // line. Same-colour gating (1 m) alone merged the three into one and voted it the boundary's colour.
+  const std::vector<std::pair<Vec2, ConeColour>> world{
+      {{7.0, 1.5}, ConeColour::BigOrange}, {{7.5, 1.5}, ConeColour::Blue},   {{8.0, 1.5}, ConeColour::BigOrange},
+      {{7.0, -1.5}, ConeColour::BigOrange}, {{7.5, -1.5}, ConeColour::Yellow}, {{8.0, -1.5}, ConeColour::BigOrange}};
+  ConeMap map;
+  std::mt19937 rng(5);
+  for (int k = 0; k < 50; ++k) {
+    const Pose2 pose{0.05 * k, 0.0, 0.0};
+    map.update(detect(world, pose, 0.05, rng), pose);
+  }
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), world.size());
+  for (const auto& [p, colour] : world) {
+    const auto it = std::min_element(cones.begin(), cones.end(), [&](const Cone& a, const Cone& b) {
+      return (a.position.head<2>() - p).norm() < (b.position.head<2>() - p).norm();
+    });
+    EXPECT_LT((it->position.head<2>() - p).norm(), 0.05);
+    EXPECT_EQ(it->colour, colour);
+  }
+}
+
+TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
+  // One blue cone seen 200 times with σ = 0.1 m, one detection in ten called yellow: still one cone, blue.
+  ConeMap map;
+  std::mt19937 rng(9);
+  std::bernoulli_distribution wrong(0.1);
+  for (int k = 0; k < 200; ++k) {
+    const Pose2 pose{0.01 * k, 0.0, 0.0};
+    auto d = detect({{{6.0, 1.5}, ConeColour::Blue}}, pose, 0.1, rng);
+    if (wrong(rng)) d.cones[0].colour = ConeColour::Yellow;
+    map.update(d, pose);
+  }
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), 1u);
+  EXPECT_EQ(cones[0].colour, ConeColour::Blue);
+}
+
 }  // namespace
 }  // namespace fsd
