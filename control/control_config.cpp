@@ -44,6 +44,25 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
   return s;
 }
 
+const ConfigSection<TightTurnConfig>& tight_turn_section() {
+  using C = TightTurnConfig;
+  static const auto s =
+      ConfigSection<C>("control.tight_turn")
+          .boolean("enabled", &C::enabled, "Shape the line through turns at the steering lock to the car.", true)
+          .number("kappa_on", &C::kappa_on, 0.01, 2, "1/m", "A turn is where the planned path curves tighter than this.", true)
+          .number("min_turn_deg", &C::min_turn_deg, 10, 360, "deg", "Heading change of a turn worth shaping.", true)
+          .number("lane_radius_max", &C::lane_radius_max, 1, 30, "m", "Only turns whose lane centre radius is below this are shaped.", true)
+          .number("body_front", &C::body_front, 0.5, 5, "m", "Rear axle to the nose of the car.")
+          .number("body_half_width", &C::body_half_width, 0.2, 2, "m", "Half the car's width.")
+          .number("cone_radius", &C::cone_radius, 0, 0.5, "m", "Half a cone's base.")
+          .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and the cones.", true)
+          .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.", true)
+          .number("lead", &C::lead, 0.5, 20, "m", "The path is rejoined this far before and after the turn.", true)
+          .number("transition_length", &C::transition_length, 0.1, 20, "m", "Turn-in and turn-out clothoid length.", true)
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 10, "m", "The joins with the path are rounded over about this.", true);
+  return s;
+}
+
 const ConfigSection<FollowerConfig>& follower_section() {
   using C = FollowerConfig;
   static const auto s =
@@ -183,6 +202,7 @@ const ConfigSection<AutopilotConfig>& autopilot_section() {
 
 void describe_control(ConfigSchema& schema) {
   planner_section().describe(schema);
+  tight_turn_section().describe(schema);
   follower_section().describe(schema);
   speed_section().describe(schema);
   mission_section().describe(schema);
@@ -197,6 +217,9 @@ AutopilotConfig read_control(const Config& config) {
   AutopilotConfig c = autopilot_section().read(config);
   c.planner = planner_section().read(config);
   c.follower = follower_section().read(config);
+  c.planner.tight_turn = tight_turn_section().read(config);
+  c.planner.tight_turn.wheelbase = c.follower.wheelbase;
+  c.planner.tight_turn.max_steer = c.follower.max_steer;
   c.speed = speed_section().read(config);
   c.mission = mission_section().read(config);
   c.supervisor = supervisor_section().read(config);

@@ -7,6 +7,7 @@
 namespace fsd {
 
 const ConfigSection<MidlinePlannerConfig>& planner_section();        // control.planner
+const ConfigSection<TightTurnConfig>& tight_turn_section();          // control.tight_turn
 const ConfigSection<FollowerConfig>& follower_section();             // control.follower
 const ConfigSection<SpeedConfig>& speed_section();                   // control.speed
 const ConfigSection<MissionConfig>& mission_section();               // control.mission (laps: run.laps)

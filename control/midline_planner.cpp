@@ -455,6 +455,10 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
     return finish(std::move(result));
   }
   Path smooth = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
+  if (auto turn = shape_tight_turn(smooth, positions, config_.tight_turn)) {
+    turn->centre = pose.transform(turn->centre);
+    result.tight_turn = turn;
+  }
   for (auto& p : smooth.points) {
     p.p = pose.transform(p.p);
     p.yaw = wrap_angle(p.yaw + pose.yaw);

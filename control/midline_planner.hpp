@@ -15,6 +15,7 @@
 #include "common/types.hpp"
 #include "control/path.hpp"
 #include "control/speed_profile.hpp"
+#include "control/tight_turn.hpp"
 
 namespace fsd {
 
@@ -54,6 +55,7 @@ struct MidlinePlannerConfig {
   double fallback_below = 8.0;    // m: a walk ending nearer than this tries the single-boundary fallback
   double end_speed = 0.0;         // m/s: speed allowed at the end of the planned horizon
   double time_budget = 0.025;     // s: a plan slower than this is reported over budget
+  TightTurnConfig tight_turn;     // the line through hairpins and other turns at the steering lock
 };
 
 struct PlanResult {
@@ -67,6 +69,7 @@ struct PlanResult {
   int cones_used = 0;
   int triangles = 0;
   std::vector<Vec2> midpoints;    // the chosen crossing-edge midpoints, map frame (for display)
+  std::optional<TightTurn> tight_turn;  // the turn whose line was shaped to the car, map frame
 };
 
 class MidlinePlanner {

@@ -51,16 +51,6 @@ Lap2Exception lap2_bounds(const std::string& name) {
   return {nullptr, kLap2CteRms, kLap2Margin, kLap2CteMax};
 }
 
-// Files the stack does not drive cleanly yet, with the reason (docs/control.md). They run and print their
-// figures but are skipped instead of failing CI.
-const char* known_open(const std::string& name) {
-  if (name == "epfl_autoX_Vaudoise_Sponso")
-    return "the rules' tightest hairpin (outer cones 4.5 m from its centre) leaves the rear axle a 2.80-2.97 m radius "
-           "at the 0.5 rad lock and the centre-line path clips the outer cones; its 3 m chicane needs a line that "
-           "uses the width (docs/control.md)";
-  return nullptr;
-}
-
 // ---------------------------------------------------------------------------------------------------------------
 // Which mission each file is for, by its name. Open layouts (no loop) are driven as trackdrive and count one run.
 enum class Kind { Loop, Open, Autocross, Acceleration, EbsTest, Skidpad };
@@ -337,7 +327,6 @@ TEST_P(AllTracks, CompletesItsMission) {
             " max " + l["cte_max_m"].dump();
   std::printf("%s\n", line.c_str());
 
-  if (const char* why = known_open(c.name)) GTEST_SKIP() << why;
   EXPECT_EQ(r["mission"], mission_of(c.kind));
   EXPECT_EQ(r["cones_hit"], 0);
   EXPECT_TRUE(r["stopped_after_finish"]);

@@ -1,0 +1,48 @@
+#pragma once
+// The line through a tight turn (a hairpin at the rules' 9 m outside diameter, a tight 90°): there the car runs at
+// or near full lock, and a midline path does not fit the car. The nose sweeps outside the rear axle's circle by
+// √((R + w)² + f²) − R (front overhang f from the rear axle, half width w), so the outer cones bound the rear
+// axle's radius R from above, the inner cones from below, and the steering lock from below too; on a 3 m lane
+// around a 1.5 m inner radius the window is 2.80–2.97 m at a 0.5 rad lock. Such a turn is only driven cleanly on a
+// circle concentric with the turn at a radius inside that window: this replaces the path through the turn by a
+// straight, a clothoid (the rate-limited steering's turn-in), that arc, a clothoid and a straight back out. The turn's centre and lane radii come from a
+// fit of two concentric rings to the cones inside and outside the turn, not from the path.
+#include <optional>
+#include <vector>
+
+#include "common/geometry.hpp"
+#include "control/path.hpp"
+
+namespace fsd {
+
+struct TightTurnConfig {
+  bool enabled = true;
+  double kappa_on = 0.15;        // 1/m: a turn is where the smoothed path curves tighter than this
+  double min_turn_deg = 60.0;    // heading change of a turn worth shaping (the car already in it: any)
+  double lane_radius_max = 5.0;  // m: only turns whose lane centre radius is below this are shaped
+  double body_front = 2.4;       // m: rear axle to the nose
+  double body_half_width = 0.7;  // m
+  double cone_radius = 0.12;     // m: half a cone's base
+  double clearance = 0.05;       // m: kept between body and cones
+  double lock_margin = 0.02;     // the arc's curvature stays this share below the lock's
+  double lead = 5.0;             // m: the path is rejoined this far before and after the turn
+  double transition_length = 2.5;  // m: the turn-in and turn-out clothoids (steering rate × speed / wheelbase, and more)
+  double smoothing_wavelength = 1.5;  // m: the joins with the path are rounded over about this
+  // Not in the configuration section: the steering's limits, from control.follower.
+  double wheelbase = 1.53;       // m
+  double max_steer = 0.5;        // rad
+};
+
+struct TightTurn {
+  Vec2 centre = Vec2::Zero();
+  double inner_radius = 0, outer_radius = 0;  // of the cone rings
+  double radius = 0;                          // of the rear axle's arc
+  double sweep = 0;                           // rad, the arc's angle (positive)
+};
+
+// Finds the first tight turn along `path` (any frame; `cones` in the same frame) and, where the cones confirm it,
+// rebuilds the path through it. Returns the turn when the path was changed. The path keeps its first point; its
+// geometry (s, yaw, kappa) is recomputed, speeds are not (the speed profile runs after).
+std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& config);
+
+}  // namespace fsd

@@ -1,0 +1,133 @@
+// The line through a tight turn, checked against the geometry of the car and the cones: the rules' tightest
+// hairpin (9 m outside diameter, 3 m lane) built by hand, with the body swept along the line it gets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "control/smoothing.hpp"
+#include "control/tight_turn.hpp"
+
+namespace fsd {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A hairpin to the left around c: up x = c.x + rm from y = c.y − 12, half a circle of radius rm, back down; cones
+// on rings r_in and r_out round the turn and along both straights every 3 m.
+struct Hairpin {
+  Vec2 c{0.0, 21.0};
+  double r_in = 1.5, r_out = 4.5;
+  std::vector<Vec2> cones;
+  Path midline;  // the lane's centre line, smoothed like the planner's (5 m)
+
+  explicit Hairpin(double start_y = 9.0) {
+    const double rm = 0.5 * (r_in + r_out);
+    for (double y = c.y() - 12; y < c.y(); y += 3)
+      for (double x : {r_in, r_out, -r_in, -r_out}) cones.push_back(c + Vec2(x, y - c.y()));
+    for (int k = 0; k <= 4; ++k) cones.push_back(c + r_in * Vec2(std::cos(k * kPi / 4), std::sin(k * kPi / 4)));
+    for (int k = 0; k <= 5; ++k) cones.push_back(c + r_out * Vec2(std::cos(k * kPi / 5), std::sin(k * kPi / 5)));
+    Path raw;
+    for (double y = start_y; y < c.y(); y += 0.25) raw.points.push_back({Vec2(c.x() + rm, y), 0, 0, 0, 0});
+    for (double a = 0; a < kPi; a += 0.25 / rm) raw.points.push_back({c + rm * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+    for (double y = c.y(); y > c.y() - 12; y -= 0.25) raw.points.push_back({Vec2(c.x() - rm, y), 0, 0, 0, 0});
+    compute_geometry(raw);
+    midline = smooth_path(raw, 0.25, 5.0);
+  }
+};
+
+struct Sweep {
+  double clearance = 1e9;  // least gap between the body and a cone's base (a cone is 0.24 m across)
+  double kappa_max = 0;    // sharpest curvature along the line
+};
+
+// The body (0.5 m behind to 2.4 m ahead of the rear axle, 0.7 m to each side) carried along the line, tangent to
+// it, against every cone.
+Sweep sweep_body(const Path& path, const std::vector<Vec2>& cones) {
+  Sweep s;
+  for (const auto& q : path.points) {
+    const Vec2 f(std::cos(q.yaw), std::sin(q.yaw)), l(-f.y(), f.x());
+    for (const auto& c : cones) {
+      const Vec2 d = c - q.p;
+      const double x = d.dot(f), y = d.dot(l);
+      const double dx = std::max({-0.5 - x, 0.0, x - 2.4}), dy = std::max({-0.7 - y, 0.0, y - 0.7});
+      s.clearance = std::min(s.clearance, std::hypot(dx, dy) - 0.12);
+    }
+    s.kappa_max = std::max(s.kappa_max, std::abs(q.kappa));
+  }
+  return s;
+}
+
+TEST(TightTurn, TheRulesTightestHairpinGetsAnArcTheCarCanDriveInsideTheCones) {
+  const Hairpin h;
+  const TightTurnConfig cfg;  // wheelbase 1.53 m, lock 0.5 rad: the lock's radius is 2.80 m
+  const double kappa_lock = std::tan(cfg.max_steer) / cfg.wheelbase;
+
+  // The centre line does not fit: at its curvature the car cannot steer, or its body touches a cone.
+  const Sweep before = sweep_body(h.midline, h.cones);
+  EXPECT_TRUE(before.kappa_max > kappa_lock || before.clearance < 0)
+      << "kappa " << before.kappa_max << " clearance " << before.clearance;
+
+  Path line = h.midline;
+  const auto turn = shape_tight_turn(line, h.cones, cfg);
+  ASSERT_TRUE(turn);
+  EXPECT_NEAR(turn->centre.x(), h.c.x(), 0.02);
+  EXPECT_NEAR(turn->centre.y(), h.c.y(), 0.02);
+  EXPECT_NEAR(turn->inner_radius, h.r_in, 0.02);
+  EXPECT_NEAR(turn->outer_radius, h.r_out, 0.02);
+  EXPECT_NEAR(turn->sweep, kPi, 0.1);
+  // Hand-computed window: 1.53 / tan 0.5 · 1.02 = 2.857 m at least; √((4.5 − 0.17)² − 2.4²) − 0.7 = 2.904 m at most.
+  EXPECT_GE(turn->radius, 2.856);
+  EXPECT_LE(turn->radius, 2.905);
+
+  const Sweep after = sweep_body(line, h.cones);
+  EXPECT_LE(after.kappa_max, kappa_lock);
+  EXPECT_GT(after.clearance, 0.0);
+  // Through the middle of the turn the rear axle runs on the arc.
+  for (const auto& q : line.points) {
+    const Vec2 d = q.p - h.c;
+    const double a = std::atan2(d.y(), d.x());
+    if (a > 0.5 && a < kPi - 0.5) {
+      EXPECT_NEAR(d.norm(), turn->radius, 0.02) << q.p.transpose();
+    }
+  }
+  // It starts where the path started and ends back on the lane's centre line, heading down it.
+  EXPECT_LT((line.points.front().p - h.midline.points.front().p).norm(), 0.05);
+  EXPECT_LT(std::abs(line.points.back().p.x() - (h.c.x() - 3.0)), 0.05);
+  EXPECT_NEAR(line.points.back().yaw, -kPi / 2, 0.05);
+}
+
+TEST(TightTurn, ACarAlreadyInTheTurnGetsTheArcFromWhereItIs) {
+  const Hairpin h;
+  // The path starts 20° round (the car is in the turn).
+  Path in_turn;
+  for (const auto& q : h.midline.points)
+    if (q.p.y() > h.c.y() + 1.0 || q.p.x() < h.c.x()) in_turn.points.push_back(q);
+  compute_geometry(in_turn);
+  const auto turn = shape_tight_turn(in_turn, h.cones, TightTurnConfig{});
+  ASSERT_TRUE(turn);
+  EXPECT_LT(turn->sweep, kPi - 0.3);  // it started ~20° round
+  EXPECT_NEAR((in_turn.points.front().p - h.c).norm(), turn->radius, 0.02);
+  EXPECT_GT(sweep_body(in_turn, h.cones).clearance, 0.0);
+}
+
+TEST(TightTurn, WideTurnsAndTurnsWithoutInnerConesAreLeftAlone) {
+  // The same hairpin scaled to an 8 m lane radius: the centre line is drivable, nothing changes.
+  Hairpin scaled;
+  for (auto& c : scaled.cones) c = scaled.c + (c - scaled.c) * (8.0 / 3.0);
+  for (auto& q : scaled.midline.points) q.p = scaled.c + (q.p - scaled.c) * (8.0 / 3.0);
+  compute_geometry(scaled.midline);
+  Path line = scaled.midline;
+  EXPECT_FALSE(shape_tight_turn(line, scaled.cones, TightTurnConfig{}));
+  EXPECT_EQ(line.points.size(), scaled.midline.points.size());
+  // Without cones inside the turn there is no centre to fit: left alone too.
+  const Hairpin h;
+  Path alone = h.midline;
+  std::vector<Vec2> outer_only;
+  for (const auto& c : h.cones)
+    if ((c - h.c).norm() > 4.0) outer_only.push_back(c);
+  EXPECT_FALSE(shape_tight_turn(alone, outer_only, TightTurnConfig{}));
+}
+
+}  // namespace
+}  // namespace fsd
