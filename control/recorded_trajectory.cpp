@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "control/smoothing.hpp"
 
@@ -15,40 +16,66 @@ void RecordedTrajectory::record(const VehicleState& state) {
   samples_.push_back({state.stamp, p});
 }
 
+namespace {
+
+struct BoundaryCone {
+  double s;  // arc length of the cone's foot on the line
+  Vec2 p;
+};
+
+// Closest point to p on the boundary polyline `b` (sorted by s), among segments whose ends lie within `window` of s
+// along the line: a boundary of another stretch of the track that passes nearby is not this one.
+std::optional<Vec2> closest_on_boundary(const std::vector<BoundaryCone>& b, const Path& path, double s, const Vec2& p,
+                                        double window) {
+  if (b.size() < 2) return std::nullopt;
+  std::optional<Vec2> best;
+  double best_d = std::numeric_limits<double>::infinity();
+  const std::size_t n = path.closed ? b.size() : b.size() - 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BoundaryCone& u = b[i];
+    const BoundaryCone& v = b[(i + 1) % b.size()];
+    if (s_difference(path, s, u.s) > window || s_difference(path, v.s, s) > window) continue;
+    const Vec2 d = v.p - u.p;
+    const double l2 = d.squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - u.p).dot(d) / l2, 0.0, 1.0) : 0.0;
+    const Vec2 q = u.p + t * d;
+    if ((q - p).norm() < best_d) best_d = (q - p).norm(), best = q;
+  }
+  return best;
+}
+
+}  // namespace
+
 double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention,
                          double reach) {
+  // Each boundary is the polyline through its cones in their order along the line (colour names the side; a cone
+  // without one is on the side of the line it stands). The middle is half way between the two polylines, as
+  // between the boundaries a driver sees, not between single cones: in a bend with cones 5 m apart the nearest
+  // cone across can be well ahead or behind.
+  std::vector<BoundaryCone> left, right;
+  for (const auto& c : cones) {
+    if (!c.position.allFinite()) continue;
+    const auto foot = project(path, c.position.head<2>());
+    if (!foot || foot->distance() > reach) continue;
+    const ConeRole role = convention.role_of(c.colour);
+    const bool is_left = role == ConeRole::Left || (role != ConeRole::Right && foot->lateral > 0);
+    (is_left ? left : right).push_back({foot->s, c.position.head<2>()});
+  }
+  auto by_s = [](const BoundaryCone& a, const BoundaryCone& b) { return a.s < b.s; };
+  std::sort(left.begin(), left.end(), by_s);
+  std::sort(right.begin(), right.end(), by_s);
   double sum = 0;
   std::size_t n = 0;
   std::vector<Vec2> moved(path.points.size());
   for (std::size_t i = 0; i < path.points.size(); ++i) {
     const PathPoint& q = path.points[i];
-    const Vec2 t(std::cos(q.yaw), std::sin(q.yaw)), left(-t.y(), t.x());
-    // Nearest cone on each side, by lateral offset, among cones within reach along the line.
-    double best_left = reach, best_right = -reach;
-    bool have_left = false, have_right = false;
-    for (const auto& c : cones) {
-      if (!c.position.allFinite()) continue;
-      const Vec2 d = c.position.head<2>() - q.p;
-      if (std::abs(d.dot(t)) > 0.5 * reach) continue;
-      const double lat = d.dot(left);
-      const ConeRole role = convention.role_of(c.colour);
-      // Colour decides the side when it names one; otherwise the side the cone is on.
-      const bool is_left = role == ConeRole::Left || (role != ConeRole::Right && lat > 0);
-      if (is_left && lat > 0 && lat < best_left) {
-        best_left = lat;
-        have_left = true;
-      } else if (!is_left && lat < 0 && lat > best_right) {
-        best_right = lat;
-        have_right = true;
-      }
-    }
     moved[i] = q.p;
-    if (have_left && have_right) {
-      const double shift = 0.5 * (best_left + best_right);
-      moved[i] = q.p + shift * left;
-      sum += shift * shift;
-      ++n;
-    }
+    const auto l = closest_on_boundary(left, path, q.s, q.p, reach);
+    const auto r = closest_on_boundary(right, path, q.s, q.p, reach);
+    if (!l || !r || (*l - q.p).norm() > reach || (*r - q.p).norm() > reach) continue;
+    moved[i] = 0.5 * (*l + *r);
+    sum += (moved[i] - q.p).squaredNorm();
+    ++n;
   }
   for (std::size_t i = 0; i < moved.size(); ++i) path.points[i].p = moved[i];
   compute_geometry(path);

@@ -58,8 +58,9 @@ class RecordedTrajectory {
   std::vector<Sample> samples_;
 };
 
-// Moves every point of a closed path sideways to the middle between the nearest mapped cones on its left and on
-// its right (within `reach`); returns the RMS shift. Points without cones on both sides stay.
+// Moves every point of a path to the middle between its two boundaries: the polylines through the mapped cones on
+// its left and on its right (each cone within `reach` of the path, in their order along it). Returns the RMS
+// shift. Points without a boundary within `reach` on both sides stay.
 double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention, double reach);
 
 }  // namespace fsd

@@ -2,7 +2,9 @@
 // mapped cones, the closed speed profile, and refusing laps that do not close.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
+#include <tuple>
 #include <random>
 
 #include "control/recorded_trajectory.hpp"
@@ -65,6 +67,48 @@ TEST(RecordedTrajectory, RecentringPullsTheLineToTheMiddleOfTheCones) {
   const double rms = recentre_on_cones(open, cones, ColourConvention{}, 4.0);
   EXPECT_NEAR(rms, 0.4, 1e-9);
   for (const auto& q : open.points) EXPECT_NEAR(q.p.y(), 0.0, 1e-9);
+}
+
+// Distance from p to the closed polyline through `v`.
+double polyline_distance(const std::vector<Vec2>& v, const Vec2& p) {
+  double best = 1e9;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2 a = v[i], d = v[(i + 1) % v.size()] - a;
+    const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (a + t * d - p).norm());
+  }
+  return best;
+}
+
+TEST(RecordedTrajectory, RecentringInABendTakesTheMiddleBetweenTheBoundaryLines) {
+  // A ring lane (left boundary r = 8 m, right r = 12 m, driving anticlockwise) with cones 5 m apart on each: the
+  // boundaries a driver sees are the chords between cones, 0.39 m and 0.26 m inside the circles at mid-chord.
+  // The driven line runs 0.6 m wide of the ring's middle. Afterwards every point is as far from one boundary
+  // line as from the other, within 5 cm (the middle of the two nearest boundary points, not an exact bisector).
+  const double pi = std::numbers::pi;
+  std::vector<Vec2> inner, outer;
+  std::vector<Cone> cones;
+  for (const auto& [r, colour, out] : {std::tuple{8.0, ConeColour::Blue, &inner}, std::tuple{12.0, ConeColour::Yellow, &outer}}) {
+    const int n = static_cast<int>(std::round(2 * pi * r / 5.0));
+    for (int k = 0; k < n; ++k) {
+      const Vec2 q = r * Vec2(std::cos(2 * pi * k / n), std::sin(2 * pi * k / n));
+      out->push_back(q);
+      Cone c;
+      c.position = Vec3(q.x(), q.y(), 0);
+      c.colour = colour;
+      cones.push_back(c);
+    }
+  }
+  Path p;
+  p.closed = true;
+  for (int i = 0; i < 400; ++i) p.points.push_back({10.6 * Vec2(std::cos(2 * pi * i / 400), std::sin(2 * pi * i / 400)), 0, 0, 0, 0});
+  compute_geometry(p);
+  recentre_on_cones(p, cones, ColourConvention{}, 4.0);
+  for (const auto& q : p.points) {
+    const double dl = polyline_distance(inner, q.p), dr = polyline_distance(outer, q.p);
+    EXPECT_NEAR(dl, dr, 0.05) << q.p.transpose();
+    EXPECT_NEAR(dl + dr, 4.0, 0.4);  // the lane is 4 m wide between the circles, less at mid-chord
+  }
 }
 
 TEST(RecordedTrajectory, ALapThatDoesNotCloseIsRefused) {

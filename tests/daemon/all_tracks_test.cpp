@@ -43,7 +43,9 @@ struct Lap2Exception {
   double cte_max = kLap2CteMax;  // m
 };
 const Lap2Exception kLap2Exceptions[] = {
-    {"amz_fssim_thin", kLap2CteRms, 0.11, 0.7},       // max 0.67 m, +10.3 % (docs/control.md)
+    // Max 0.63 m at its far hairpin: the centre line runs 2.1 m round a single apex cone, the car's rear axle at
+    // full lock no tighter than 2.8 m (docs/control.md).
+    {"amz_fssim_thin", kLap2CteRms, kLap2Margin, 0.7},
 };
 Lap2Exception lap2_bounds(const std::string& name) {
   for (const auto& e : kLap2Exceptions)
