@@ -110,20 +110,22 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
   EXPECT_EQ(h.laps().size(), 2u);
   EXPECT_EQ(h.as_state(), AsState::Finished);
   for (const auto& [t, c] : h.hits()) std::printf("    hit cone (%.2f, %.2f) at t %.2f\n", c.x(), c.y(), t);
-  // epfl_autoX_Vaudoise_Sponso's chicane offsets two 3 m lanes by 3 m over 3 m: across the diagonal it is
-  // 2.1 m wide, and the corner cones stand 0.71 m from the centre line, inside a 1.4 m car's half width. A
-  // centre-line follower clips them; only a line that uses the track's width passes (not done here).
-  // Its whole lap is corners (the lap-1 speed cap hardly binds), so lap 2 gains less than 20 % there.
-  const bool autox = GetParam() == "epfl_autoX_Vaudoise_Sponso";
-  if (!autox) {
+  // epfl_autoX_Vaudoise_Sponso is an autocross layout (driven clean as one, tests/daemon/all_tracks_test.cpp);
+  // driven here as a two-lap trackdrive from a standing start on the line, the car still touches a cone in the
+  // chicane on lap 1 and one in the S after its hairpin on lap 2 (docs/control.md, open points).
+  if (GetParam() != "epfl_autoX_Vaudoise_Sponso") {
     EXPECT_EQ(h.cones_hit(), 0);
   }
+  // The lap-2 figures: 20 % faster than lap 1, CTE RMS < 0.15 m, max < 0.5 m. amz_fssim_thin keeps the
+  // max-CTE exception of the daemon's sweep (tests/daemon/all_tracks_test.cpp): at its far hairpin the centre
+  // line runs 2.1 m round a single apex cone, the car's rear axle at full lock no tighter than 2.8 m.
+  const double cte_max = GetParam() == "amz_fssim_thin" ? 0.7 : 0.5;
   if (h.laps().size() == 2) {
-    EXPECT_LT(h.laps()[1].time_s, (autox ? 0.9 : 0.8) * h.laps()[0].time_s);
+    EXPECT_LT(h.laps()[1].time_s, 0.8 * h.laps()[0].time_s);
     const auto [rms2, max2] = h.lap_cte(2);
     std::printf("    lap 2 cte rms %.3f max %.3f\n", rms2, max2);
     EXPECT_LT(rms2, 0.15);
-    EXPECT_LT(max2, 0.5);
+    EXPECT_LT(max2, cte_max);
   }
   for (const auto& f : h.autopilot().faults()) ADD_FAILURE() << f.t << " " << f.source << ": " << f.what;
 }
