@@ -60,12 +60,18 @@ double SpeedProfile::max_deceleration(double v, double kappa) const {
   return std::max(0.0, std::min(friction_left(limits_, v, kappa), limits_.a_brake_max));
 }
 
-void SpeedProfile::apply(Path& path, double v_start, double v_end) const {
+void SpeedProfile::apply(Path& path, double v_start, double v_end, const std::vector<SpeedZone>& zones) const {
   auto& pts = path.points;
   const std::size_t n = pts.size();
   if (n == 0) return;
   for (auto& p : pts) p.v = curvature_limit(p.kappa);
   cap_by_curvature_rate(*this, path);
+  for (const auto& z : zones)
+    for (auto& p : pts) {
+      const bool inside = z.s_begin <= z.s_end ? p.s >= z.s_begin && p.s <= z.s_end
+                                               : path.closed && (p.s >= z.s_begin || p.s <= z.s_end);
+      if (inside) p.v = std::min(p.v, std::max(0.0, z.v_max));
+    }
   if (n == 1) {
     pts[0].v = std::min(pts[0].v, std::max(0.0, v_start));
     return;

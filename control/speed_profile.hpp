@@ -3,6 +3,8 @@
 // (√(ax² + ay²) ≤ μg, ay = v²κ), the motor's acceleration and power limits, the brake limit, v_max, and the
 // steering's rate limit where the curvature changes fast (an S-bend: v·|dκ/ds| ≤ κ̇max).
 // Open paths run from the car's current speed to an end speed; closed paths (laps) are periodic.
+#include <vector>
+
 #include "control/path.hpp"
 
 namespace fsd {
@@ -21,6 +23,12 @@ struct SpeedLimits {
   double kappa_rate_window = 4.0;  // m: dκ/ds is taken over this much path (the steering starts early)
 };
 
+// A stretch of path [s_begin, s_end] driven at most v_max (on a closed path s_begin > s_end wraps over the start).
+struct SpeedZone {
+  double s_begin = 0, s_end = 0;  // m along the path
+  double v_max = 0;               // m/s
+};
+
 class SpeedProfile {
  public:
   explicit SpeedProfile(SpeedLimits limits = {}) : limits_(limits) {}
@@ -36,8 +44,8 @@ class SpeedProfile {
   double max_deceleration(double v, double kappa) const;
 
   // Fills v of every point. Open path: starting from v_start, ending no faster than v_end.
-  // Closed path: periodic, v_start and v_end ignored.
-  void apply(Path& path, double v_start, double v_end) const;
+  // Closed path: periodic, v_start and v_end ignored. `zones` cap stretches of the path on top of the limits.
+  void apply(Path& path, double v_start, double v_end, const std::vector<SpeedZone>& zones = {}) const;
 
  private:
   SpeedLimits limits_;

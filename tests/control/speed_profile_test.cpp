@@ -153,5 +153,36 @@ TEST(SpeedProfile, ClosedLapIsPeriodic) {
   EXPECT_NEAR(p.points.front().v, p.points.back().v, 0.05);
 }
 
+TEST(SpeedProfile, AZoneCapsItsStretchAndThePassesBlendIntoIt) {
+  // 100 m straight, points every 0.1 m, zone [40, 60] m at 5 m/s; braking 8, traction 5 (μ 1.2: grip is not
+  // the limit on a straight). 10 m before the zone: v² = 5² + 2·8·10 → 13.60 m/s; 10 m after: 5² + 2·5·10 → 11.18;
+  // at the start, 40 m before it: 5² + 2·8·40 → 25.79.
+  Path p;
+  for (double s = 0; s <= 100.0 + 1e-9; s += 0.1) p.points.push_back({Vec2(s, 0), 0, 0, 0, 0});
+  compute_geometry(p);
+  const SpeedProfile profile(limits(1.2, 5, 8, 30));
+  profile.apply(p, 30, 30, {{39.95, 60.05, 5.0}});  // the points from 40 to 60 m
+  auto v_at = [&](double s) { return p.points[static_cast<std::size_t>(std::lround(s / 0.1))].v; };
+  EXPECT_NEAR(v_at(50), 5.0, 1e-9);
+  EXPECT_NEAR(v_at(40), 5.0, 1e-9);
+  EXPECT_NEAR(v_at(30), std::sqrt(25.0 + 2 * 8 * 10), 1e-6);
+  EXPECT_NEAR(v_at(70), std::sqrt(25.0 + 2 * 5 * 10), 1e-6);
+  EXPECT_NEAR(v_at(0), std::sqrt(25.0 + 2 * 8 * 40), 1e-6);  // the start speed (30) is out of reach
+
+  // On a lap a zone may wrap over the start: [95, 5] on a 100 m loop (a circle of radius 100/2π, far from the
+  // friction limit at 6 m/s: √(1.2·9.81·15.9) = 13.7 m/s).
+  Path lap = test::circle_path({0, 0}, 100.0 / (2 * std::numbers::pi), 1000);
+  profile.apply(lap, 0, 0, {{95, 5, 6.0}});
+  const double vc = std::sqrt(1.2 * 9.81 * 100.0 / (2 * std::numbers::pi));
+  for (const auto& q : lap.points) {
+    if (q.s <= 5 || q.s >= 95) {
+      EXPECT_NEAR(q.v, 6.0, 1e-9) << q.s;
+    }
+    if (q.s > 40 && q.s < 60) {
+      EXPECT_NEAR(q.v, vc, 1e-6) << q.s;  // half a lap away: the circle's own limit
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fsd
