@@ -59,7 +59,8 @@ const ConfigSection<TightTurnConfig>& tight_turn_section() {
           .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.", true)
           .number("lead", &C::lead, 0.5, 20, "m", "The path is rejoined this far before and after the turn.", true)
           .number("transition_length", &C::transition_length, 0.1, 20, "m", "Turn-in and turn-out clothoid length.", true)
-          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 10, "m", "The joins with the path are rounded over about this.", true);
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 10, "m", "The joins with the path are rounded over about this.", true)
+          .number("v_max", &C::v_max, 0.5, 60, "m/s", "A shaped turn, entry to rejoin, is driven at most this fast (no steering left to correct with).", true);
   return s;
 }
 
@@ -225,6 +226,7 @@ AutopilotConfig read_control(const Config& config) {
   c.supervisor = supervisor_section().read(config);
   c.laps = lap_counter_section().read(config);
   c.trajectory = trajectory_section().read(config);
+  c.trajectory.tight_turn = c.planner.tight_turn;
   c.lap2 = lap2_section().read(config);
   return c;
 }

@@ -455,15 +455,17 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
     return finish(std::move(result));
   }
   Path smooth = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
+  std::vector<SpeedZone> zones;
   if (auto turn = shape_tight_turn(smooth, positions, config_.tight_turn)) {
     turn->centre = pose.transform(turn->centre);
     result.tight_turn = turn;
+    zones.push_back({turn->s_begin, turn->s_end, config_.tight_turn.v_max});
   }
   for (auto& p : smooth.points) {
     p.p = pose.transform(p.p);
     p.yaw = wrap_angle(p.yaw + pose.yaw);
   }
-  speed_.apply(smooth, state.speed(), config_.end_speed);
+  speed_.apply(smooth, state.speed(), config_.end_speed, zones);
   for (const Vec2& m : mids) result.midpoints.push_back(pose.transform(m));
   result.path = std::move(smooth);
   result.ok = true;

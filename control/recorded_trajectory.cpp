@@ -120,7 +120,18 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
     r.recentre_rms = recentre_on_cones(lap, map_cones, convention, config_.recentre_reach);
     lap = smooth_path(lap, config_.ds, config_.smoothing_wavelength);
   }
-  speed.apply(lap, 0, 0);
+  // Smoothing cuts a hairpin tighter than the steering can turn: there the lap gets the line lap 1's planner gave,
+  // at that line's speed cap.
+  std::vector<SpeedZone> zones;
+  if (!map_cones.empty()) {
+    std::vector<Vec2> positions;
+    for (const auto& c : map_cones)
+      if (c.position.allFinite()) positions.push_back(c.position.head<2>());
+    for (const auto& turn : shape_tight_turns_on_lap(lap, positions, config_.tight_turn))
+      zones.push_back({turn.s_begin, turn.s_end, config_.tight_turn.v_max});
+    r.tight_turns = static_cast<int>(zones.size());
+  }
+  speed.apply(lap, 0, 0, zones);
   lap.stamp = t1;
   r.path = std::move(lap);
   return r;

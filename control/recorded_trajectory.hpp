@@ -10,6 +10,7 @@
 #include "common/types.hpp"
 #include "control/path.hpp"
 #include "control/speed_profile.hpp"
+#include "control/tight_turn.hpp"
 
 namespace fsd {
 
@@ -23,6 +24,7 @@ struct RecordedTrajectoryConfig {
   bool recentre = true;              // pull the line to the middle of the mapped cones
   double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
   double early_build_distance = 25.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
+  TightTurnConfig tight_turn;        // turns at the steering lock get the car's line (control.tight_turn), as on lap 1
 };
 
 struct TrajectoryResult {
@@ -30,6 +32,7 @@ struct TrajectoryResult {
   std::string reason;         // why not, when empty
   double closure_gap = 0;     // m
   double recentre_rms = 0;    // m, how far recentring moved the line
+  int tight_turns = 0;        // turns whose line was shaped to the car
 };
 
 class RecordedTrajectory {

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace fsd {
@@ -17,10 +18,11 @@ struct Segment {
   double turn = 0;                  // signed heading change, rad
 };
 
-// The first stretch curving tighter than kappa_on one way that turns at least min_turn (or starts at the car).
-std::optional<Segment> find_turn(const Path& path, const TightTurnConfig& cfg) {
+// The first stretch from point `from` on curving tighter than kappa_on one way that turns at least min_turn (or
+// starts at the path's first point: the car).
+std::optional<Segment> find_turn(const Path& path, const TightTurnConfig& cfg, std::size_t from) {
   const auto& pts = path.points;
-  std::size_t i = 0;
+  std::size_t i = from;
   while (i < pts.size()) {
     if (std::abs(pts[i].kappa) <= cfg.kappa_on) {
       ++i;
@@ -145,11 +147,9 @@ void append_line(std::vector<Vec2>& out, const Vec2& a, const Vec2& b, double ds
   for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / n));
 }
 
-}  // namespace
-
-std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
-  if (!cfg.enabled || path.closed || path.points.size() < 4) return std::nullopt;
-  const auto seg = find_turn(path, cfg);
+// Rebuilds `path` through the turn `seg` when the cones confirm a tight turn there.
+std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>& seg, const std::vector<Vec2>& cones,
+                                       const TightTurnConfig& cfg) {
   if (!seg) return std::nullopt;
   const auto& pts = path.points;
   const double dir = seg->turn > 0 ? 1.0 : -1.0;
@@ -260,7 +260,59 @@ std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& c
   // Round the joins (a kink where the straight leaves the path, the step in curvature at the tangent points); a
   // short wavelength leaves the arc itself where it is.
   path = smooth_path(shaped, ds, cfg.smoothing_wavelength);
+  const auto back_on = project(path, p_out);
+  turn.s_begin = s_in;
+  turn.s_end = back_on ? back_on->s : path.length();
   return turn;
+}
+
+}  // namespace
+
+std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
+  if (!cfg.enabled || path.closed || path.points.size() < 4) return std::nullopt;
+  std::size_t from = 0;
+  while (const auto seg = find_turn(path, cfg, from)) {
+    if (auto turn = shape_segment(path, seg, cones, cfg)) return turn;
+    from = seg->last + 1;
+  }
+  return std::nullopt;
+}
+
+std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
+  std::vector<TightTurn> turns;
+  const std::size_t n = lap.points.size();
+  if (!cfg.enabled || !lap.closed || n < 16) return turns;
+  // Open the loop where it is straightest (least |κ| over ±5 m), so that no turn is cut in two.
+  const double ds = lap.length() / static_cast<double>(n);
+  const auto half = static_cast<std::size_t>(std::max(1.0, 5.0 / ds));
+  std::size_t cut = 0;
+  double least = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0;
+    for (std::size_t k = 0; k <= 2 * half; ++k) sum += std::abs(lap.points[(i + n + k - half) % n].kappa);
+    if (sum < least) least = sum, cut = i;
+  }
+  Path open;
+  open.stamp = lap.stamp;
+  for (std::size_t k = 0; k <= n; ++k) open.points.push_back({lap.points[(cut + k) % n].p, 0, 0, 0, 0});
+  compute_geometry(open);
+  std::size_t from = 1;  // the first point is on the straight the loop was opened on: not "the car in a turn"
+  while (const auto seg = find_turn(open, cfg, from)) {
+    if (auto turn = shape_segment(open, seg, cones, cfg)) {
+      turns.push_back(*turn);
+      from = 0;
+      while (from < open.points.size() && open.points[from].s <= turn->s_end) ++from;
+    } else {
+      from = seg->last + 1;
+    }
+  }
+  if (turns.empty()) return turns;
+  // Close it again: the last point repeats the first.
+  if (open.points.size() > 2 && (open.points.back().p - open.points.front().p).norm() < 0.5 * ds) open.points.pop_back();
+  open.closed = true;
+  compute_geometry(open);
+  lap = std::move(open);
+  return turns;
 }
 
 }  // namespace fsd

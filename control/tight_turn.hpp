@@ -28,6 +28,9 @@ struct TightTurnConfig {
   double lead = 5.0;             // m: the path is rejoined this far before and after the turn
   double transition_length = 2.5;  // m: the turn-in and turn-out clothoids (steering rate × speed / wheelbase, and more)
   double smoothing_wavelength = 1.5;  // m: the joins with the path are rounded over about this
+  // At the lock the follower has no steering left to correct with (a car carried wide stays wide), and the rejoin
+  // can bend harder than the arc: the shaped stretch is driven at most this fast.
+  double v_max = 5.0;            // m/s
   // Not in the configuration section: the steering's limits, from control.follower.
   double wheelbase = 1.53;       // m
   double max_steer = 0.5;        // rad
@@ -38,11 +41,15 @@ struct TightTurn {
   double inner_radius = 0, outer_radius = 0;  // of the cone rings
   double radius = 0;                          // of the rear axle's arc
   double sweep = 0;                           // rad, the arc's angle (positive)
+  double s_begin = 0, s_end = 0;              // m: the rebuilt stretch of the path, from leaving it to rejoining
 };
 
-// Finds the first tight turn along `path` (any frame; `cones` in the same frame) and, where the cones confirm it,
-// rebuilds the path through it. Returns the turn when the path was changed. The path keeps its first point; its
+// Finds the first tight turn along the open `path` (any frame; `cones` in the same frame) that the cones confirm,
+// and rebuilds the path through it. Returns the turn when the path was changed. The path keeps its first point; its
 // geometry (s, yaw, kappa) is recomputed, speeds are not (the speed profile runs after).
 std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& config);
+
+// The same for every tight turn of a closed lap (lap 2's trajectory); returns the turns shaped.
+std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec2>& cones, const TightTurnConfig& config);
 
 }  // namespace fsd

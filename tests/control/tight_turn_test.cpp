@@ -129,5 +129,49 @@ TEST(TightTurn, WideTurnsAndTurnsWithoutInnerConesAreLeftAlone) {
   EXPECT_FALSE(shape_tight_turn(alone, outer_only, TightTurnConfig{}));
 }
 
+TEST(TightTurn, EveryHairpinOfAClosedLapIsShaped) {
+  // A paperclip lap: two straights 30 m long joined by two of the rules' tightest hairpins (cone rings 1.5 and
+  // 4.5 m round (0, 0) and (0, 30)), driven anticlockwise on its centre line smoothed like lap 2's (12 m).
+  std::vector<Vec2> cones;
+  for (double y = 0; y < 30; y += 3)
+    for (double x : {1.5, 4.5, -1.5, -4.5}) cones.push_back({x, y});
+  for (const double cy : {0.0, 30.0}) {
+    const double a0 = cy > 0 ? 0.0 : kPi;
+    for (int k = 1; k < 4; ++k) cones.push_back(Vec2(0, cy) + 1.5 * Vec2(std::cos(a0 + k * kPi / 4), std::sin(a0 + k * kPi / 4)));
+    for (int k = 1; k < 5; ++k) cones.push_back(Vec2(0, cy) + 4.5 * Vec2(std::cos(a0 + k * kPi / 5), std::sin(a0 + k * kPi / 5)));
+  }
+  Path raw;
+  raw.closed = true;
+  for (double y = 0; y < 30; y += 0.25) raw.points.push_back({Vec2(3, y), 0, 0, 0, 0});
+  for (double a = 0; a < kPi; a += 0.25 / 3) raw.points.push_back({Vec2(0, 30) + 3 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double y = 30; y > 0; y -= 0.25) raw.points.push_back({Vec2(-3, y), 0, 0, 0, 0});
+  for (double a = kPi; a < 2 * kPi; a += 0.25 / 3) raw.points.push_back({3 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  compute_geometry(raw);
+  Path lap = smooth_path(raw, 0.25, 12.0);
+  lap.closed = true;
+  const TightTurnConfig cfg;
+  const double kappa_lock = std::tan(cfg.max_steer) / cfg.wheelbase;
+  const auto turns = shape_tight_turns_on_lap(lap, cones, cfg);
+  ASSERT_EQ(turns.size(), 2u);
+  EXPECT_TRUE(lap.closed);
+  // Each turn is the right one (centre, rings), and the stretch it rebuilt lies on the lap around its centre.
+  for (const auto& turn : turns) {
+    const Vec2 centre(0, turn.centre.y() > 15 ? 30 : 0);
+    EXPECT_LT((turn.centre - centre).norm(), 0.1);
+    EXPECT_NEAR(turn.inner_radius, 1.5, 0.05);
+    EXPECT_NEAR(turn.outer_radius, 4.5, 0.05);
+    ASSERT_LT(turn.s_begin, turn.s_end);
+    const Vec2 mid = sample(lap, 0.5 * (turn.s_begin + turn.s_end)).p;
+    EXPECT_NEAR((mid - centre).norm(), turn.radius, 0.3);
+  }
+  const Sweep after = sweep_body(lap, cones);
+  EXPECT_GT(after.clearance, 0.0);
+  EXPECT_LE(after.kappa_max, kappa_lock);
+  // Half way along each straight the line is back on the lane's centre, and the loop is still one lap long.
+  EXPECT_LT(project(lap, Vec2(3, 15))->distance(), 0.1);
+  EXPECT_LT(project(lap, Vec2(-3, 15))->distance(), 0.1);
+  EXPECT_NEAR(lap.length(), 60 + 2 * kPi * 2.9, 1.5);
+}
+
 }  // namespace
 }  // namespace fsd
