@@ -44,8 +44,9 @@ struct Lap2Exception {
 };
 const Lap2Exception kLap2Exceptions[] = {
     // Max 0.63 m at its far hairpin: the centre line runs 2.1 m round a single apex cone, the car's rear axle at
-    // full lock no tighter than 2.8 m (docs/control.md).
-    {"amz_fssim_thin", kLap2CteRms, kLap2Margin, 0.7},
+    // full lock no tighter than 2.8 m. Lap 2 is +6.8 % over the reference (not from the steering-rate cap: +6.6 %
+    // without it); docs/control.md.
+    {"amz_fssim_thin", kLap2CteRms, 0.075, 0.7},
 };
 Lap2Exception lap2_bounds(const std::string& name) {
   for (const auto& e : kLap2Exceptions)
@@ -235,8 +236,8 @@ double friction_limited_lap_time(const TrueCones& t, const Limits& lim, double* 
   std::vector<P2> mid;
   for (const P2& p : left) mid.push_back(0.5 * (p + closest_on_loop(right, p)));
   auto line = resample_loop(mid, ds);
-  const std::size_t n = line.size();
   for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t n = line.size();  // each resampling may change the count
     std::vector<P2> sm(n);
     for (std::size_t i = 0; i < n; ++i) {
       P2 acc;
