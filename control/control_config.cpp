@@ -37,6 +37,8 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
           .integer("max_wrong_colours", &C::max_wrong_colours, 0, 20, "", "... if it passes at most this many cones against their colour.")
           .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the planned path.")
           .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 50, "m", "Ripples shorter than this are smoothed out.", true)
+          .boolean("keep_clear", &C::keep_clear, "Push the path off cones nearer than the body's half width (control.tight_turn's body).", true)
+          .number("keep_clear_window", &C::keep_clear_window, 0.5, 20, "m", "A push off a cone fades out over this either side of it.", true)
           .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")
           .number("fallback_below", &C::fallback_below, 0, 50, "m", "Walks ending nearer try the single-boundary fallback.")
           .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)

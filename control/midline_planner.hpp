@@ -13,6 +13,7 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
+#include "control/cone_clearance.hpp"
 #include "control/path.hpp"
 #include "control/speed_profile.hpp"
 #include "control/tight_turn.hpp"
@@ -56,6 +57,8 @@ struct MidlinePlannerConfig {
   double end_speed = 0.0;         // m/s: speed allowed at the end of the planned horizon
   double time_budget = 0.025;     // s: a plan slower than this is reported over budget
   TightTurnConfig tight_turn;     // the line through hairpins and other turns at the steering lock
+  bool keep_clear = true;         // push the path off cones nearer than the body's half width (tight_turn's body)
+  double keep_clear_window = 3.0; // m: a push fades out over this either side of the cone
 };
 
 struct PlanResult {
@@ -70,6 +73,7 @@ struct PlanResult {
   int triangles = 0;
   std::vector<Vec2> midpoints;    // the chosen crossing-edge midpoints, map frame (for display)
   std::optional<TightTurn> tight_turn;  // the turn whose line was shaped to the car, map frame
+  int cones_pushed_off = 0;       // cones the smoothed path passed nearer than the body's half width
 };
 
 class MidlinePlanner {

@@ -110,13 +110,9 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
   EXPECT_EQ(h.laps().size(), 2u);
   EXPECT_EQ(h.as_state(), AsState::Finished);
   for (const auto& [t, c] : h.hits()) std::printf("    hit cone (%.2f, %.2f) at t %.2f\n", c.x(), c.y(), t);
-  // epfl_autoX_Vaudoise_Sponso is an autocross layout, all corners (lap 2 gains ~15 %, not 20). The daemon drives
-  // it clean for two laps (tests/daemon/all_tracks_test.cpp); this harness's lap 1 still touches one chicane cone
-  // at (1.5, 8) (docs/control.md, open points).
+  EXPECT_EQ(h.cones_hit(), 0);
+  // epfl_autoX_Vaudoise_Sponso is an autocross layout, all corners: lap 2 gains ~15 %, not 20.
   const bool autox = GetParam() == "epfl_autoX_Vaudoise_Sponso";
-  if (!autox) {
-    EXPECT_EQ(h.cones_hit(), 0);
-  }
   // The lap-2 figures: 20 % faster than lap 1, CTE RMS < 0.15 m, max < 0.5 m. amz_fssim_thin keeps the
   // max-CTE exception of the daemon's sweep (tests/daemon/all_tracks_test.cpp): at its far hairpin the centre
   // line runs 2.1 m round a single apex cone, the car's rear axle at full lock no tighter than 2.8 m.
