@@ -7,16 +7,23 @@
 namespace fsd {
 namespace {
 
-// The largest shortfall of any cone's distance from the path (0 when every cone is at least `need` away).
-double worst_shortfall(const Path& path, const std::vector<Vec2>& cones, double need, int* count = nullptr) {
-  double worst = 0;
-  for (const auto& c : cones) {
-    const auto f = project(path, c);
-    if (!f || f->distance() >= need) continue;
-    worst = std::max(worst, need - f->distance());
-    if (count) ++*count;
-  }
-  return worst;
+struct TooNear {
+  PathProjection foot;
+  double shortfall;  // m: need − distance
+};
+
+// The cones nearer the path than `need`, with where they stand beside it.
+std::vector<TooNear> too_near(const Path& path, const std::vector<Vec2>& cones, double need) {
+  std::vector<TooNear> out;
+  for (const auto& c : cones)
+    if (const auto f = project(path, c); f && f->distance() < need) out.push_back({*f, need - f->distance()});
+  return out;
+}
+
+double worst(const std::vector<TooNear>& near) {
+  double w = 0;
+  for (const auto& n : near) w = std::max(w, n.shortfall);
+  return w;
 }
 
 }  // namespace
@@ -26,23 +33,20 @@ ConeClearance keep_clear_of_cones(Path& path, const std::vector<Vec2>& cones, do
   ConeClearance r;
   auto& pts = path.points;
   if (path.closed || pts.size() < 4 || window <= 0) return r;
-  r.worst_before = worst_shortfall(path, cones, need, &r.cones_too_near);
-  r.worst_after = r.worst_before;
-  if (r.cones_too_near == 0) return r;
+  auto near = too_near(path, cones, need);
+  r.cones_too_near = static_cast<int>(near.size());
+  r.worst_before = r.worst_after = worst(near);
   // A few rounds: a push moves the path nearer other cones, and pushes from both sides settle between them.
   for (int round = 0; round < 6 && r.worst_after > 1e-3; ++round) {
     std::vector<double> left(pts.size(), 0.0), right(pts.size(), 0.0);  // push to the left / to the right, m
-    for (const auto& c : cones) {
-      const auto f = project(path, c);
-      if (!f || f->distance() >= need) continue;
-      const double push = need - f->distance();
+    const double length = path.length();
+    for (const auto& n : near) {
       // The end of the path: a cone beyond it is not beside it.
-      if (f->s <= 1e-6 || f->s >= path.length() - 1e-6) continue;
+      if (n.foot.s <= 1e-6 || n.foot.s >= length - 1e-6) continue;
+      auto& away = n.foot.lateral > 0 ? right : left;
       for (std::size_t i = 0; i < pts.size(); ++i) {
-        const double d = std::abs(pts[i].s - f->s);
-        if (d >= window) continue;
-        const double w = 0.5 * (1.0 + std::cos(std::numbers::pi * d / window));
-        (f->lateral > 0 ? right : left)[i] = std::max((f->lateral > 0 ? right : left)[i], push * w);
+        const double d = std::abs(pts[i].s - n.foot.s);
+        if (d < window) away[i] = std::max(away[i], n.shortfall * 0.5 * (1.0 + std::cos(std::numbers::pi * d / window)));
       }
     }
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -54,7 +58,8 @@ ConeClearance keep_clear_of_cones(Path& path, const std::vector<Vec2>& cones, do
       pts[i].p += fade * net * normal;
     }
     compute_geometry(path);
-    r.worst_after = worst_shortfall(path, cones, need);
+    near = too_near(path, cones, need);
+    r.worst_after = worst(near);
   }
   return r;
 }

@@ -457,9 +457,7 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
   Path smooth = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
   if (config_.keep_clear) {
     const auto& tt = config_.tight_turn;
-    result.cones_pushed_off = keep_clear_of_cones(smooth, positions, tt.body_half_width + tt.cone_radius + tt.clearance,
-                                                  config_.keep_clear_window)
-                                  .cones_too_near;
+    keep_clear_of_cones(smooth, positions, tt.body_half_width + tt.cone_radius + tt.clearance, config_.keep_clear_window);
   }
   std::vector<SpeedZone> zones;
   if (auto turn = shape_tight_turn(smooth, positions, config_.tight_turn)) {

@@ -73,7 +73,6 @@ struct PlanResult {
   int triangles = 0;
   std::vector<Vec2> midpoints;    // the chosen crossing-edge midpoints, map frame (for display)
   std::optional<TightTurn> tight_turn;  // the turn whose line was shaped to the car, map frame
-  int cones_pushed_off = 0;       // cones the smoothed path passed nearer than the body's half width
 };
 
 class MidlinePlanner {
