@@ -3,11 +3,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include "common/config.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -33,15 +32,13 @@ std::shared_ptr<const ConfigSchema> schema() {
   return s;
 }
 
-// Each test runs as its own process under ctest -j: every file gets a name of its own.
-std::filesystem::path temp_file() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  return std::filesystem::temp_directory_path() /
-         (std::string("fsd_config_") + info->name() + "_" + std::to_string(::getpid()) + ".json");
+// The test's config file, named after the test.
+std::filesystem::path config_file() {
+  return test::scratch_path(std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".json");
 }
 
 std::string load_error(const std::string& text) {
-  const auto path = temp_file();
+  const auto path = config_file();
   std::ofstream(path) << text;
   try {
     Config::load(schema(), path);
@@ -67,7 +64,7 @@ TEST(Config, DefaultsComeFromTheStruct) {
 
 TEST(Config, FileOverridesOnlyItsKeys) {
   EXPECT_EQ(load_error(R"({"ctl": {"speed": 7.5}})"), "ok");
-  const auto path = temp_file();
+  const auto path = config_file();
   const Sample s = section().read(Config::load(schema(), path));
   EXPECT_EQ(s.speed, 7.5);
   EXPECT_EQ(s.laps, 2);

@@ -22,6 +22,7 @@
 
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/daemon/track_csv.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -112,10 +113,10 @@ const char* mission_of(Kind k) {
 // ---------------------------------------------------------------------------------------------------------------
 // Running the binary.
 using test::run_fsd;
-using test::temp_path;
+using test::scratch_path;
 
 std::string fast_config() {
-  const std::string path = temp_path("fsd_fast_all.json");
+  const std::string path = scratch_path("fsd_fast_all.json");
   std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
   return path;
 }
@@ -314,7 +315,7 @@ TEST(AllTracksList, ReferenceLapTimeOfACircleIsHandComputed) {
 TEST_P(AllTracks, CompletesItsMission) {
   const TrackCase c = GetParam();
   const std::string file = kTracks + c.name + ".csv";
-  const std::string out = temp_path(std::string(c.name) + "_all.json");
+  const std::string out = scratch_path(std::string(c.name) + "_all.json");
   std::string log;
   const int rc = run_fsd(std::string("run --sim --headless --until-finished --laps 2 --config ") + fast_config() +
                          " --mission " + mission_of(c.kind) + " --track " + file + " --report " + out,
@@ -395,7 +396,7 @@ TEST(AllTracksTight, TheAutocrossLayoutDrivenAsATwoLapTrackdrive) {
   // rules' tightest hairpin with an S straight out of it: on lap 2's recorded line, at lap 2's speeds, the line
   // through the hairpin must be shaped to the car as on lap 1, and driven at that line's cap. Only cones, the
   // finish and the stop are asserted: the layout is an autocross one, all corners, and lap 2 gains ~13 %, not 20.
-  const std::string out = temp_path("autoX_trackdrive.json");
+  const std::string out = scratch_path("autoX_trackdrive.json");
   std::string log;
   const int rc = run_fsd("run --sim --headless --until-finished --laps 2 --mission trackdrive --config " +
                              fast_config() + " --track " + kTracks + "epfl_autoX_Vaudoise_Sponso.csv --report " + out,

@@ -11,6 +11,7 @@
 
 #include "drivers/camera/camera_calibration.hpp"
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -31,8 +32,7 @@ Result fsd(const std::string& args) {
 class CalibrateHomographyCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("fsd_calib_cmd_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::scratch_path(::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -6,12 +6,11 @@
 #include <fstream>
 #include <string>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include "daemon/settings.hpp"
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -59,7 +58,7 @@ TEST(Cli, ConfigurationDocsListEveryKey) {
 }
 
 TEST(Cli, ConfigCheckNamesTheBadKey) {
-  const std::string path = ::testing::TempDir() + std::to_string(::getpid()) + "_bad_config.json";
+  const std::string path = test::scratch_path("bad_config.json");
   std::ofstream(path) << R"({"run": {"laps": 0}})";
   const auto r = run("config check " + path);
   EXPECT_EQ(r.status, 2);

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -29,12 +30,12 @@ struct FsdRun {
   json report;
 };
 
-using test::temp_path;
+using test::scratch_path;
 
 // Runs fsd on epfl_track_1 with `faults` as the sim.faults section; `lidar`: simulate the VLP-16 (slower);
 // `max_sim_time` > 0 ends the run early (the mission is then not finished).
 FsdRun run_with_faults(const std::string& name, const json& faults, bool lidar = false, double max_sim_time = 0) {
-  const std::string config = temp_path(name + ".json"), out = temp_path(name + "_report.json");
+  const std::string config = scratch_path(name + ".json"), out = scratch_path(name + "_report.json");
   json cfg = {{"sim", {{"enable_camera", false}, {"enable_lidar", lidar}}}};
   if (!faults.is_null()) cfg["sim"]["faults"] = faults;
   if (max_sim_time > 0) cfg["run"] = {{"max_sim_time", max_sim_time}};

@@ -1,15 +1,11 @@
 #pragma once
 // The fsd binary run as a user runs it, for the daemon's end-to-end tests: exit status and everything it printed
-// (stdout and stderr). And temporary file names unique to the test process, since ctest -j runs tests in parallel
-// processes that share TempDir().
-#include <gtest/gtest.h>
-
+// (stdout and stderr).
 #include <array>
 #include <cstdio>
 #include <string>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 namespace fsd::test {
 
@@ -24,10 +20,6 @@ inline int run_fsd(const std::string& args, std::string* out = nullptr) {
   const int rc = pclose(p);
   if (out) *out = std::move(text);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
-
-inline std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + std::to_string(::getpid()) + "_" + name;
 }
 
 }  // namespace fsd::test

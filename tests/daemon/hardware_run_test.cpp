@@ -36,6 +36,7 @@
 #include "drivers/sim/vcu_standin.hpp"
 #include "drivers/sim/vehicle_truth.hpp"
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -43,7 +44,7 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-using test::temp_path;
+using test::scratch_path;
 
 std::string slurp(const std::string& path) {
   std::ifstream f(path);
@@ -119,7 +120,7 @@ int free_udp_port() {
 }
 
 std::string write_file(const std::string& name, const std::string& text) {
-  const std::string path = temp_path(name);
+  const std::string path = scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }
@@ -207,7 +208,7 @@ TEST(HardwareRun, OnlyInspectionRunsWithoutPerception) {
 // Refused before any device is touched: the default config's /dev/ttyVCU does not exist here either.
 TEST(HardwareRun, MissionsNeedingConesAreRefusedWithExitTwo) {
   for (const char* m : {"trackdrive", "autocross", "acceleration", "skidpad", "ebs_test"}) {
-    Fsd run({"run", "--mission", m}, temp_path(std::string("refuse_") + m + ".log"));
+    Fsd run({"run", "--mission", m}, scratch_path(std::string("refuse_") + m + ".log"));
     EXPECT_EQ(run.wait(20s), 2) << m;
     const std::string out = run.output();
     EXPECT_NE(out.find(std::string("mission '") + m + "' needs perception"), std::string::npos) << out;
@@ -217,7 +218,7 @@ TEST(HardwareRun, MissionsNeedingConesAreRefusedWithExitTwo) {
 
 TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
   const std::string vcu_missing = write_file("hw_missing_vcu.json", R"({"drivers": {"vcu": {"device": "/nonexistent/ttyVCU_test"}}})");
-  Fsd a({"run", "--config", vcu_missing, "--mission", "inspection"}, temp_path("missing_vcu.log"));
+  Fsd a({"run", "--config", vcu_missing, "--mission", "inspection"}, scratch_path("missing_vcu.log"));
   EXPECT_EQ(a.wait(20s), 2);
   EXPECT_NE(a.output().find("drivers.vcu.device: no such device '/nonexistent/ttyVCU_test'"), std::string::npos)
       << a.output();
@@ -226,7 +227,7 @@ TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
   const std::string gnss_missing = write_file(
       "hw_missing_gnss.json", R"({"drivers": {"vcu": {"device": ")" + vcu.slave_path() +
                                   R"("}, "gnss": {"device": "/nonexistent/ttyGNSS_test"}}})");
-  Fsd b({"run", "--config", gnss_missing, "--mission", "inspection"}, temp_path("missing_gnss.log"));
+  Fsd b({"run", "--config", gnss_missing, "--mission", "inspection"}, scratch_path("missing_gnss.log"));
   EXPECT_EQ(b.wait(20s), 2);
   EXPECT_NE(b.output().find("drivers.gnss.device: no such device '/nonexistent/ttyGNSS_test'"), std::string::npos)
       << b.output();
@@ -234,7 +235,7 @@ TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
   // A regular file is not a serial port.
   const std::string not_tty = write_file("hw_not_a_tty", "");
   const std::string cfg = write_file("hw_not_tty.json", R"({"drivers": {"vcu": {"device": ")" + not_tty + R"("}}})");
-  Fsd c({"run", "--config", cfg, "--mission", "inspection"}, temp_path("not_tty.log"));
+  Fsd c({"run", "--config", cfg, "--mission", "inspection"}, scratch_path("not_tty.log"));
   EXPECT_EQ(c.wait(20s), 2);
   EXPECT_NE(c.output().find("is not a character device"), std::string::npos) << c.output();
 }
@@ -248,7 +249,7 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
                                  "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0}},
                          "drivers": {"vlp16": {"data_port": )" + std::to_string(port) + "}}}");
   Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_track_1.csv", "--duration", "120"},
-          temp_path("hw_sim.log"));
+          scratch_path("hw_sim.log"));
   const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
   const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
   ASSERT_FALSE(gnss.empty()) << sim.output();
@@ -264,10 +265,10 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
                          R"(}}, "control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
                          R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
                          "run": {"stats_period": 1.0}})");
-  const std::string report_path = temp_path("hw_report.json");
+  const std::string report_path = scratch_path("hw_report.json");
   std::remove(report_path.c_str());
   Fsd run({"run", "--config", run_cfg, "--mission", "inspection", "--until-finished", "--report", report_path},
-          temp_path("hw_run.log"));
+          scratch_path("hw_run.log"));
   const int rc = run.wait(90s);
   const std::string log = run.output();
   sim.signal(SIGTERM);
@@ -390,7 +391,7 @@ class Devices {
 // The camera is a looping 160×120 video file at 20 fps.
 TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   Devices dev;
-  const std::string video = temp_path("hw_camera.avi");
+  const std::string video = scratch_path("hw_camera.avi");
   {
     cv::VideoWriter w(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 20.0, cv::Size(160, 120));
     if (!w.isOpened()) GTEST_SKIP() << "this OpenCV cannot write MJPG/AVI";
@@ -404,14 +405,14 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
                       "camera": {"enabled": true, "source": ")" + video + R"(", "width": 160, "height": 120,
                                  "fps": 20, "loop_file": true}},
           "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5}})");
-  const std::string report_path = temp_path("hw_sigterm_report.json");
+  const std::string report_path = scratch_path("hw_sigterm_report.json");
   std::remove(report_path.c_str());
   const auto driving_commands = [&] {
     const auto c = dev.commands();
     return std::count_if(c.begin(), c.end(), [](const auto& k) { return k.target_speed > 0 && !k.brake_hard; });
   };
 
-  Fsd run({"run", "--config", cfg, "--mission", "inspection", "--report", report_path}, temp_path("hw_sigterm.log"));
+  Fsd run({"run", "--config", cfg, "--mission", "inspection", "--report", report_path}, scratch_path("hw_sigterm.log"));
   const auto t0 = Clock::now();
   while (driving_commands() < 30 && Clock::now() - t0 < 30s) std::this_thread::sleep_for(20ms);
   ASSERT_GE(driving_commands(), 30) << run.output();

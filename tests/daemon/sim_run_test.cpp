@@ -13,12 +13,13 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
 
 using test::run_fsd;
-using test::temp_path;
+using test::scratch_path;
 
 nlohmann::json report(const std::string& path) {
   std::ifstream f(path);
@@ -27,13 +28,13 @@ nlohmann::json report(const std::string& path) {
 
 std::string fast_config() {
   // Truth perception needs neither LiDAR nor camera; leaving them out makes the run ~10× faster.
-  const std::string path = temp_path("fsd_fast.json");
+  const std::string path = scratch_path("fsd_fast.json");
   std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
   return path;
 }
 
 TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
-  const std::string out = temp_path("track1.json");
+  const std::string out = scratch_path("track1.json");
   std::string log;
   ASSERT_EQ(run_fsd("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 --report " +
                     out,
@@ -60,7 +61,7 @@ TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
 }
 
 TEST(SimRun, HeadlessRunsAreDeterministic) {
-  const std::string a = temp_path("det_a.json"), b = temp_path("det_b.json");
+  const std::string a = scratch_path("det_a.json"), b = scratch_path("det_b.json");
   const std::string args = "run --sim --headless --until-finished --config " + fast_config() +
                            " --track ../shared/tracks/epfl_track_5.csv --seed 3 --report ";
   ASSERT_EQ(run_fsd(args + a), 0);
@@ -73,7 +74,7 @@ TEST(SimRun, HeadlessRunsAreDeterministic) {
 TEST(SimRun, OtherLoopsFinishCleanly) {
   for (const char* track : {"epfl_track_2", "epfl_fsds_competition_1", "epfl_fsds_default", "epfl_21_05_2023"}) {
     SCOPED_TRACE(track);
-    const std::string out = temp_path(std::string(track) + ".json");
+    const std::string out = scratch_path(std::string(track) + ".json");
     ASSERT_EQ(run_fsd("run --sim --headless --until-finished --config " + fast_config() + " --track ../shared/tracks/" +
                   track + ".csv --report " + out),
               0);
@@ -87,7 +88,7 @@ TEST(SimRun, OtherLoopsFinishCleanly) {
 TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
   for (const char* track : {"epfl_acceleration", "amz_fssim_acceleration"}) {
     SCOPED_TRACE(track);
-    const std::string out = temp_path(std::string(track) + ".json");
+    const std::string out = scratch_path(std::string(track) + ".json");
     ASSERT_EQ(run_fsd("run --sim --headless --until-finished --mission acceleration --config " + fast_config() +
                   " --track ../shared/tracks/" + track + ".csv --report " + out),
               0);
@@ -114,7 +115,7 @@ TEST(SimRun, BadInputExitsTwoNamingIt) {
 }
 
 TEST(SimCommand, WritesAPcapTheDriverReads) {
-  const std::string pcap = temp_path("sim.pcap");
+  const std::string pcap = scratch_path("sim.pcap");
   std::string log;
   ASSERT_EQ(run_fsd("sim --track ../shared/tracks/epfl_track_1.csv --duration 2 --fast --lidar-pcap " + pcap, &log), 0)
       << log;

@@ -5,11 +5,10 @@
 #include <fstream>
 #include <functional>
 
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include "drivers/camera/camera_calibration.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -20,8 +19,7 @@ using nlohmann::json;
 class CameraCalibrationFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("fsd_camera_calib_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::scratch_path(::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -8,9 +8,9 @@
 
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-#include <unistd.h>
 
 #include "drivers/camera/camera_source.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -27,8 +27,7 @@ int level_of(int k) { return 20 * k; }
 class CameraSourceFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("fsd_camera_src_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::scratch_path(::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
     video_ = (dir_ / "clip.avi").string();
     cv::VideoWriter w(video_, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 20.0, cv::Size(kWidth, kHeight));
@@ -123,7 +122,7 @@ TEST_F(CameraSourceFile, ConfiguredSizeMismatchIsCounted) {
 TEST(CameraSource, MissingSourceIsRetriedAndStopsCleanly) {
   LockstepClock clock(0.0);
   CameraDriverConfig cfg;
-  cfg.source = (fs::temp_directory_path() / "fsd_no_such_video.avi").string();
+  cfg.source = test::scratch_path("no_such_video.avi");
   cfg.reconnect_delay = 0.02;
   CameraSource src(cfg, clock);
   src.start();

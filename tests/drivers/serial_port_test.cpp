@@ -15,6 +15,7 @@
 #include "drivers/serial/pseudo_terminal.hpp"
 #include "drivers/serial/serial_port.hpp"
 #include "drivers/serial/tty_baud.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -90,7 +91,7 @@ struct DeviceLink {
   fs::path path;
   DeviceLink() {
     static std::atomic<int> n{0};
-    path = fs::temp_directory_path() / ("fsd_serial_test_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+    path = test::scratch_path("device_" + std::to_string(n++));
   }
   ~DeviceLink() { remove(); }
   void point_to(const std::string& target) {

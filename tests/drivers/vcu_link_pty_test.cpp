@@ -3,8 +3,6 @@
 // reports the gap, and the VCU has meanwhile fired its EBS on the lost heartbeat. Waits are bounded polls.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -15,6 +13,7 @@
 #include "drivers/serial/pseudo_terminal.hpp"
 #include "drivers/sim/vcu_standin.hpp"
 #include "drivers/vcu/vcu_link.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -119,7 +118,7 @@ TEST(VcuLinkOverPty, DrivesTheStandinAndRecoversFromAPulledDevice) {
   vcfg.ready_to_drive_s = 0.3;  // short for the test; the 5 s rule is tested in tests/sim
   vcfg.res_go_at_s = 0.3;
   Car car(clock, vcfg);
-  const fs::path dev = fs::temp_directory_path() / ("fsd_vcu_link_test_" + std::to_string(::getpid()));
+  const fs::path dev = test::scratch_path("ttyVCU");
   fs::remove(dev);
   auto pty = std::make_unique<PseudoTerminal>();
   fs::create_symlink(pty->slave_path(), dev);

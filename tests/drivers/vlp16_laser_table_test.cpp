@@ -10,12 +10,13 @@
 #include "drivers/vlp16/decoder.hpp"
 #include "drivers/vlp16/laser_table.hpp"
 #include "tests/drivers/vlp16_test_packets.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = test::scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }
@@ -69,7 +70,7 @@ TEST(Vlp16LaserTable, RejectsBadFilesNamingFileAndLine) {
   expect_error(write_temp("lasers_id.csv", header + "16,1,0\n"), "laser_id must be an integer 0..15");
   expect_error(write_temp("lasers_cols.csv", header + "0,1\n"), "expected 3 columns");
   expect_error(write_temp("lasers_header.csv", "id,angle\n"), "header must name");
-  expect_error(::testing::TempDir() + "no_such_lasers.csv", "cannot open");
+  expect_error(test::scratch_path("no_such_lasers.csv"), "cannot open");
 }
 
 TEST(Vlp16LaserTable, FiringOrderFromTheFileSetsFiringTimeAndInterpolation) {

@@ -18,6 +18,7 @@
 #include "drivers/vlp16/pcap_dump.hpp"
 #include "drivers/vlp16/pcap_reader.hpp"
 #include "drivers/vlp16/position_packet.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fsd {
 namespace {
@@ -291,12 +292,12 @@ TEST(Vlp16Pcap, MissingCorruptAndTruncatedFilesAreClearErrors) {
       EXPECT_NE(what.find(fragment), std::string::npos) << what;
     }
   };
-  expect_error(::testing::TempDir() + "no_such_capture.pcap", "no such file");
+  expect_error(test::scratch_path("no_such_capture.pcap"), "no such file");
   expect_error("../shared/data/vlp16/vlp16_lasers.csv", "unknown file format");
 
   // Cut in the middle of the 4th record: the first three packets' returns arrive, then the error.
   const auto bytes = read_file(kPcap);
-  const std::string truncated = ::testing::TempDir() + "truncated.pcap";
+  const std::string truncated = test::scratch_path("truncated.pcap");
   std::ofstream(truncated, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), 5000);
   std::size_t seen = 0;
   EXPECT_THROW(dump_vlp16_pcap(truncated, Vlp16Config{}, [&](const Vlp16Return&) { ++seen; }), PcapError);

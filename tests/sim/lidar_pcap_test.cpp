@@ -11,14 +11,11 @@
 
 #include "drivers/sim/lidar_model.hpp"
 #include "drivers/sim/pcap_writer.hpp"
+#include "tests/scratch_dir.hpp"
 #include "tests/sim/world_test_util.hpp"
 
 namespace fsd::sim {
 namespace {
-
-std::filesystem::path temp_file(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("fsd_" + std::to_string(::getpid()) + "_" + name);
-}
 
 struct Record {
   double t;
@@ -46,7 +43,7 @@ std::vector<Record> read_all(const std::filesystem::path& path, int* link_type =
 unsigned be16(const std::vector<std::uint8_t>& b, std::size_t at) { return b[at] << 8 | b[at + 1]; }
 
 TEST(LidarPcap, RecordsCarryThePayloadBehindRealSensorHeaders) {
-  const auto path = temp_file("writer.pcap");
+  const std::filesystem::path path = fsd::test::scratch_path("writer.pcap");
   std::vector<std::vector<std::uint8_t>> payloads;
   for (int i = 0; i < 5; ++i) {
     std::vector<std::uint8_t> p(i == 4 ? 512 : 1206);
@@ -90,7 +87,7 @@ TEST(LidarPcap, RecordsCarryThePayloadBehindRealSensorHeaders) {
 
 TEST(LidarPcap, RejectsWhatDoesNotFit) {
   EXPECT_THROW(PcapWriter("/nonexistent-dir/x.pcap"), std::runtime_error);
-  const auto path = temp_file("reject.pcap");
+  const std::filesystem::path path = fsd::test::scratch_path("reject.pcap");
   PcapWriter w(path.string());
   std::vector<std::uint8_t> huge(PcapWriter::kMaxPayload + 1);
   EXPECT_THROW(w.write(1.0, huge), std::invalid_argument);
@@ -101,7 +98,7 @@ TEST(LidarPcap, RejectsWhatDoesNotFit) {
 }
 
 TEST(LidarPcap, SimulatedScanWrittenAndReadByTcpdump) {
-  const auto path = temp_file("scan.pcap");
+  const std::filesystem::path path = fsd::test::scratch_path("scan.pcap");
   const World world(test::make_track({test::make_cone(6.0, 0.5)}), test::bare_config(), 1);
   std::vector<std::vector<std::uint8_t>> sent;
   {

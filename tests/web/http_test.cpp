@@ -6,6 +6,7 @@
 #include <fstream>
 #include <regex>
 
+#include "tests/scratch_dir.hpp"
 #include "tests/web/test_client.hpp"
 
 namespace fsd::web::test {
@@ -17,7 +18,7 @@ using nlohmann::json;
 // web_root/index.html, web_root/assets/app.js, web_root/link → ../secret.txt (outside the root).
 struct WebRoot {
   WebRoot() {
-    base = fs::temp_directory_path() / ("fsd_web_test_" + std::to_string(::getpid()));
+    base = fsd::test::scratch_path("web");
     fs::remove_all(base);
     fs::create_directories(base / "root" / "assets");
     write(base / "root" / "index.html", "<!doctype html><title>dash</title>");
