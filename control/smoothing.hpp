@@ -15,8 +15,12 @@ double whittaker_lambda(double cutoff_wavelength, double ds);
 // Smoothed copy of `points` (assumed roughly uniformly spaced). Fewer than 3 points come back unchanged.
 std::vector<Vec2> whittaker_smooth(const std::vector<Vec2>& points, bool closed, double lambda);
 
-// Resamples `raw` at ds, smooths with the cutoff wavelength and recomputes s, yaw and curvature. Speeds are
-// not kept (the speed profile runs after).
-Path smooth_path(const Path& raw, double ds, double cutoff_wavelength);
+// The same smoother with every point kept within `radius` of where it was (a corridor round a centre line: the
+// smoothest line that never strays further than that from it).
+std::vector<Vec2> whittaker_smooth_within(const std::vector<Vec2>& points, bool closed, double lambda, double radius);
+
+// Resamples `raw` at ds, smooths with the cutoff wavelength (each point within `radius` of its resampled place
+// when radius > 0) and recomputes s, yaw and curvature. Speeds are not kept (the speed profile runs after).
+Path smooth_path(const Path& raw, double ds, double cutoff_wavelength, double radius = 0.0);
 
 }  // namespace fsd
