@@ -147,9 +147,10 @@ void append_line(std::vector<Vec2>& out, const Vec2& a, const Vec2& b, double ds
   for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / n));
 }
 
-// Rebuilds `path` through the turn `seg` when the cones confirm a tight turn there.
+// Rebuilds `path` through the turn `seg` when the cones confirm a tight turn there, leaving the path `lead_in`
+// before the stretch and rejoining it `lead_out` after.
 std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>& seg, const std::vector<Vec2>& cones,
-                                       const TightTurnConfig& cfg) {
+                                       const TightTurnConfig& cfg, double lead_in, double lead_out) {
   if (!seg) return std::nullopt;
   const auto& pts = path.points;
   const double dir = seg->turn > 0 ? 1.0 : -1.0;
@@ -197,8 +198,8 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   const Vec2 clothoid_centre = integrate(Vec2::Zero(), 0.0, {{L, 0.0, kappa}}, ds / 4).centre_of(r);
   const double line_radius = clothoid_centre.y(), turn_in = clothoid_centre.x();
 
-  const double s_in = std::max(pts[seg->first].s - cfg.lead, pts.front().s);
-  const double s_out = pts[seg->last].s + cfg.lead;
+  const double s_in = std::max(pts[seg->first].s - lead_in, pts.front().s);
+  const double s_out = pts[seg->last].s + lead_out;
   const Vec2 p_in = sample(path, s_in).p;
   std::vector<Vec2> out_pts;
   for (const auto& q : pts) {
@@ -245,7 +246,9 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   // Dense points (a quarter of ds) so that resampling along chords adds no curvature ripple on a 3 m arc.
   Curve curve = integrate(start, heading, pieces, ds / 4, dir);
   out_pts.insert(out_pts.end(), curve.points.begin() + 1, curve.points.end());
-  if (rejoin && (p_out - curve.end).dot(u_out) > 0) {
+  if (rejoin) {
+    // The arc and its turn-out must end before the point they rejoin, or the rest of the path would be lost.
+    if ((p_out - curve.end).dot(u_out) <= 0) return std::nullopt;
     append_line(out_pts, curve.end, p_out, ds);
     for (const auto& q : pts)
       if (q.s > s_out) out_pts.push_back(q.p);
@@ -266,13 +269,66 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   return turn;
 }
 
+// The sharpest bend of the rebuilt stretch, with the rounding of its joins (a little either side of it).
+double sharpest_bend(const Path& path, const TightTurn& turn) {
+  constexpr double kJoin = 2.0;  // m, beyond the rounding's reach (TightTurnConfig::smoothing_wavelength)
+  double k = 0;
+  for (const auto& q : path.points)
+    if (q.s >= turn.s_begin - kJoin && q.s <= turn.s_end + kJoin) k = std::max(k, std::abs(q.kappa));
+  return k;
+}
+
+// Whether the rebuilt stretch keeps the body's half width and a cone's radius off every cone.
+bool clear_of_cones(const Path& path, const TightTurn& turn, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
+  const double keep = cfg.body_half_width + cfg.cone_radius;
+  for (const auto& c : cones)
+    for (const auto& q : path.points)
+      if (q.s >= turn.s_begin && q.s <= turn.s_end && (q.p - c).squaredNorm() < keep * keep) return false;
+  return true;
+}
+
+// shape_segment with the path left and rejoined `lead` before and after the turn. Where the path bends the other
+// way just before or after the turn (an S into or out of a hairpin), the straight to it can meet it at an angle
+// that the joins' rounding turns into a bend sharper than the lock: then shorter and longer leads are tried, and
+// the first whose joins stay within the lock and whose straights pass no cone is taken (else the one that bends
+// least of those clear of the cones, else the plain one).
+std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::optional<Segment>& seg,
+                                                   const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
+  const double kappa_lock = std::tan(cfg.max_steer) / cfg.wheelbase;
+  Path plain = path;
+  const auto turn = shape_segment(plain, seg, cones, cfg, cfg.lead, cfg.lead);
+  if (!turn) return std::nullopt;
+  if (sharpest_bend(plain, *turn) <= kappa_lock) {
+    path = std::move(plain);
+    return turn;
+  }
+  std::optional<TightTurn> best;
+  Path best_path;
+  double best_bend = std::numeric_limits<double>::infinity();
+  for (const double out : {1.0, 0.6, 0.3, 1.5, 2.0})
+    for (const double in : {1.0, 0.6, 0.3, 1.5, 2.0}) {
+      if (in == 1.0 && out == 1.0) continue;
+      Path trial = path;
+      const auto other = shape_segment(trial, seg, cones, cfg, in * cfg.lead, out * cfg.lead);
+      if (!other || !clear_of_cones(trial, *other, cones, cfg)) continue;
+      const double bend = sharpest_bend(trial, *other);
+      if (bend <= kappa_lock) {
+        path = std::move(trial);
+        return other;
+      }
+      if (bend < best_bend) best_bend = bend, best = other, best_path = std::move(trial);
+    }
+  path = best ? std::move(best_path) : std::move(plain);
+  return best ? best : turn;
+}
+
 }  // namespace
 
 std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
   if (!cfg.enabled || path.closed || path.points.size() < 4) return std::nullopt;
   std::size_t from = 0;
   while (const auto seg = find_turn(path, cfg, from)) {
-    if (auto turn = shape_segment(path, seg, cones, cfg)) return turn;
+    if (auto turn = shape_segment_within_lock(path, seg, cones, cfg)) return turn;
     from = seg->last + 1;
   }
   return std::nullopt;
@@ -298,7 +354,7 @@ std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec
   compute_geometry(open);
   std::size_t from = 1;  // the first point is on the straight the loop was opened on: not "the car in a turn"
   while (const auto seg = find_turn(open, cfg, from)) {
-    if (auto turn = shape_segment(open, seg, cones, cfg)) {
+    if (auto turn = shape_segment_within_lock(open, seg, cones, cfg)) {
       turns.push_back(*turn);
       from = 0;
       while (from < open.points.size() && open.points[from].s <= turn->s_end) ++from;

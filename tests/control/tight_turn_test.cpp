@@ -173,5 +173,39 @@ TEST(TightTurn, EveryHairpinOfAClosedLapIsShaped) {
   EXPECT_NEAR(lap.length(), 60 + 2 * kPi * 2.9, 1.5);
 }
 
+TEST(TightTurn, AHairpinIntoABendTheOtherWayRejoinsWithinTheLock) {
+  // The rules' hairpin, then 3 m down its exit straight a right-hand bend (lane radius 4 m round (−7, 18)) onto a
+  // straight heading −x: an S out of a hairpin (epfl_autoX's). Rejoined 5 m after the hairpin, the straight out
+  // of the arc meets the path in the bend at an angle that its rounding turns into a bend of 0.68 1/m, and the
+  // body clips the bend's inner cone; the line must stay within the lock all through, the body clear of the cones.
+  const Hairpin h;
+  const Vec2 bend(-7.0, 18.0);
+  std::vector<Vec2> cones;
+  for (const auto& c : h.cones)
+    if (c.x() > 0 || c.y() >= bend.y()) cones.push_back(c);
+  for (int k = 0; k <= 3; ++k) cones.push_back(bend + 2.5 * Vec2(std::cos(-k * kPi / 6), std::sin(-k * kPi / 6)));
+  for (int k = 0; k <= 5; ++k) cones.push_back(bend + 5.5 * Vec2(std::cos(-k * kPi / 10), std::sin(-k * kPi / 10)));
+  for (double x = -10; x > -30; x -= 3)
+    for (const double y : {bend.y() - 2.5, bend.y() - 5.5}) cones.push_back({x, y});
+  Path raw;
+  const double rm = 3.0;
+  for (double y = 9; y < h.c.y(); y += 0.25) raw.points.push_back({Vec2(rm, y), 0, 0, 0, 0});
+  for (double a = 0; a < kPi; a += 0.25 / rm) raw.points.push_back({h.c + rm * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double y = h.c.y(); y > bend.y(); y -= 0.25) raw.points.push_back({Vec2(-rm, y), 0, 0, 0, 0});
+  for (double a = 0; a > -kPi / 2; a -= 0.25 / 4.0) raw.points.push_back({bend + 4.0 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double x = bend.x(); x > -30; x -= 0.25) raw.points.push_back({Vec2(x, bend.y() - 4.0), 0, 0, 0, 0});
+  compute_geometry(raw);
+  Path line = smooth_path(raw, 0.25, 5.0);
+  const TightTurnConfig cfg;
+  const double kappa_lock = std::tan(cfg.max_steer) / cfg.wheelbase;
+  const auto turn = shape_tight_turn(line, cones, cfg);
+  ASSERT_TRUE(turn);
+  const Sweep after = sweep_body(line, cones);
+  EXPECT_LE(after.kappa_max, kappa_lock);
+  EXPECT_GT(after.clearance, 0.0);
+  // It ends on the straight out of the bend.
+  EXPECT_NEAR(line.points.back().p.y(), bend.y() - 4.0, 0.05);
+}
+
 }  // namespace
 }  // namespace fsd
