@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -289,9 +290,9 @@ bool clear_of_cones(const Path& path, const TightTurn& turn, const std::vector<V
 
 // shape_segment with the path left and rejoined `lead` before and after the turn. Where the path bends the other
 // way just before or after the turn (an S into or out of a hairpin), the straight to it can meet it at an angle
-// that the joins' rounding turns into a bend sharper than the lock: then shorter and longer leads are tried, and
-// the first whose joins stay within the lock and whose straights pass no cone is taken (else the one that bends
-// least of those clear of the cones, else the plain one).
+// that the joins' rounding turns into a bend sharper than the lock: then shorter and longer leads (0.3–2 × lead)
+// are tried, and the first whose joins stay within the lock and whose straights pass no cone is taken (else the
+// one that bends least of those clear of the cones, else the plain one).
 std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::optional<Segment>& seg,
                                                    const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
   const double kappa_lock = std::tan(cfg.max_steer) / cfg.wheelbase;
@@ -305,19 +306,21 @@ std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::option
   std::optional<TightTurn> best;
   Path best_path;
   double best_bend = std::numeric_limits<double>::infinity();
-  for (const double out : {1.0, 0.6, 0.3, 1.5, 2.0})
-    for (const double in : {1.0, 0.6, 0.3, 1.5, 2.0}) {
-      if (in == 1.0 && out == 1.0) continue;
-      Path trial = path;
-      const auto other = shape_segment(trial, seg, cones, cfg, in * cfg.lead, out * cfg.lead);
-      if (!other || !clear_of_cones(trial, *other, cones, cfg)) continue;
-      const double bend = sharpest_bend(trial, *other);
-      if (bend <= kappa_lock) {
-        path = std::move(trial);
-        return other;
-      }
-      if (bend < best_bend) best_bend = bend, best = other, best_path = std::move(trial);
+  // One side changed first (the bend is usually on one side), then both.
+  static const std::array<std::pair<double, double>, 12> kLeads = {{{1.0, 0.6}, {1.0, 0.3}, {1.0, 1.5}, {1.0, 2.0},
+                                                                    {0.6, 1.0}, {0.3, 1.0}, {1.5, 1.0}, {2.0, 1.0},
+                                                                    {0.6, 0.6}, {1.5, 1.5}, {0.6, 1.5}, {1.5, 0.6}}};
+  for (const auto& [in, out] : kLeads) {
+    Path trial = path;
+    const auto other = shape_segment(trial, seg, cones, cfg, in * cfg.lead, out * cfg.lead);
+    if (!other || !clear_of_cones(trial, *other, cones, cfg)) continue;
+    const double bend = sharpest_bend(trial, *other);
+    if (bend <= kappa_lock) {
+      path = std::move(trial);
+      return other;
     }
+    if (bend < best_bend) best_bend = bend, best = other, best_path = std::move(trial);
+  }
   path = best ? std::move(best_path) : std::move(plain);
   return best ? best : turn;
 }
