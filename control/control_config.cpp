@@ -110,7 +110,8 @@ const ConfigSection<SpeedConfig>& speed_section() {
           .number("mass", &C::mass, 50, 2000, "kg", "Vehicle mass (for the power limit).")
           .number("v_max", &C::v_max, 0.5, 60, "m/s", "Target speed cap.", true)
           .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).", true)
-          .number("kappa_rate_max", &C::kappa_rate_max, 0, 10, "1/(m·s)", "Fastest curvature change of the steering (rate / wheelbase); 0 = no limit.", true);
+          .number("kappa_rate_max", &C::kappa_rate_max, 0, 10, "1/(m·s)", "Fastest curvature change of the steering (rate / wheelbase); 0 = no limit.", true)
+          .boolean("traction_ellipse", &C::traction_ellipse, "Traction shrinks with cornering on an ellipse (rear-wheel drive); false: friction circle capped at a_accel_max.", true);
   return s;
 }
 
@@ -176,6 +177,7 @@ const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
           .number("min_lap_length", &C::min_lap_length, 1, 10000, "m", "Shorter recorded laps are rejected.")
           .boolean("recentre", &C::recentre, "Pull the lap onto the middle of the mapped cones.")
           .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m", "Cones this close along and across count for recentring.")
+          .number("max_centre_offset", &C::max_centre_offset, 0, 5, "m", "The recentred lap, smoothed, stays this close to the centre line; 0 = unbounded.")
           .number("early_build_distance", &C::early_build_distance, 0, 50, "m", "Lap 1's path is built and taken this far before the line (0: at the line).");
   return s;
 }

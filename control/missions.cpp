@@ -15,6 +15,7 @@ SpeedLimits SpeedConfig::realtime() const {
   l.mass = mass;
   l.v_max = std::min(v_max, v_max_realtime);
   l.kappa_rate_max = kappa_rate_max;
+  l.traction_ellipse = traction_ellipse;
   return l;
 }
 

@@ -25,6 +25,7 @@ struct SpeedConfig {
   double v_max = 20.0;              // m/s: never faster
   double v_max_realtime = 8.0;      // m/s: cap when planning on what is seen
   double kappa_rate_max = 0.5;      // 1/(m·s): steering rate / wheelbase is 0.78; the yaw response lags too; 0 = off
+  bool traction_ellipse = true;     // traction shrinks with cornering on an ellipse (rear-wheel drive)
   SpeedLimits realtime() const;
   SpeedLimits known() const;
 };

@@ -23,8 +23,12 @@ struct BoundaryCone {
   Vec2 p;
 };
 
-// Closest point to p on the boundary polyline `b` (sorted by s), among segments whose ends lie within `window` of s
-// along the line: a boundary of another stretch of the track that passes nearby is not this one.
+// Segments of a boundary or centre polyline longer than this many `reach` along the line jump over a gap in it.
+constexpr double kMaxSpanInReach = 3.0;
+
+// Closest point to p on the polyline `b` (sorted by s), among segments that reach within `window` of s along the
+// line and are no gap: a boundary of another stretch of the track that passes nearby is not this one, and neither
+// is a jump over missing cones.
 std::optional<Vec2> closest_on_boundary(const std::vector<BoundaryCone>& b, const Path& path, double s, const Vec2& p,
                                         double window) {
   if (b.size() < 2) return std::nullopt;
@@ -35,6 +39,7 @@ std::optional<Vec2> closest_on_boundary(const std::vector<BoundaryCone>& b, cons
     const BoundaryCone& u = b[i];
     const BoundaryCone& v = b[(i + 1) % b.size()];
     if (s_difference(path, s, u.s) > window || s_difference(path, v.s, s) > window) continue;
+    if (s_difference(path, u.s, v.s) > kMaxSpanInReach * window) continue;
     const Vec2 d = v.p - u.p;
     const double l2 = d.squaredNorm();
     const double t = l2 > 0 ? std::clamp((p - u.p).dot(d) / l2, 0.0, 1.0) : 0.0;
@@ -49,9 +54,7 @@ std::optional<Vec2> closest_on_boundary(const std::vector<BoundaryCone>& b, cons
 double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention,
                          double reach) {
   // Each boundary is the polyline through its cones in their order along the line (colour names the side; a cone
-  // without one is on the side of the line it stands). The middle is half way between the two polylines, as
-  // between the boundaries a driver sees, not between single cones: in a bend with cones 5 m apart the nearest
-  // cone across can be well ahead or behind.
+  // without one is on the side of the line it stands).
   std::vector<BoundaryCone> left, right;
   for (const auto& c : cones) {
     if (!c.position.allFinite()) continue;
@@ -64,20 +67,37 @@ double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const Colou
   auto by_s = [](const BoundaryCone& a, const BoundaryCone& b) { return a.s < b.s; };
   std::sort(left.begin(), left.end(), by_s);
   std::sort(right.begin(), right.end(), by_s);
+  // The centre line: every point of the left boundary (each 0.25 m) and its closest point on the right one, half
+  // way between. Built from the boundaries, not from the driven line: in a bend whose inner boundary turns at a
+  // single cone, the middle of the driven line's nearest boundary points lies off the corridor's middle.
+  std::vector<BoundaryCone> centre;
+  if (left.size() >= 2 && right.size() >= 2) {
+    constexpr double kStep = 0.25;
+    const std::size_t segments = path.closed ? left.size() : left.size() - 1;
+    for (std::size_t i = 0; i < segments; ++i) {
+      const BoundaryCone& u = left[i];
+      const BoundaryCone& v = left[(i + 1) % left.size()];
+      const double span = s_difference(path, u.s, v.s);
+      if (span < 0 || span > kMaxSpanInReach * reach) continue;  // not neighbours along the line
+      const int k = std::max(1, static_cast<int>(std::ceil((v.p - u.p).norm() / kStep)));
+      for (int j = 0; j < k; ++j) {
+        const double f = static_cast<double>(j) / k;
+        const Vec2 a = u.p + f * (v.p - u.p);
+        const double sa = u.s + f * span;
+        const auto b = closest_on_boundary(right, path, sa, a, reach);
+        if (b && (*b - a).norm() <= 2 * reach) centre.push_back({sa, 0.5 * (a + *b)});
+      }
+    }
+  }
   double sum = 0;
   std::size_t n = 0;
-  std::vector<Vec2> moved(path.points.size());
-  for (std::size_t i = 0; i < path.points.size(); ++i) {
-    const PathPoint& q = path.points[i];
-    moved[i] = q.p;
-    const auto l = closest_on_boundary(left, path, q.s, q.p, reach);
-    const auto r = closest_on_boundary(right, path, q.s, q.p, reach);
-    if (!l || !r || (*l - q.p).norm() > reach || (*r - q.p).norm() > reach) continue;
-    moved[i] = 0.5 * (*l + *r);
-    sum += (moved[i] - q.p).squaredNorm();
+  for (auto& q : path.points) {
+    const auto m = closest_on_boundary(centre, path, q.s, q.p, reach);
+    if (!m || (*m - q.p).norm() > reach) continue;
+    sum += (*m - q.p).squaredNorm();
     ++n;
+    q.p = *m;
   }
-  for (std::size_t i = 0; i < moved.size(); ++i) path.points[i].p = moved[i];
   compute_geometry(path);
   return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
 }
@@ -118,8 +138,11 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
   Path lap = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
   if (config_.recentre && !map_cones.empty()) {
     r.recentre_rms = recentre_on_cones(lap, map_cones, convention, config_.recentre_reach);
-    lap = smooth_path(lap, config_.ds, config_.smoothing_wavelength);
-  }
+      // Smoothed again, but never further than max_centre_offset from the centre line: a smoother cuts a corner of
+    // the corridor's middle (a hairpin's, or where the middle kinks at a boundary's corner cone) by as much as the
+    // bend is sharp.
+    lap = smooth_path(lap, config_.ds, config_.smoothing_wavelength, config_.max_centre_offset);
+    }
   // Smoothing cuts a hairpin tighter than the steering can turn: there the lap gets the line lap 1's planner gave,
   // at that line's speed cap.
   std::vector<SpeedZone> zones;

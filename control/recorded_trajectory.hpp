@@ -23,6 +23,7 @@ struct RecordedTrajectoryConfig {
   double min_lap_length = 30.0;      // m
   bool recentre = true;              // pull the line to the middle of the mapped cones
   double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
+  double max_centre_offset = 0.4;    // m: the recentred lap, smoothed, stays this close to the centre line; 0 = free
   double early_build_distance = 25.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
   TightTurnConfig tight_turn;        // turns at the steering lock get the car's line (control.tight_turn), as on lap 1
 };

@@ -51,7 +51,14 @@ double friction_left(const SpeedLimits& l, double v, double kappa) {
 }  // namespace
 
 double SpeedProfile::max_acceleration(double v, double kappa) const {
-  double a = std::min(friction_left(limits_, v, kappa), limits_.a_accel_max);
+  double traction = limits_.a_accel_max;
+  if (limits_.traction_ellipse) {
+    // The driven (rear) tyres also carry their share of the cornering force: traction shrinks with the lateral
+    // acceleration on an ellipse, not only where the friction circle's remainder falls below a_accel_max.
+    const double lateral = v * v * std::abs(kappa) / (limits_.mu * limits_.g);
+    traction *= lateral >= 1 ? 0.0 : std::sqrt(1 - lateral * lateral);
+  }
+  double a = std::min(friction_left(limits_, v, kappa), traction);
   if (limits_.power_max > 0 && limits_.mass > 0) a = std::min(a, limits_.power_max / (limits_.mass * std::max(v, 0.5)));
   return std::max(a, 0.0);
 }

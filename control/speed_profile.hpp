@@ -21,6 +21,9 @@ struct SpeedLimits {
   // (δ ≈ L·κ, so δ̇ ≈ L·κ̇; exact at small angles, cautious at large ones). 0 = no limit.
   double kappa_rate_max = 0.0;
   double kappa_rate_window = 4.0;  // m: dκ/ds is taken over this much path (the steering starts early)
+  // Traction on the friction ellipse a_x/a_accel_max, a_y/(μg) (a rear-driven car's rear tyres corner too);
+  // false: the friction circle's remainder capped at a_accel_max.
+  bool traction_ellipse = true;
 };
 
 // A stretch of path [s_begin, s_end] driven at most v_max (on a closed path s_begin > s_end wraps over the start).

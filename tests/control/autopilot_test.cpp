@@ -78,7 +78,9 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   std::printf("  lap 2 %.2f s, friction-limited centre line %.2f s (+%.1f %%)\n", h.laps()[1].time_s, t_ref,
               100 * (h.laps()[1].time_s / t_ref - 1));
   EXPECT_LT(h.laps()[1].time_s, 1.10 * t_ref);
-  EXPECT_GT(h.laps()[1].time_s, t_ref);  // never faster than the friction limit
+  // This bicycle has no tyres to limit it and its lap-2 line may cut the centre line's corners by up to
+  // control.trajectory.max_centre_offset: it can beat the centre line's friction limit, but not by much.
+  EXPECT_GT(h.laps()[1].time_s, 0.95 * t_ref);
   bool used_recorded = false;
   for (const auto& r : h.records()) used_recorded = used_recorded || r.source == PathSource::Recorded;
   EXPECT_TRUE(used_recorded);
@@ -113,10 +115,12 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
   EXPECT_EQ(h.cones_hit(), 0);
   // epfl_autoX_Vaudoise_Sponso is an autocross layout, all corners: lap 2 gains ~15 %, not 20.
   const bool autox = GetParam() == "epfl_autoX_Vaudoise_Sponso";
-  // The lap-2 figures: 20 % faster than lap 1, CTE RMS < 0.15 m, max < 0.5 m. amz_fssim_thin keeps the
-  // max-CTE exception of the daemon's sweep (tests/daemon/all_tracks_test.cpp): at its far hairpin the centre
-  // line runs 2.1 m round a single apex cone, the car's rear axle at full lock no tighter than 2.8 m.
-  const double cte_max = GetParam() == "amz_fssim_thin" ? 0.7 : 0.5;
+  // The lap-2 figures: 20 % faster than lap 1, CTE RMS < 0.15 m, max < 0.5 m. The centre line here is
+  // this harness's own (track_truth.hpp: rungs between facing cones), not the scorecard's (each left-boundary
+  // point's midpoint with its closest right-boundary point), which the lap-2 line follows and the daemon's sweep
+  // holds to 0.5 m. The two agree within centimetres except where a boundary turns sharply at one cone across
+  // a wide stretch: at amz_fssim_thin's (29.5, 11.6) the middle of that corner is 1 m apart in the two.
+  const double cte_max = GetParam() == "amz_fssim_thin" ? 1.0 : 0.5;
   if (h.laps().size() == 2) {
     EXPECT_LT(h.laps()[1].time_s, (autox ? 0.9 : 0.8) * h.laps()[0].time_s);
     const auto [rms2, max2] = h.lap_cte(2);

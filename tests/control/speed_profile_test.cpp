@@ -79,11 +79,31 @@ TEST(SpeedProfile, AccelerationFromRestAndPowerLimit) {
 }
 
 TEST(SpeedProfile, FrictionCircleLeavesNoBrakingAtTheCorneringLimit) {
-  const SpeedProfile sp(limits(1.0, 5, 8, 30));
+  SpeedLimits l = limits(1.0, 5, 8, 30);
+  l.traction_ellipse = false;
+  const SpeedProfile sp(l);
   const double k = 0.1;
   const double v = std::sqrt(9.81 / k);
   EXPECT_NEAR(sp.max_deceleration(v, k), 0.0, 1e-6);
-  EXPECT_NEAR(sp.max_acceleration(0.5 * v, k), std::min(5.0, std::sqrt(9.81 * 9.81 - std::pow(0.25 * 9.81, 2))), 1e-9);
+  EXPECT_NEAR(sp.max_acceleration(v, k), 0.0, 1e-6);
+  // At half the cornering speed a quarter of the grip goes sideways: the circle leaves 9.81·√(1 − 1/16) = 9.498,
+  // capped by the motor's 5 and the brakes' 8.
+  EXPECT_NEAR(sp.max_acceleration(0.5 * v, k), 5.0, 1e-9);
+  EXPECT_NEAR(sp.max_deceleration(0.5 * v, k), std::min(8.0, 9.81 * std::sqrt(1 - 0.0625)), 1e-9);
+}
+
+TEST(SpeedProfile, TractionShrinksWithCorneringOnAnEllipse) {
+  // Rear-wheel drive: the traction limit itself shrinks with the lateral share, 5·√(1 − (a_y/μg)²). At half the
+  // cornering speed on κ = 0.1 (a_y = μg/4): 5·√(15/16) = 4.841 m/s² where the circle gave the full 5; at 80 % of
+  // the grip sideways (v = √(0.8·9.81/0.1) = 8.859 m/s): 5·0.6 = 3 (the circle: min(5, 9.81·0.6 = 5.886) = 5).
+  // Braking is the circle's either way (all four tyres brake).
+  const SpeedProfile sp(limits(1.0, 5, 8, 30));
+  const double k = 0.1;
+  const double v = std::sqrt(9.81 / k);
+  EXPECT_NEAR(sp.max_acceleration(0.5 * v, k), 5.0 * std::sqrt(15.0 / 16.0), 1e-9);
+  EXPECT_NEAR(sp.max_acceleration(std::sqrt(0.8 * 9.81 / k), k), 3.0, 1e-9);
+  EXPECT_NEAR(sp.max_acceleration(v, k), 0.0, 1e-6);
+  EXPECT_NEAR(sp.max_acceleration(20.0, 0.0), 5.0, 1e-12);  // straight: the motor's limit
   EXPECT_NEAR(sp.max_deceleration(0.5 * v, k), std::min(8.0, 9.81 * std::sqrt(1 - 0.0625)), 1e-9);
 }
 

@@ -34,27 +34,6 @@ constexpr double kLap2CteRms = 0.15;
 constexpr double kLap2CteMax = 0.5;
 constexpr double kLap2Margin = 0.05;
 
-// Loops that do NOT meet the figures yet (docs/control.md, "Open points"), each with its own bound: the
-// measured value (seed 1, default configuration) plus a little, so that a regression still fails. Remove a line
-// as soon as its loop meets the figure.
-struct Lap2Exception {
-  const char* name;
-  double cte_rms;  // m
-  double margin;   // share over the reference lap time
-  double cte_max = kLap2CteMax;  // m
-};
-const Lap2Exception kLap2Exceptions[] = {
-    // Max 0.63 m at its far hairpin: the centre line runs 2.1 m round a single apex cone, the car's rear axle at
-    // full lock no tighter than 2.8 m. Lap 2 is +6.8 % over the reference (not from the steering-rate cap: +6.6 %
-    // without it); docs/control.md.
-    {"amz_fssim_thin", kLap2CteRms, 0.075, 0.7},
-};
-Lap2Exception lap2_bounds(const std::string& name) {
-  for (const auto& e : kLap2Exceptions)
-    if (name == e.name) return e;
-  return {nullptr, kLap2CteRms, kLap2Margin, kLap2CteMax};
-}
-
 // ---------------------------------------------------------------------------------------------------------------
 // Which mission each file is for, by its name. Open layouts (no loop) are driven as trackdrive and count one run.
 enum class Kind { Loop, Open, Autocross, Acceleration, EbsTest, Skidpad };
@@ -371,9 +350,8 @@ TEST_P(AllTracks, CompletesItsMission) {
   // Trackdrive lap 2 on the recorded line.
   const auto& l1 = laps[0];
   const auto& l2 = laps[1];
-  const Lap2Exception bounds = lap2_bounds(c.name);
-  EXPECT_LE(l2["cte_rms_m"].get<double>(), bounds.cte_rms);
-  EXPECT_LE(l2["cte_max_m"].get<double>(), bounds.cte_max);
+  EXPECT_LE(l2["cte_rms_m"].get<double>(), kLap2CteRms);
+  EXPECT_LE(l2["cte_max_m"].get<double>(), kLap2CteMax);
   EXPECT_LE(l2["time_s"].get<double>(), 0.8 * l1["time_s"].get<double>());
   const auto& v = r["vehicle"];
   const Limits lim{v["mu"].get<double>(), v["a_accel_max"].get<double>(), v["a_brake_max"].get<double>(),
@@ -382,7 +360,7 @@ TEST_P(AllTracks, CompletesItsMission) {
   const double reference = friction_limited_lap_time(read_cones(file), lim);
   std::printf("%s: lap 2 %.3f s, friction-limited %.3f s (%+.1f %%)\n", c.name, l2["time_s"].get<double>(),
               reference, 100.0 * (l2["time_s"].get<double>() / reference - 1.0));
-  EXPECT_LE(l2["time_s"].get<double>(), (1.0 + bounds.margin) * reference);
+  EXPECT_LE(l2["time_s"].get<double>(), (1.0 + kLap2Margin) * reference);
   // Much faster than the friction limit would mean the reference or the timing is wrong.
   EXPECT_GE(l2["time_s"].get<double>(), 0.85 * reference);
 }
