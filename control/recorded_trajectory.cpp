@@ -138,11 +138,11 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
   Path lap = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
   if (config_.recentre && !map_cones.empty()) {
     r.recentre_rms = recentre_on_cones(lap, map_cones, convention, config_.recentre_reach);
-      // Smoothed again, but never further than max_centre_offset from the centre line: a smoother cuts a corner of
+    // Smoothed again, but never further than max_centre_offset from the centre line: a smoother cuts a corner of
     // the corridor's middle (a hairpin's, or where the middle kinks at a boundary's corner cone) by as much as the
     // bend is sharp.
     lap = smooth_path(lap, config_.ds, config_.smoothing_wavelength, config_.max_centre_offset);
-    }
+  }
   // Smoothing cuts a hairpin tighter than the steering can turn: there the lap gets the line lap 1's planner gave,
   // at that line's speed cap.
   std::vector<SpeedZone> zones;

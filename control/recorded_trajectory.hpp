@@ -61,9 +61,10 @@ class RecordedTrajectory {
   std::vector<Sample> samples_;
 };
 
-// Moves every point of a path to the middle between its two boundaries: the polylines through the mapped cones on
-// its left and on its right (each cone within `reach` of the path, in their order along it). Returns the RMS
-// shift. Points without a boundary within `reach` on both sides stay.
+// Moves every point of a path onto the track's centre line: the boundaries are the polylines through the mapped
+// cones on its left and on its right (each cone within `reach` of the path, in their order along it), the centre
+// line runs half way between each point of the left boundary and its closest point on the right one (the
+// scorecard's definition, DESIGN.md §8). Returns the RMS shift. Points with no centre line within `reach` stay.
 double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention, double reach);
 
 }  // namespace fsd
