@@ -196,10 +196,20 @@ TEST(VcuLinkOverPty, DrivesTheStandinAndRecoversFromAPulledDevice) {
   // Shutdown: the last Commands the VCU hears are a controlled stop.
   control_on = false;
   control.join();
-  const auto before = car.commands().size();
   link.stop();
-  ASSERT_TRUE(wait_until([&] { return car.commands().size() >= before + 3; }, 1.0));
+  // Commands written before stop() may still be on their way: wait for the stop frames themselves (the link
+  // sends cfg.stop_frames of them) to be the last ones heard, not for any three more.
+  auto ends_in_stops = [&] {
+    const auto cmds = car.commands();
+    if (cmds.size() < 3) return false;
+    for (std::size_t i = cmds.size() - 3; i < cmds.size(); ++i)
+      if (!cmds[i].brake_hard) return false;
+    return true;
+  };
+  ASSERT_GE(cfg.stop_frames, 3);
+  EXPECT_TRUE(wait_until(ends_in_stops, 1.0));
   const auto cmds = car.commands();
+  ASSERT_GE(cmds.size(), 3u);
   for (std::size_t i = cmds.size() - 3; i < cmds.size(); ++i) {
     EXPECT_EQ(cmds[i].target_speed, 0.0);
     EXPECT_TRUE(cmds[i].brake_hard);
