@@ -3,9 +3,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace fsd {
+
+std::string to_string(const LapLineBuilt& l) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "lap path built: %.1f m, closed within %.2f m, moved %.2f m (RMS) onto the centre line, %d tight turn(s)",
+                l.length, l.closure_gap, l.recentre_rms, l.tight_turns);
+  return buf;
+}
 
 std::string_view to_string(PathSource s) {
   switch (s) {
@@ -71,6 +80,12 @@ void Autopilot::on_gnss(Stamp t, bool good) {
   }
 }
 
+namespace {
+LapLineBuilt summary(const TrajectoryResult& r) {
+  return {r.path ? r.path->length() : 0.0, r.closure_gap, r.recentre_rms, r.tight_turns};
+}
+}  // namespace
+
 void Autopilot::plan_realtime(Stamp now, ControlOutput& out) {
   if (!state_ || planner_stalled_) return;
   if (!new_cones_ && now - last_plan_attempt_ < config_.replan_period) return;
@@ -80,6 +95,9 @@ void Autopilot::plan_realtime(Stamp now, ControlOutput& out) {
   out.planned = true;
   out.plan_ok = r.ok;
   out.planning_time = r.compute_time;
+  out.plan_one_boundary = r.single_boundary;
+  out.plan_colour_blind = r.ignored_colours;
+  out.plan_tight_turn = r.tight_turn.has_value();
   supervisor_.on_plan(now, r.ok, r.compute_time, config_.planner.time_budget);
   const bool late = config_.supervisor.check_plan_time && r.over_budget;
   if (r.ok && !late) plan_ = std::move(r.path);
@@ -181,6 +199,7 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
           if (built.path) {
             lap_path_ = *built.path;
             lap2_follower_.reset();
+            out.lap_line = summary(built);
           }
         }
       }
@@ -190,7 +209,7 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
         if (ev->lap == 1 && target_laps() > 1 && !lap_path_) {
           const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), ev->t, cones_, convention_,
                                                SpeedProfile(lap2_limits()));
-          if (built.path) lap_path_ = *built.path;
+          if (built.path) lap_path_ = *built.path, out.lap_line = summary(built);
           else supervisor_.report(now, "mission", "lap-2 trajectory not built: " + built.reason,
                                   "keep real-time planning");
         }

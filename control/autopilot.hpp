@@ -46,6 +46,18 @@ struct AutopilotConfig {
 enum class PathSource { None, Planner, Recorded, Skidpad, Straight };
 std::string_view to_string(PathSource s);
 
+// The lap path (lap 2 on) when it was built: what became of the recorded lap-1 line.
+struct LapLineBuilt {
+  double length = 0;        // m
+  double closure_gap = 0;   // m from the recorded lap's end to its start
+  double recentre_rms = 0;  // m: how far the line moved onto the mapped centre line
+  int tight_turns = 0;      // turns re-shaped to the steering lock
+};
+
+// One line for the log: "lap path built: 181.9 m, closed within 0.12 m, moved 0.21 m (RMS) onto the centre
+// line, 1 tight turn(s)".
+std::string to_string(const LapLineBuilt& l);
+
 struct ControlOutput {
   ControlCommand command;              // to the VCU, every cycle
   AsRequest request = AsRequest::None; // to the VCU while not None
@@ -56,6 +68,10 @@ struct ControlOutput {
   bool planned = false;                // the real-time planner ran this cycle
   bool plan_ok = false;                // its outcome when it ran
   Duration planning_time = 0;          // s, wall clock of that plan
+  bool plan_one_boundary = false;      // that plan ran half a width inside the only boundary seen
+  bool plan_colour_blind = false;      // that plan ignored cone colours that contradicted the geometry
+  bool plan_tight_turn = false;        // that plan shaped a turn to the steering lock
+  std::optional<LapLineBuilt> lap_line;  // the lap path was built this cycle
   Duration control_time = 0;           // s, wall clock of the whole step
   bool finished = false;               // past the mission's finish (stopping or stopped)
   bool stopping = false;               // a fault stop is under way

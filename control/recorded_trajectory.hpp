@@ -33,6 +33,7 @@ struct TrajectoryResult {
   std::string reason;         // why not, when empty
   double closure_gap = 0;     // m
   double recentre_rms = 0;    // m, how far recentring moved the line
+  int tight_turns = 0;        // turns re-shaped to the steering lock
 };
 
 class RecordedTrajectory {

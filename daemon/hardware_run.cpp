@@ -269,6 +269,7 @@ struct HardwareRun::Impl {
       const ControlOutput out = autopilot->step(now);
       vcu->set_command(out.command);
       vcu->set_as_request(out.request);
+      if (out.lap_line) log->info("{}", to_string(*out.lap_line));
       cycles.fetch_add(1);
       if (until_finished && (as == AsState::Finished || as == AsState::Emergency)) {
         std::lock_guard lock(result_m);

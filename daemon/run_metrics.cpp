@@ -21,6 +21,12 @@ RunMetrics::RunMetrics(web::Metrics& m)
       end_to_end_(m.summary(kLatency, kLatencyHelp, {{"stage", "end_to_end"}})),
       period_(m.summary("fsd_control_period_seconds", "Wall time between the starts of consecutive control cycles")),
       cycles_(m.counter("fsd_control_cycles_total", "Control cycles run")),
+      plans_(m.counter("fsd_plans_total", "Real-time plans made")),
+      plans_one_boundary_(m.counter("fsd_plans_one_boundary_total",
+                                    "Plans that saw one boundary only and ran half a lane width inside it")),
+      plans_colour_blind_(m.counter("fsd_plans_colour_blind_total",
+                                    "Plans that ignored cone colours contradicting the geometry (colour-blind)")),
+      plans_tight_turn_(m.counter("fsd_plans_tight_turn_total", "Plans that shaped a turn to the steering lock")),
       rate_(m.gauge("fsd_control_loop_rate_hz", "Control cycles per second of wall time, over the last second")),
       as_state_(m.gauge("fsd_as_state", kAsHelp)),
       laps_(m.gauge("fsd_laps_completed", "Laps completed in this run")),
@@ -49,6 +55,12 @@ void RunMetrics::on_cycle(const CycleFigures& f) {
   cycles_.inc();
   if (f.perception_s >= 0) perception_.observe(f.perception_s);
   if (f.planning_s >= 0) planning_.observe(f.planning_s);
+  if (f.planned) {
+    plans_.inc();
+    if (f.plan_one_boundary) plans_one_boundary_.inc();
+    if (f.plan_colour_blind) plans_colour_blind_.inc();
+    if (f.plan_tight_turn) plans_tight_turn_.inc();
+  }
   if (f.control_s >= 0) control_.observe(f.control_s);
   if (f.end_to_end_s >= 0) end_to_end_.observe(f.end_to_end_s);
   const int as = static_cast<int>(f.as_state);

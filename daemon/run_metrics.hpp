@@ -16,6 +16,10 @@ struct CycleFigures {
   double perception_s = -1;       // wall time of the perception stage (sensor frame → cone map update)
   double planning_s = -1;         // wall time of a new plan
   double control_s = -1;          // wall time of the path follower and supervisor
+  bool planned = false;           // a real-time plan ran; and what it had to do:
+  bool plan_one_boundary = false; //   only one boundary seen
+  bool plan_colour_blind = false; //   colours contradicted the geometry
+  bool plan_tight_turn = false;   //   a turn shaped to the steering lock
   double end_to_end_s = -1;       // from the start of perception to the command handed to the VCU link
   AsState as_state = AsState::Off;
   int laps = 0;
@@ -31,7 +35,7 @@ class RunMetrics {
  private:
   using clock = std::chrono::steady_clock;
   web::Summary &perception_, &planning_, &control_, &end_to_end_, &period_;
-  web::Counter& cycles_;
+  web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_tight_turn_;
   web::Gauge &rate_, &as_state_, &laps_, &cones_hit_, &sim_time_;
   web::Gauge* as_active_[5];
   clock::time_point last_cycle_{}, window_start_{};

@@ -239,6 +239,7 @@ struct SimRun::Impl {
         card->latency("end_to_end").add(fig.end_to_end_s);
       }
       vcu->set_as_request(out.request);
+      if (out.lap_line) log->info("{}", to_string(*out.lap_line));
       if (out.planned) card->latency("planning").add(out.planning_time);
       card->latency("control").add(out.control_time);
 
@@ -253,6 +254,10 @@ struct SimRun::Impl {
       if (metrics) {
         fig.t = t;
         fig.planning_s = out.planned ? out.planning_time : -1;
+        fig.planned = out.planned;
+        fig.plan_one_boundary = out.plan_one_boundary;
+        fig.plan_colour_blind = out.plan_colour_blind;
+        fig.plan_tight_turn = out.plan_tight_turn;
         fig.control_s = out.control_time;
         fig.as_state = car->vcu().state();
         fig.laps = static_cast<int>(laps_done);

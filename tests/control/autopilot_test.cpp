@@ -38,7 +38,12 @@ void print_laps(const char* what, const test::MissionHarness& h) {
 
 TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   const Track track = test::shared_track("epfl_track_1");
-  test::MissionHarness h(track, Mission::Trackdrive, test_config());
+  test::HarnessOptions options;
+  std::vector<std::pair<double, LapLineBuilt>> lap_lines;
+  options.observe = [&](double t, const ControlOutput& out, const test::BicycleSim&) {
+    if (out.lap_line) lap_lines.emplace_back(t, *out.lap_line);
+  };
+  test::MissionHarness h(track, Mission::Trackdrive, test_config(), options);
   h.run();
   print_laps("trackdrive epfl_track_1", h);
   ASSERT_EQ(h.laps().size(), 2u);
@@ -81,6 +86,14 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   // This bicycle has no tyres to limit it and its lap-2 line may cut the centre line's corners by up to
   // control.trajectory.max_centre_offset: it can beat the centre line's friction limit, but not by much.
   EXPECT_GT(h.laps()[1].time_s, 0.95 * t_ref);
+  // The lap path was built once, shortly before the end of lap 1, as long as the lap and closed.
+  ASSERT_EQ(lap_lines.size(), 1u);
+  EXPECT_LT(lap_lines[0].first, h.laps()[0].t);
+  EXPECT_GT(lap_lines[0].first, h.laps()[0].t - 5.0);
+  EXPECT_NEAR(lap_lines[0].second.length, centre.length(), 0.03 * centre.length());
+  EXPECT_LT(lap_lines[0].second.closure_gap, 1.0);
+  EXPECT_GT(lap_lines[0].second.recentre_rms, 0.0);
+  EXPECT_EQ(lap_lines[0].second.tight_turns, 0);  // epfl_track_1 has no hairpin
   bool used_recorded = false;
   for (const auto& r : h.records()) used_recorded = used_recorded || r.source == PathSource::Recorded;
   EXPECT_TRUE(used_recorded);

@@ -230,6 +230,28 @@ TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   EXPECT_NEAR((*car)["entities"][0]["arrows"][0]["pose"]["position"]["x"].get<double>(), sx, 0.01);
 }
 
+TEST(Telemetry, PlanFallbacksAreCounted) {
+  // Ten cycles: a plan on every other one; of the five, two on one boundary, one colour-blind as well, one with a
+  // tight turn; a flag on a cycle without a plan counts nothing.
+  web::Metrics registry;
+  RunMetrics metrics(registry);
+  for (int i = 0; i < 10; ++i) {
+    CycleFigures f;
+    f.t = 0.01 * i;
+    f.planned = i % 2 == 0;
+    f.planning_s = f.planned ? 0.001 : -1;
+    f.plan_one_boundary = i == 0 || i == 2 || i == 3;
+    f.plan_colour_blind = i == 2;
+    f.plan_tight_turn = i == 8 || i == 9;
+    metrics.on_cycle(f);
+  }
+  const auto m = parse_metrics(registry.render());
+  EXPECT_EQ(m.at("fsd_plans_total"), 5);
+  EXPECT_EQ(m.at("fsd_plans_one_boundary_total"), 2);
+  EXPECT_EQ(m.at("fsd_plans_colour_blind_total"), 1);
+  EXPECT_EQ(m.at("fsd_plans_tight_turn_total"), 1);
+}
+
 TEST(Telemetry, MetricsOfARunAreScrapedOverHttp) {
   // 800 control cycles (10 ms), perception frames due at 0, 0.1, …, 8.0 s: 81; Ready at ≈ 0.5 s and RES go 5.5 s
   // later (the rules' 5 s in Ready + 0.5 s), so Driving at the end.
@@ -253,6 +275,11 @@ TEST(Telemetry, MetricsOfARunAreScrapedOverHttp) {
   const double planned = at(lat + "_count{stage=\"planning\"}");
   EXPECT_GT(planned, 0);
   EXPECT_LE(planned, 800);
+  EXPECT_EQ(at("fsd_plans_total"), planned);
+  // epfl_track_1 from its start: both boundaries in sight, colours right, no tight turn.
+  EXPECT_EQ(at("fsd_plans_one_boundary_total"), 0);
+  EXPECT_EQ(at("fsd_plans_colour_blind_total"), 0);
+  EXPECT_EQ(at("fsd_plans_tight_turn_total"), 0);
   for (const std::string stage : {"perception", "planning", "control", "end_to_end"}) {
     const double p50 = at(lat + "{stage=\"" + stage + "\",quantile=\"0.5\"}");
     const double p99 = at(lat + "{stage=\"" + stage + "\",quantile=\"0.99\"}");
