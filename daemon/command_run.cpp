@@ -10,14 +10,11 @@
 #include "common/params.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
+#include "daemon/dashboard.hpp"
 #include "daemon/hardware_run.hpp"
-#include "daemon/run_metrics.hpp"
 #include "daemon/run_options.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
-#include "daemon/telemetry.hpp"
-#include "web/config.hpp"
-#include "web/server.hpp"
 
 namespace fsd {
 
@@ -58,44 +55,45 @@ int run_command(const RunOptions& o) {
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  RealClock clock;
+  ParamRegistry params(cfg, &clock);
+  std::unique_ptr<Dashboard> dashboard;
+  // After the run's own checks (a bad device or mission exits 2 before anything listens), unless --headless.
+  auto start_dashboard = [&](bool truth_channels) {
+    if (o.headless) return true;
+    dashboard = std::make_unique<Dashboard>(cfg, params, clock, truth_channels);
+    try {
+      dashboard->start();
+    } catch (const std::exception& e) {
+      std::cerr << "fsd run: " << e.what() << "\n";
+      return false;
+    }
+    std::cout << "fsd: dashboard at " << dashboard->url() << "  (Ctrl-C stops)" << std::endl;
+    return true;
+  };
   if (!o.sim) {
     // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
     HardwareRun run(cfg, o);
+    if (!start_dashboard(false)) return kExitBadInput;
+    if (dashboard) {
+      run.set_telemetry(&dashboard->telemetry());
+      run.set_metrics(&dashboard->metrics());
+      run.set_params(&params);
+    }
     const int rc = run.run(g_stop);
+    if (dashboard) dashboard->stop();
     return finish(rc, o.report, run.report());
   }
 
   SimRun run(cfg, o);
-  RealClock clock;
-  ParamRegistry params(cfg, &clock);
-  std::unique_ptr<web::WebServer> server;
-  std::unique_ptr<Telemetry> telemetry;
-  std::unique_ptr<RunMetrics> metrics;
-  std::unique_ptr<LogForwarding> log_forwarding;
-  if (!o.headless) {
-    const web::WebConfig wc = web::web_section().read(cfg);
-    server = std::make_unique<web::WebServer>(wc, params, clock);
-    telemetry = std::make_unique<Telemetry>(*server, TelemetryRates{}, /*truth=*/o.sim);
-    metrics = std::make_unique<RunMetrics>(server->metrics());
-    // Before the server's threads start: spdlog's sink lists must not change while anyone logs.
-    log_forwarding = std::make_unique<LogForwarding>(*server, telemetry->channels().log, clock);
-    try {
-      server->start();
-    } catch (const std::exception& e) {
-      std::cerr << "fsd run: " << e.what() << "\n";
-      return kExitBadInput;
-    }
-    run.set_telemetry(telemetry.get());
-    run.set_metrics(metrics.get());
+  if (!start_dashboard(true)) return kExitBadInput;
+  if (dashboard) {
+    run.set_telemetry(&dashboard->telemetry());
+    run.set_metrics(&dashboard->metrics());
     run.set_params(&params);
-    // With web.port 0 the system picks the port: port() is the one bound.
-    const std::string host = wc.bind == "0.0.0.0" ? "localhost" : wc.bind;
-    std::cout << "fsd: dashboard at http://" << host << ":" << server->port() << "/  (Ctrl-C stops)" << std::endl;
   }
   const int rc = run.run(g_stop);
-  if (telemetry) telemetry->stop();
-  if (server) server->stop();
-  if (log_forwarding) log_forwarding->detach();
+  if (dashboard) dashboard->stop();
   return finish(rc, o.report, run.scorecard().to_json());
 }
 

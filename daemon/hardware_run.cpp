@@ -7,17 +7,22 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "common/bounded_queue.hpp"
 #include "common/clock.hpp"
 #include "common/logging.hpp"
+#include "common/params.hpp"
 #include "common/track.hpp"
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/hardware_stats.hpp"
+#include "daemon/live_tuning.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
+#include "daemon/telemetry.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/gnss/gnss_driver.hpp"
 #include "drivers/serial/serial_port.hpp"
@@ -30,6 +35,8 @@ namespace fsd {
 namespace {
 
 constexpr double kControlPeriod = 0.01;  // s: 100 Hz
+constexpr int kTelemetryEvery = 4;       // control cycles between telemetry snapshots (25 Hz)
+constexpr double kCameraJpegPeriod = 0.2;  // s between camera frames encoded for the dashboard
 
 // A serial device must be there at start: a typo in the path should not look like a VCU that never answers.
 // (Once running, a device that disappears is the drivers' business: they reopen it and report the gap.)
@@ -117,6 +124,18 @@ struct HardwareRun::Impl {
 
   std::unique_ptr<Autopilot> autopilot;
   std::thread control_thread;
+
+  // The dashboard, when there is one (set before run()).
+  Telemetry* telemetry = nullptr;
+  RunMetrics* metrics = nullptr;
+  ParamRegistry* params = nullptr;
+  std::atomic<bool> params_changed{false};
+  Config tuned;  // the configuration with the live parameter values (control thread)
+  LatestValue<std::shared_ptr<const std::vector<std::uint8_t>>> camera_jpeg;  // encoded on the camera thread
+  // Control thread only: what the snapshots show.
+  std::optional<VehicleState> last_state;
+  std::vector<Vec2> lap1_trail, lap2_trail;
+  std::optional<Stamp> lap_started;
   std::atomic<bool> halt{false};          // the control and camera threads end
   std::atomic<bool> control_done{false};  // the control thread ended the run (--until-finished)
   std::atomic<std::uint64_t> cycles{0}, overruns{0};
@@ -137,7 +156,8 @@ struct HardwareRun::Impl {
         vlp_cfg(vlp16_section().read(cfg)),
         gnss_cfg(gnss_section().read(cfg)),
         vcu_cfg(vcu_section().read(cfg)),
-        cam_cfg(camera_driver_section().read(cfg)) {
+        cam_cfg(camera_driver_section().read(cfg)),
+        tuned(cfg) {
     until_finished = opt.until_finished;
     const auto m = mission_from_string(run.mission);
     if (!m) throw std::invalid_argument("unknown mission '" + run.mission + "'");
@@ -237,12 +257,70 @@ struct HardwareRun::Impl {
     max_distance_from_start = std::max(max_distance_from_start, (p - *start_position).norm());
   }
 
+  // The dashboard's view of a control cycle: its figures to /metrics, every kTelemetryEvery-th a snapshot to the
+  // telemetry (both hand over without waiting).
+  void observe(Stamp now, AsState as, const ControlOutput& out, std::uint64_t cycle) {
+    const std::size_t laps_done = autopilot->lap_times().size();
+    if (out.lap) lap_started = out.lap->t;
+    else if (!lap_started && as == AsState::Driving) lap_started = now;
+    if (as == AsState::Driving && last_state && cycle % 10 == 0) {
+      auto& trail = laps_done == 0 ? lap1_trail : lap2_trail;
+      if (trail.size() < 20000) trail.push_back(last_state->pose.position());
+    }
+    if (metrics) {
+      CycleFigures fig;
+      fig.t = now;
+      fig.planning_s = out.planned ? out.planning_time : -1;
+      fig.control_s = out.control_time;
+      fig.planned = out.planned;
+      fig.plan_one_boundary = out.plan_one_boundary;
+      fig.plan_colour_blind = out.plan_colour_blind;
+      fig.plan_tight_turn = out.plan_tight_turn;
+      fig.as_state = as;
+      fig.laps = static_cast<int>(laps_done);
+      metrics->on_cycle(fig);
+    }
+    if (telemetry && cycle % kTelemetryEvery == 0) publish_telemetry(now, as, out);
+  }
+
+  void publish_telemetry(Stamp now, AsState as, const ControlOutput& out) {
+    TelemetrySnapshot s;
+    s.t = now;
+    if (last_state) s.state = *last_state;
+    s.target_speed = out.command.target_speed;
+    s.cone_map = std::make_shared<const std::vector<Cone>>(autopilot->cones());
+    auto paths = std::make_shared<web::PathSet>();
+    paths->lap1_trajectory = lap1_trail;
+    paths->lap2_tracking = lap2_trail;
+    if (out.path)
+      for (const auto& p : out.path->points) paths->planned.push_back(p.p);
+    s.paths = paths;
+    // No scan: the LiDAR's mount on the car is not in the configuration yet, so its points cannot be placed.
+    if (auto jpeg = camera_jpeg.get()) s.camera_jpeg = std::move(*jpeg);
+    s.as.as_state = as;
+    s.as.mission = mission;
+    s.as.lap = static_cast<int>(autopilot->lap_times().size());
+    s.as.laps_total = mission == Mission::Trackdrive ? run.laps : 1;
+    s.as.lap_times = autopilot->lap_times();
+    s.as.lap_time = lap_started && !out.finished ? now - *lap_started : 0.0;
+    s.as.control_mode = std::string(to_string(out.source));
+    s.as.finished = out.finished;
+    if (const auto st = vcu->status()) {
+      s.as.res_go = st->res_go;
+      s.as.res_emergency = st->res_emergency;
+      s.as.ebs_active = st->ebs_active;
+    }
+    for (const auto& f : autopilot->faults()) s.faults.push_back({f.t, f.source, f.what, f.action, true});
+    telemetry->publish(std::move(s));
+  }
+
   // The control thread: newest inputs from the slots, one autopilot step, command and request to the VCU link's
   // slots. Never blocks on a driver.
   void control_loop() {
     std::uint64_t gnss_seen = 0;
     double steering = 0;
     Stamp next = clock.now();
+    std::uint64_t cycle = 0;
     while (!halt.load()) {
       next += kControlPeriod;
       clock.sleep_until(next);
@@ -264,13 +342,17 @@ struct HardwareRun::Impl {
           const VehicleState s = state_from_gnss(fix->sample, steering);
           autopilot->on_state(s);
           note_position(s.pose.position());
+          last_state = s;
         }
       }
+      if (params_changed.exchange(false)) autopilot->set_config(tuned_control(tuned, *params, run.laps));
       const ControlOutput out = autopilot->step(now);
       vcu->set_command(out.command);
       vcu->set_as_request(out.request);
       if (out.lap_line) log->info("{}", to_string(*out.lap_line));
       cycles.fetch_add(1);
+      ++cycle;
+      if (telemetry || metrics) observe(now, as, out, cycle);
       if (until_finished && (as == AsState::Finished || as == AsState::Emergency)) {
         std::lock_guard lock(result_m);
         ended_by = as == AsState::Finished ? "finished" : "emergency";
@@ -281,9 +363,18 @@ struct HardwareRun::Impl {
   }
 
   void camera_loop() {
+    Stamp next_jpeg = 0;
     while (!halt.load())
-      if (auto f = camera->next_frame(std::chrono::milliseconds(100)))
+      if (auto f = camera->next_frame(std::chrono::milliseconds(100))) {
+        // The dashboard's picture is encoded here, on the camera's own thread, a few times a second.
+        if (telemetry && f->stamp >= next_jpeg && !f->bgr.empty()) {
+          std::vector<std::uint8_t> jpeg;
+          if (cv::imencode(".jpg", f->bgr, jpeg, {cv::IMWRITE_JPEG_QUALITY, 80}))
+            camera_jpeg.set(std::make_shared<const std::vector<std::uint8_t>>(std::move(jpeg)));
+          next_jpeg = f->stamp + kCameraJpegPeriod;
+        }
         last_frame.set(std::make_shared<const Frame>(std::move(*f)));
+      }
   }
 
   int run_loop(const std::atomic<bool>& stop) {
@@ -365,5 +456,11 @@ HardwareRun::~HardwareRun() = default;
 int HardwareRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
 nlohmann::json HardwareRun::report() const { return impl_->report(); }
 int HardwareRun::lidar_port() const { return impl_->lidar_rx->port(); }
+void HardwareRun::set_telemetry(Telemetry* telemetry) { impl_->telemetry = telemetry; }
+void HardwareRun::set_metrics(RunMetrics* metrics) { impl_->metrics = metrics; }
+void HardwareRun::set_params(ParamRegistry* params) {
+  impl_->params = params;
+  if (params) params->subscribe([this](const ParamChange&) { impl_->params_changed = true; });
+}
 
 }  // namespace fsd

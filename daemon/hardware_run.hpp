@@ -9,6 +9,9 @@
 //                                                          ControlCommand, AS request ◄─┘
 // Perception and localization have not landed: the vehicle state comes from GNSS-INS alone and there is no cone
 // source, so only missions that need no cones run (inspection); the others are refused at start.
+// With a dashboard (set_telemetry etc., `fsd run` without --headless) the control thread hands a snapshot to the
+// telemetry every 4th cycle (latest-value slot, never waits) and its figures to /metrics; the camera thread
+// encodes a JPEG for it at 5 Hz; tuned parameters reach the autopilot at the start of the next cycle.
 // SIGINT/SIGTERM (or, with --until-finished, AS Finished or Emergency) ends the run: the control thread stops,
 // the VCU link sends its safe-stop Commands (speed 0, brake) before its port closes, then the other drivers stop.
 #include <atomic>
@@ -23,6 +26,10 @@
 #include "daemon/run_options.hpp"
 
 namespace fsd {
+
+class ParamRegistry;
+class RunMetrics;
+class Telemetry;
 
 // Why `mission` cannot run on the car in this version, or nullopt when it can.
 std::optional<std::string> hardware_mission_refusal(Mission mission);
@@ -44,6 +51,10 @@ class HardwareRun {
   nlohmann::json report() const;
   // The LiDAR's bound UDP port (resolves drivers.vlp16.data_port = 0).
   int lidar_port() const;
+  // The dashboard's parts, before run(); each must outlive the run. Null: none (--headless).
+  void set_telemetry(Telemetry* telemetry);
+  void set_metrics(RunMetrics* metrics);
+  void set_params(ParamRegistry* params);  // live tuning of the autopilot's settings
 
  private:
   struct Impl;

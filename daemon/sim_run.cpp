@@ -11,6 +11,7 @@
 #include "common/params.hpp"
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
+#include "daemon/live_tuning.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
@@ -189,13 +190,7 @@ struct SimRun::Impl {
   // Copies the registry's values into the configuration and hands the control part to the autopilot; runs on the
   // loop's thread, so the autopilot is never touched from the web's.
   void apply_params() {
-    for (const auto& p : params->list()) {
-      if (p.entry->type == ValueType::Boolean) tuned.set(p.entry->key, p.value != 0.0, "parameter");
-      else if (p.entry->type == ValueType::Integer) tuned.set(p.entry->key, static_cast<long long>(p.value), "parameter");
-      else tuned.set(p.entry->key, p.value, "parameter");
-    }
-    AutopilotConfig ac = read_control(tuned);
-    ac.mission.laps = run.laps;
+    AutopilotConfig ac = tuned_control(tuned, *params, run.laps);
     if (headless) ac.supervisor.check_plan_time = false;
     autopilot->set_config(ac);
   }

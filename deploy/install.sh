@@ -5,10 +5,16 @@ cd "$(dirname "$0")/.."
 [[ -x build/daemon/fsd ]] || { echo "build first: make build" >&2; exit 2; }
 install -D -m 0755 build/daemon/fsd /usr/local/bin/fsd
 if [[ -d web/dashboard/dist ]]; then
-  mkdir -p /usr/local/share/fsd && cp -r web/dashboard/dist /usr/local/share/fsd/dashboard
+  mkdir -p /usr/local/share/fsd && rm -rf /usr/local/share/fsd/dashboard
+  cp -r web/dashboard/dist /usr/local/share/fsd/dashboard
 fi
 install -d /etc/fsd
-[[ -f /etc/fsd/config.json ]] || install -m 0644 deploy/config/default.json /etc/fsd/config.json
+# The service runs from /: its dashboard is the installed copy, not the checkout's.
+if [[ ! -f /etc/fsd/config.json ]]; then
+  sed 's#"web_root": "web/dashboard/dist"#"web_root": "/usr/local/share/fsd/dashboard"#' deploy/config/default.json \
+    > /etc/fsd/config.json
+  chmod 0644 /etc/fsd/config.json
+fi
 fsd config check /etc/fsd/config.json
 id fsd >/dev/null 2>&1 || useradd --system --no-create-home --groups dialout fsd
 install -m 0644 deploy/fsd.service /etc/systemd/system/fsd.service

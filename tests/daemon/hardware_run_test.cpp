@@ -35,6 +35,7 @@
 #include "drivers/sim/gnss_model.hpp"
 #include "drivers/sim/vcu_standin.hpp"
 #include "drivers/sim/vehicle_truth.hpp"
+#include "tests/daemon/dashboard_client.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -264,7 +265,7 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
                          R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
                          R"(}}, "control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
                          R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
-                         "run": {"stats_period": 1.0}})");
+                         "run": {"stats_period": 1.0}, "web": {"bind": "127.0.0.1", "port": 0}})");
   const std::string report_path = scratch_path("hw_report.json");
   std::remove(report_path.c_str());
   Fsd run({"run", "--config", run_cfg, "--mission", "inspection", "--until-finished", "--report", report_path},
@@ -388,7 +389,9 @@ class Devices {
   std::thread thread_;
 };
 
-// The camera is a looping 160×120 video file at 20 fps.
+// The camera is a looping 160×120 video file at 20 fps. The pit-lane dashboard runs as on the car (no --headless):
+// while driving, a browser's view of it shows the stack's AS state and mission, the camera's picture, and /metrics
+// the control loop.
 TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   Devices dev;
   const std::string video = scratch_path("hw_camera.avi");
@@ -404,7 +407,8 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
           std::to_string(free_udp_port()) + R"(},
                       "camera": {"enabled": true, "source": ")" + video + R"(", "width": 160, "height": 120,
                                  "fps": 20, "loop_file": true}},
-          "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5}})");
+          "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5},
+          "web": {"bind": "127.0.0.1", "port": 0}})");
   const std::string report_path = scratch_path("hw_sigterm_report.json");
   std::remove(report_path.c_str());
   const auto driving_commands = [&] {
@@ -417,6 +421,34 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   while (driving_commands() < 30 && Clock::now() - t0 < 30s) std::this_thread::sleep_for(20ms);
   ASSERT_GE(driving_commands(), 30) << run.output();
   ASSERT_EQ(dev.as_state(), AsState::Driving);
+
+  const std::string port_text = run.wait_for(std::regex("dashboard at http://127\\.0\\.0\\.1:(\\d+)/"), 5s);
+  ASSERT_FALSE(port_text.empty()) << run.output();
+  const auto port = static_cast<std::uint16_t>(std::stoi(port_text));
+  const auto state = web::test::http_request(port, boost::beast::http::verb::get, "/api/state");
+  ASSERT_EQ(state.status, 200u) << state.body;
+  const auto sj = nlohmann::json::parse(state.body);
+  EXPECT_EQ(sj["as_state"], "Driving") << state.body;
+  EXPECT_EQ(sj["mission"], "inspection");
+  EXPECT_EQ(sj["vehicle"]["target_speed"], 1.0);  // control.mission.inspection_speed
+  const auto metrics = web::test::http_request(port, boost::beast::http::verb::get, "/metrics");
+  ASSERT_EQ(metrics.status, 200u);
+  const auto m = test::parse_metrics(metrics.body);
+  EXPECT_GT(m.at("fsd_control_cycles_total"), 30);
+  EXPECT_EQ(m.at("fsd_as_state"), 2);  // Driving
+  EXPECT_GT(m.at("fsd_telemetry_snapshots_total"), 0);
+  {
+    test::WsClient browser(port);
+    ASSERT_TRUE(browser.handshake_ok());
+    const auto subs = test::subscribe(browser, {"/camera/image"});
+    ASSERT_EQ(subs.size(), 1u);
+    const auto image = test::next_on(browser, subs.at("/camera/image"));
+    ASSERT_TRUE(image);
+    EXPECT_EQ((*image)["format"], "jpeg");
+    // A 160×120 JPEG, base64: a few hundred bytes at least.
+    const std::string b64 = (*image)["data"];
+    EXPECT_GT(b64.size(), 200u);
+  }
   run.signal(SIGTERM);
   const int rc = run.wait(10s);
   std::this_thread::sleep_for(200ms);  // the last frames in flight

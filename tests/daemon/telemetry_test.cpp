@@ -17,6 +17,7 @@
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
 #include "daemon/telemetry.hpp"
+#include "tests/daemon/dashboard_client.hpp"
 #include "tests/daemon/track_csv.hpp"
 #include "tests/web/test_client.hpp"
 #include "web/config.hpp"
@@ -26,6 +27,10 @@ namespace fsd {
 namespace {
 
 using nlohmann::json;
+using test::first_on_each;
+using test::parse_metrics;
+using test::next_on;
+using test::subscribe;
 using web::test::WsClient;
 namespace http = boost::beast::http;
 
@@ -70,59 +75,6 @@ struct LiveRun {
   std::unique_ptr<SimRun> run;
 };
 
-// Subscribes to the given topics (subscription id = index + 1) and waits until the server has taken it.
-std::map<std::string, std::uint32_t> subscribe(WsClient& c, const std::vector<std::string>& topics) {
-  std::map<std::string, std::uint32_t> subs;
-  const auto adv = c.next_op("advertise");
-  if (!adv) return subs;
-  json list = json::array();
-  for (const auto& ch : (*adv)["channels"]) {
-    for (std::size_t i = 0; i < topics.size(); ++i) {
-      if (ch["topic"] == topics[i]) {
-        const auto id = static_cast<std::uint32_t>(i + 1);
-        list.push_back({{"id", id}, {"channelId", ch["id"]}});
-        subs[topics[i]] = id;
-      }
-    }
-  }
-  c.send_text(json{{"op", "subscribe"}, {"subscriptions", list}}.dump());
-  c.send_text(R"({"op":"getParameters","parameterNames":[],"id":"sync"})");
-  c.next_op("parameterValues");
-  return subs;
-}
-
-std::uint32_t u32_le(const std::string& b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<std::uint8_t>(b[at + static_cast<std::size_t>(i)]);
-  return v;
-}
-
-// The next message-data payload of subscription `sub` (skipping others), parsed.
-std::optional<json> next_on(WsClient& c, std::uint32_t sub, std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < until) {
-    const auto m = c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
-    if (!m) return std::nullopt;
-    if (m->size() > 13 && static_cast<std::uint8_t>((*m)[0]) == 0x01 && u32_le(*m, 1) == sub) return json::parse(m->substr(13));
-  }
-  return std::nullopt;
-}
-
-// The first message-data payload of each subscription in `subs`, whatever order they arrive in (a message of one
-// must not be lost while waiting for another: a short run may send each only once).
-std::map<std::uint32_t, json> first_on_each(WsClient& c, const std::vector<std::uint32_t>& subs,
-                                            std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
-  std::map<std::uint32_t, json> out;
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (out.size() < subs.size() && std::chrono::steady_clock::now() < until) {
-    const auto m = c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
-    if (!m) break;
-    if (m->size() <= 13 || static_cast<std::uint8_t>((*m)[0]) != 0x01) continue;
-    const std::uint32_t sub = u32_le(*m, 1);
-    if (std::find(subs.begin(), subs.end(), sub) != subs.end() && !out.count(sub)) out[sub] = json::parse(m->substr(13));
-  }
-  return out;
-}
 
 struct FileCone {
   std::string tag;
@@ -144,18 +96,6 @@ std::vector<FileCone> read_cones(const std::string& path, double* start_x, doubl
   return out;
 }
 
-// Prometheus text → { "name{labels}": value }.
-std::map<std::string, double> parse_metrics(const std::string& text) {
-  std::map<std::string, double> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto sp = line.rfind(' ');
-    out[line.substr(0, sp)] = std::stod(line.substr(sp + 1));
-  }
-  return out;
-}
 
 TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   double sx = NAN, sy = NAN, syaw = NAN;
