@@ -48,6 +48,16 @@ struct MissionConfig {
   double inspection_amplitude = 0.8;     // share of the steering limit swept
 };
 
+// The laps a mission times, as the timekeeper counts line crossings: trackdrive `trackdrive_laps`, skid pad 4
+// circles, every other mission one run.
+inline int timed_laps(Mission mission, int trackdrive_laps) {
+  switch (mission) {
+    case Mission::Trackdrive: return trackdrive_laps;
+    case Mission::Skidpad: return 4;
+    default: return 1;
+  }
+}
+
 // The acceleration lane's centre line (the rules make it straight): direction from the principal axis of the
 // cones near the start heading, lateral position midway between the cones on either side; a path from the
 // start pose's foot for `length` m. nullopt when fewer than 4 cones on each side are known.

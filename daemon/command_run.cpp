@@ -71,10 +71,9 @@ int run_command(const RunOptions& o) {
     std::cout << "fsd: dashboard at " << dashboard->url() << "  (Ctrl-C stops)" << std::endl;
     return true;
   };
-  if (!o.sim) {
-    // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
-    HardwareRun run(cfg, o);
-    if (!start_dashboard(false)) return kExitBadInput;
+  // Either run (sim or the car) the same way: the dashboard after the run's own checks, then drive until done.
+  auto drive = [&](auto& run, bool truth_channels, auto report) -> int {
+    if (!start_dashboard(truth_channels)) return kExitBadInput;
     if (dashboard) {
       run.set_telemetry(&dashboard->telemetry());
       run.set_metrics(&dashboard->metrics());
@@ -82,19 +81,15 @@ int run_command(const RunOptions& o) {
     }
     const int rc = run.run(g_stop);
     if (dashboard) dashboard->stop();
-    return finish(rc, o.report, run.report());
+    return finish(rc, o.report, report(run));
+  };
+  if (!o.sim) {
+    // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
+    HardwareRun run(cfg, o);
+    return drive(run, false, [](const HardwareRun& r) { return r.report(); });
   }
-
   SimRun run(cfg, o);
-  if (!start_dashboard(true)) return kExitBadInput;
-  if (dashboard) {
-    run.set_telemetry(&dashboard->telemetry());
-    run.set_metrics(&dashboard->metrics());
-    run.set_params(&params);
-  }
-  const int rc = run.run(g_stop);
-  if (dashboard) dashboard->stop();
-  return finish(rc, o.report, run.scorecard().to_json());
+  return drive(run, true, [](const SimRun& r) { return r.scorecard().to_json(); });
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
 #include "daemon/cli.hpp"
+#include "daemon/dashboard_view.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/hardware_stats.hpp"
 #include "daemon/live_tuning.hpp"
@@ -134,8 +135,7 @@ struct HardwareRun::Impl {
   LatestValue<std::shared_ptr<const std::vector<std::uint8_t>>> camera_jpeg;  // encoded on the camera thread
   // Control thread only: what the snapshots show.
   std::optional<VehicleState> last_state;
-  std::vector<Vec2> lap1_trail, lap2_trail;
-  std::optional<Stamp> lap_started;
+  std::unique_ptr<DashboardView> view;
   std::atomic<bool> halt{false};          // the control and camera threads end
   std::atomic<bool> control_done{false};  // the control thread ended the run (--until-finished)
   std::atomic<std::uint64_t> cycles{0}, overruns{0};
@@ -219,6 +219,7 @@ struct HardwareRun::Impl {
     AutopilotConfig ac = read_control(cfg);
     ac.mission.laps = run.laps;
     autopilot = std::make_unique<Autopilot>(ac, mission, ColourConvention::named(run.colours));
+    view = std::make_unique<DashboardView>(mission, run.laps);
   }
 
   HardwareCounters snapshot() const {
@@ -261,21 +262,13 @@ struct HardwareRun::Impl {
   // telemetry (both hand over without waiting).
   void observe(Stamp now, AsState as, const ControlOutput& out, std::uint64_t cycle) {
     const std::size_t laps_done = autopilot->lap_times().size();
-    if (out.lap) lap_started = out.lap->t;
-    else if (!lap_started && as == AsState::Driving) lap_started = now;
-    if (as == AsState::Driving && last_state && cycle % 10 == 0) {
-      auto& trail = laps_done == 0 ? lap1_trail : lap2_trail;
-      if (trail.size() < 20000) trail.push_back(last_state->pose.position());
-    }
+    std::optional<Vec2> position;
+    if (last_state) position = last_state->pose.position();
+    view->on_cycle(now, as, out, laps_done, position, cycle);
     if (metrics) {
       CycleFigures fig;
       fig.t = now;
-      fig.planning_s = out.planned ? out.planning_time : -1;
-      fig.control_s = out.control_time;
-      fig.planned = out.planned;
-      fig.plan_one_boundary = out.plan_one_boundary;
-      fig.plan_colour_blind = out.plan_colour_blind;
-      fig.plan_tight_turn = out.plan_tight_turn;
+      add_step_figures(fig, out);
       fig.as_state = as;
       fig.laps = static_cast<int>(laps_done);
       metrics->on_cycle(fig);
@@ -284,33 +277,10 @@ struct HardwareRun::Impl {
   }
 
   void publish_telemetry(Stamp now, AsState as, const ControlOutput& out) {
-    TelemetrySnapshot s;
-    s.t = now;
+    TelemetrySnapshot s = view->snapshot(now, as, out, *autopilot, vcu->status());
     if (last_state) s.state = *last_state;
-    s.target_speed = out.command.target_speed;
-    s.cone_map = std::make_shared<const std::vector<Cone>>(autopilot->cones());
-    auto paths = std::make_shared<web::PathSet>();
-    paths->lap1_trajectory = lap1_trail;
-    paths->lap2_tracking = lap2_trail;
-    if (out.path)
-      for (const auto& p : out.path->points) paths->planned.push_back(p.p);
-    s.paths = paths;
     // No scan: the LiDAR's mount on the car is not in the configuration yet, so its points cannot be placed.
     if (auto jpeg = camera_jpeg.get()) s.camera_jpeg = std::move(*jpeg);
-    s.as.as_state = as;
-    s.as.mission = mission;
-    s.as.lap = static_cast<int>(autopilot->lap_times().size());
-    s.as.laps_total = mission == Mission::Trackdrive ? run.laps : 1;
-    s.as.lap_times = autopilot->lap_times();
-    s.as.lap_time = lap_started && !out.finished ? now - *lap_started : 0.0;
-    s.as.control_mode = std::string(to_string(out.source));
-    s.as.finished = out.finished;
-    if (const auto st = vcu->status()) {
-      s.as.res_go = st->res_go;
-      s.as.res_emergency = st->res_emergency;
-      s.as.ebs_active = st->ebs_active;
-    }
-    for (const auto& f : autopilot->faults()) s.faults.push_back({f.t, f.source, f.what, f.action, true});
     telemetry->publish(std::move(s));
   }
 

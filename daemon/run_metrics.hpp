@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "common/types.hpp"
+#include "control/autopilot.hpp"
 #include "web/metrics.hpp"
 
 namespace fsd {
@@ -25,6 +26,9 @@ struct CycleFigures {
   int laps = 0;
   int cones_hit = -1;             // -1: unknown (not a simulated run)
 };
+
+// Fills the planning and control figures of one autopilot step.
+void add_step_figures(CycleFigures& f, const ControlOutput& out);
 
 class RunMetrics {
  public:

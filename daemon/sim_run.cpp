@@ -11,6 +11,8 @@
 #include "common/params.hpp"
 #include "control/autopilot.hpp"
 #include "control/control_config.hpp"
+#include "control/missions.hpp"
+#include "daemon/dashboard_view.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
@@ -30,14 +32,13 @@ namespace {
 
 constexpr double kControlPeriod = 0.01;    // s: the control loop runs at 100 Hz
 
-// Timed laps of a mission as the timekeeper counts gate crossings, and the stop zone after the last one.
-std::pair<int, double> mission_timing(Mission m, int laps) {
+// The stop zone after a mission's last timing line.
+double stop_zone(Mission m) {
   switch (m) {
-    case Mission::Trackdrive: return {laps, 30.0};
-    case Mission::Autocross: return {1, 30.0};
-    case Mission::Acceleration: return {1, 100.0};
-    case Mission::Skidpad: return {4, 30.0};
-    default: return {1, 100.0};
+    case Mission::Trackdrive:
+    case Mission::Autocross:
+    case Mission::Skidpad: return 30.0;
+    default: return 100.0;
   }
 }
 
@@ -82,8 +83,7 @@ struct SimRun::Impl {
   std::shared_ptr<const Scan> last_scan;
   std::shared_ptr<const ConeDetections> last_detections;
   std::shared_ptr<const std::vector<std::uint8_t>> last_image;
-  std::vector<Vec2> lap1_trail, lap2_trail;
-  std::optional<Stamp> lap_started;  // for the dashboard's running lap time: go, then each line crossing
+  std::unique_ptr<DashboardView> view;
   std::vector<FaultRecord> link_faults;
   std::shared_ptr<spdlog::logger> log = logger("run");
 
@@ -140,43 +140,20 @@ struct SimRun::Impl {
     if (headless) ac.supervisor.check_plan_time = false;
     autopilot = std::make_unique<Autopilot>(ac, mission, track.convention);
 
-    const auto [laps_to_finish, stop_zone] = mission_timing(mission, run.laps);
-    card = std::make_unique<Scorecard>(track, mission, laps_to_finish, stop_zone, run.seed);
+    card = std::make_unique<Scorecard>(track, mission, timed_laps(mission, run.laps), stop_zone(mission), run.seed);
+    view = std::make_unique<DashboardView>(mission, run.laps);
     // The limits the stack plans with (the scorecard's "vehicle" object).
     card->set_vehicle_limits({ac.speed.mu, ac.speed.a_accel_max, ac.speed.a_brake_max, ac.speed.v_max});
   }
 
   void publish_telemetry(Stamp t, const ControlOutput& out) {
     if (!telemetry) return;
-    TelemetrySnapshot s;
-    s.t = t;
+    TelemetrySnapshot s = view->snapshot(t, car->vcu().state(), out, *autopilot, vcu->status());
     s.state = stack_state;
-    s.target_speed = out.command.target_speed;
-    s.cone_map = std::make_shared<const std::vector<Cone>>(autopilot->cones());
     s.detections = last_detections;
-    auto paths = std::make_shared<web::PathSet>();
-    paths->lap1_trajectory = lap1_trail;
-    paths->lap2_tracking = lap2_trail;
-    if (out.path)
-      for (const auto& p : out.path->points) paths->planned.push_back(p.p);
-    s.paths = paths;
     s.scan = last_scan;
     s.camera_jpeg = last_image;
     s.lidar_pose = car->truth().body_pose3() * sim::lidar_mount(car_settings.lidar);
-    s.as.as_state = car->vcu().state();
-    s.as.mission = mission;
-    s.as.lap = static_cast<int>(autopilot->lap_times().size());
-    s.as.laps_total = mission_timing(mission, run.laps).first;
-    s.as.lap_times = autopilot->lap_times();
-    s.as.lap_time = lap_started && !out.finished ? t - *lap_started : 0.0;
-    s.as.control_mode = std::string(to_string(out.source));
-    s.as.finished = out.finished;
-    if (const auto st = vcu->status()) {
-      s.as.res_go = st->res_go;
-      s.as.res_emergency = st->res_emergency;
-      s.as.ebs_active = st->ebs_active;
-    }
-    for (const auto& f : autopilot->faults()) s.faults.push_back({f.t, f.source, f.what, f.action, true});
     // Ground truth on its own channels, so the stack's estimate above is never confused with it.
     s.truth = fsd::truth_state(*car);
     if (!truth_cones || car->cones_hit() != truth_cones_hit) {
@@ -239,21 +216,13 @@ struct SimRun::Impl {
       card->latency("control").add(out.control_time);
 
       const std::size_t laps_done = autopilot->lap_times().size();
-      if (out.lap) lap_started = out.lap->t;
-      else if (!lap_started && car->vcu().state() == AsState::Driving) lap_started = t;
-      if (car->vcu().state() == AsState::Driving && (cycle % 10) == 0)
-        (laps_done == 0 ? lap1_trail : lap2_trail).push_back(truth.pose.position());
+      view->on_cycle(t, car->vcu().state(), out, laps_done, stack_state.pose.position(), static_cast<std::uint64_t>(cycle));
       card->set_as_state(car->vcu().state());
       card->set_cones_hit(car->cones_hit());
       if (cycle % 4 == 0) publish_telemetry(t, out);
       if (metrics) {
         fig.t = t;
-        fig.planning_s = out.planned ? out.planning_time : -1;
-        fig.planned = out.planned;
-        fig.plan_one_boundary = out.plan_one_boundary;
-        fig.plan_colour_blind = out.plan_colour_blind;
-        fig.plan_tight_turn = out.plan_tight_turn;
-        fig.control_s = out.control_time;
+        add_step_figures(fig, out);
         fig.as_state = car->vcu().state();
         fig.laps = static_cast<int>(laps_done);
         fig.cones_hit = car->cones_hit();

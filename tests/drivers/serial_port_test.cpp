@@ -16,6 +16,7 @@
 #include "drivers/serial/serial_port.hpp"
 #include "drivers/serial/tty_baud.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/wait_until.hpp"
 
 namespace fsd {
 namespace {
@@ -23,15 +24,7 @@ namespace {
 using Bytes = std::vector<std::uint8_t>;
 namespace fs = std::filesystem;
 
-template <class Pred>
-bool wait_until(Pred pred, double timeout_s = 5.0) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return true;
-}
+using test::wait_until;
 
 // Everything SerialPort reports, collected thread-safely.
 struct Recorder {

@@ -14,6 +14,7 @@
 #include "drivers/sim/vcu_standin.hpp"
 #include "drivers/vcu/vcu_link.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/wait_until.hpp"
 
 namespace fsd {
 namespace {
@@ -21,15 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using wire::vcu::AsRequest;
 
-template <class Pred>
-bool wait_until(Pred pred, double timeout_s = 5.0) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return true;
-}
+using test::wait_until;
 
 // The virtual car's side: a thread that moves bytes between the pty master and the VCU stand-in and steps it
 // every millisecond. It also keeps the Commands it received, to check what the daemon said last.

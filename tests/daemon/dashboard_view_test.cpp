@@ -1,0 +1,71 @@
+// The dashboard's view of the stack, shared by the car and the simulator: lap counts, running lap time and the
+// driven lines, checked against hand-made control cycles.
+#include <gtest/gtest.h>
+
+#include "daemon/dashboard_view.hpp"
+
+namespace fsd {
+namespace {
+
+Autopilot idle_autopilot(Mission m) { return Autopilot(AutopilotConfig{}, m, ColourConvention{}); }
+
+TEST(DashboardView, LapsTotalIsWhatTheMissionTimes) {
+  const ControlOutput out;
+  const auto skidpad = idle_autopilot(Mission::Skidpad);
+  EXPECT_EQ(DashboardView(Mission::Skidpad, 2).snapshot(0, AsState::Off, out, skidpad, {}).as.laps_total, 4);
+  const auto trackdrive = idle_autopilot(Mission::Trackdrive);
+  EXPECT_EQ(DashboardView(Mission::Trackdrive, 10).snapshot(0, AsState::Off, out, trackdrive, {}).as.laps_total, 10);
+  const auto accel = idle_autopilot(Mission::Acceleration);
+  EXPECT_EQ(DashboardView(Mission::Acceleration, 10).snapshot(0, AsState::Off, out, accel, {}).as.laps_total, 1);
+}
+
+TEST(DashboardView, LapTimeRunsFromGoThenFromEachCrossing) {
+  const auto ap = idle_autopilot(Mission::Trackdrive);
+  DashboardView view(Mission::Trackdrive, 2);
+  ControlOutput out;
+  view.on_cycle(1.0, AsState::Ready, out, 0, Vec2(0, 0), 0);
+  EXPECT_EQ(view.snapshot(2.0, AsState::Ready, out, ap, {}).as.lap_time, 0.0);  // not started before go
+  view.on_cycle(5.0, AsState::Driving, out, 0, Vec2(0, 0), 1);
+  EXPECT_DOUBLE_EQ(view.snapshot(7.5, AsState::Driving, out, ap, {}).as.lap_time, 2.5);
+  out.lap = LapEvent{1, 40.0, 35.0};
+  view.on_cycle(40.01, AsState::Driving, out, 1, Vec2(0, 0), 2);
+  out.lap.reset();
+  EXPECT_DOUBLE_EQ(view.snapshot(41.0, AsState::Driving, out, ap, {}).as.lap_time, 1.0);
+  out.finished = true;
+  EXPECT_EQ(view.snapshot(42.0, AsState::Driving, out, ap, {}).as.lap_time, 0.0);
+}
+
+TEST(DashboardView, TrailsSplitAtTheFirstLapAndStayBounded) {
+  const auto ap = idle_autopilot(Mission::Trackdrive);
+  DashboardView view(Mission::Trackdrive, 2);
+  const ControlOutput out;
+  // One point every 10 cycles while Driving: cycles 0..99 give 10 on lap 1.
+  for (std::uint64_t c = 0; c < 100; ++c) view.on_cycle(0.01 * c, AsState::Driving, out, 0, Vec2(static_cast<double>(c), 0), c);
+  view.on_cycle(1.0, AsState::Ready, out, 0, Vec2(1, 1), 100);      // not driving: nothing kept
+  view.on_cycle(1.0, AsState::Driving, out, 0, std::nullopt, 110);  // no position yet: nothing kept
+  auto s = view.snapshot(1.0, AsState::Driving, out, ap, {});
+  ASSERT_EQ(s.paths->lap1_trajectory.size(), 10u);
+  EXPECT_EQ(s.paths->lap1_trajectory[3], Vec2(30, 0));
+  EXPECT_TRUE(s.paths->lap2_tracking.empty());
+  for (std::uint64_t c = 0; c < 10 * (DashboardView::kMaxTrailPoints + 50); c += 10)
+    view.on_cycle(2.0, AsState::Driving, out, 1, Vec2(0, 1), c);
+  s = view.snapshot(3.0, AsState::Driving, out, ap, {});
+  EXPECT_EQ(s.paths->lap1_trajectory.size(), 10u);
+  EXPECT_EQ(s.paths->lap2_tracking.size(), DashboardView::kMaxTrailPoints);
+}
+
+TEST(DashboardView, ResAndEbsComeFromTheVcu) {
+  const auto ap = idle_autopilot(Mission::Trackdrive);
+  const DashboardView view(Mission::Trackdrive, 2);
+  VcuStatus st;
+  st.res_go = true;
+  st.ebs_active = true;
+  const auto s = view.snapshot(0, AsState::Driving, ControlOutput{}, ap, st);
+  EXPECT_TRUE(s.as.res_go);
+  EXPECT_TRUE(s.as.ebs_active);
+  EXPECT_FALSE(s.as.res_emergency);
+  EXPECT_EQ(s.as.as_state, AsState::Driving);
+}
+
+}  // namespace
+}  // namespace fsd
