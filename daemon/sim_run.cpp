@@ -14,6 +14,7 @@
 #include "control/missions.hpp"
 #include "daemon/dashboard_view.hpp"
 #include "daemon/live_tuning.hpp"
+#include "daemon/map_score.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
@@ -246,6 +247,7 @@ struct SimRun::Impl {
     for (const auto& f : link_faults) card->add_fault(f);
     for (const auto& f : autopilot->faults()) card->add_fault({f.t, f.source, f.what, f.action});
     card->set_section("injected_faults", faults->report());
+    card->set_section("map", to_json(score_map(track.cones, cone_map.cones())));
     const auto vc = vcu->counters();
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
               to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,

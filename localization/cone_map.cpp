@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <tuple>
 
 namespace fsd {
 
@@ -29,35 +30,58 @@ ConeColour voted_colour(const std::array<int, 6>& votes) {
 
 void ConeMap::update(const ConeDetections& detections, const Pose2& pose) {
   const Eigen::Matrix2d R = pose.rotation().toRotationMatrix();
+  struct Seen {
+    Vec2 p;
+    Eigen::Matrix2d info;
+    ConeColour colour;
+  };
+  std::vector<Seen> seen;
+  seen.reserve(detections.cones.size());
   for (const auto& d : detections.cones) {
     const Vec2 local = d.position.head<2>();
-    if (local.norm() > cfg_.max_range) continue;
-    const Vec2 p = pose.transform(local);
+    if (!local.allFinite() || local.norm() > cfg_.max_range) continue;
     // Covariance rotated into the map frame; floor it so a zero covariance cannot make the information infinite.
     Eigen::Matrix2d cov = R * d.covariance * R.transpose();
     cov += Eigen::Matrix2d::Identity() * 1e-4;
-    const Eigen::Matrix2d info = cov.inverse();
+    seen.push_back({pose.transform(local), cov.inverse(), d.colour});
+  }
 
-    Entry* best = nullptr;
-    double best_d = cfg_.association_gate;
-    for (auto& e : entries_) {
-      const double dist = (e.mean - p).norm();
-      if (dist >= best_d) continue;
-      const ConeColour mapped = voted_colour(e.colour_votes);
-      const bool conflict = d.colour != ConeColour::Unknown && mapped != ConeColour::Unknown && mapped != d.colour;
+  // One frame's detections are distinct cones: each joins at most one mapped cone and each mapped cone takes at
+  // most one of them, nearest pairs first (global nearest neighbour). Without that, two cones nearer than the
+  // gate (a timing line's doubled cones, 0.5 m apart) were fused into one between them.
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+      const double dist = (entries_[k].mean - seen[i].p).norm();
+      if (dist >= cfg_.association_gate) continue;
+      const ConeColour mapped = voted_colour(entries_[k].colour_votes);
+      const bool conflict =
+          seen[i].colour != ConeColour::Unknown && mapped != ConeColour::Unknown && mapped != seen[i].colour;
       if (conflict && dist >= cfg_.colour_conflict_gate) continue;
-      best_d = dist, best = &e;
+      pairs.emplace_back(dist, i, k);
     }
-    if (!best) {
-      best = &entries_.emplace_back();
-      best->id = next_id_++;
+  std::sort(pairs.begin(), pairs.end());
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> entry_of(seen.size(), kNone);
+  std::vector<bool> taken(entries_.size(), false);
+  for (const auto& [dist, i, k] : pairs) {
+    if (entry_of[i] != kNone || taken[k]) continue;
+    entry_of[i] = k;
+    taken[k] = true;
+  }
+
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    if (entry_of[i] == kNone) {
+      entry_of[i] = entries_.size();
+      entries_.emplace_back().id = next_id_++;
     }
-    best->info += info;
-    best->info_vec += info * p;
-    best->mean = best->info.ldlt().solve(best->info_vec);
-    ++best->observations;
-    const auto c = static_cast<std::size_t>(d.colour);
-    if (d.colour != ConeColour::Unknown && c < best->colour_votes.size()) ++best->colour_votes[c];
+    Entry& e = entries_[entry_of[i]];
+    e.info += seen[i].info;
+    e.info_vec += seen[i].info * seen[i].p;
+    e.mean = e.info.ldlt().solve(e.info_vec);
+    ++e.observations;
+    const auto c = static_cast<std::size_t>(seen[i].colour);
+    if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size()) ++e.colour_votes[c];
   }
 }
 

@@ -6,13 +6,16 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <string>
+#include <utility>
 
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/daemon/track_csv.hpp"
 #include "tests/scratch_dir.hpp"
 
 namespace fsd {
@@ -58,6 +61,17 @@ TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
     EXPECT_GT(r["latency_ms"][stage]["n"].get<int>(), 0) << stage;
   // Every sensor ran through its real decoder: the run lasted longer than the 6 s of Ready.
   EXPECT_GT(r["sim_time_s"].get<double>(), 30.0);
+  // Two laps see every cone: the map holds each true cone (counted from the file itself, a position once) and
+  // nothing else, within a few cm (truth perception's 3 cm noise, fused), each in its colour.
+  std::set<std::pair<double, double>> cones;
+  for (const auto& row : test::read_track_csv("../shared/tracks/epfl_track_1.csv"))
+    if (row.tag != "car_start") cones.insert({row.x, row.y});
+  const auto& map = r["map"];
+  EXPECT_EQ(map["true_cones"].get<std::size_t>(), cones.size());
+  EXPECT_EQ(map["missed"], 0);
+  EXPECT_EQ(map["ghosts"], 0);
+  EXPECT_LT(map["rmse_m"].get<double>(), 0.03);
+  EXPECT_EQ(map["colour_accuracy"], 1.0);
 }
 
 TEST(SimRun, HeadlessRunsAreDeterministic) {

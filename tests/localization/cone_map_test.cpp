@@ -89,6 +89,31 @@ TEST(ConeMap, ADoubledStartLineKeepsItsOrangeConesApartFromTheBoundaryCone) {
   }
 }
 
+TEST(ConeMap, SameColourConesNearerThanTheGateStayTwoCones) {
+  // epfl_21_05_2023 and the skid pads: timing cones in pairs 0.5 m apart, both big orange (and blue/yellow
+  // pairs at the skid pad's line). Seen in the same frames they are two cones; nearest-neighbour association
+  // without one-to-one pairing fused each pair into one cone between them.
+  const std::vector<std::pair<Vec2, ConeColour>> world{{{10.0, 1.5}, ConeColour::BigOrange},
+                                                       {{10.5, 1.5}, ConeColour::BigOrange},
+                                                       {{10.0, -1.5}, ConeColour::Yellow},
+                                                       {{10.5, -1.5}, ConeColour::Yellow}};
+  ConeMap map;
+  std::mt19937 rng(11);
+  for (int k = 0; k < 60; ++k) {
+    const Pose2 pose{0.1 * k, 0.0, 0.0};
+    map.update(detect(world, pose, 0.05, rng), pose);
+  }
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), world.size());
+  for (const auto& [p, colour] : world) {
+    const auto it = std::min_element(cones.begin(), cones.end(), [&](const Cone& a, const Cone& b) {
+      return (a.position.head<2>() - p).norm() < (b.position.head<2>() - p).norm();
+    });
+    EXPECT_LT((it->position.head<2>() - p).norm(), 0.05);
+    EXPECT_EQ(it->colour, colour);
+  }
+}
+
 TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
   // One blue cone seen 200 times with σ = 0.1 m, one detection in ten called yellow: still one cone, blue.
   ConeMap map;
