@@ -278,8 +278,14 @@ struct HardwareRun::Impl {
 
   void publish_telemetry(Stamp now, AsState as, const ControlOutput& out) {
     TelemetrySnapshot s = view->snapshot(now, as, out, *autopilot, vcu->status());
-    if (last_state) s.state = *last_state;
-    // No scan: the LiDAR's mount on the car is not in the configuration yet, so its points cannot be placed.
+    if (last_state) {
+      s.state = *last_state;
+      // The newest scan, placed by the estimated pose and the configured mount (drivers.vlp16.mount_*).
+      if (auto scan = last_scan.get()) {
+        s.scan = std::move(*scan);
+        s.lidar_pose = last_state->pose.to_pose3() * vlp_cfg.body_from_sensor();
+      }
+    }
     if (auto jpeg = camera_jpeg.get()) s.camera_jpeg = std::move(*jpeg);
     telemetry->publish(std::move(s));
   }
