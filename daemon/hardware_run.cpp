@@ -326,6 +326,7 @@ struct HardwareRun::Impl {
       vcu->set_command(out.command);
       vcu->set_as_request(out.request);
       if (out.lap_line) log->info("{}", to_string(*out.lap_line));
+      if (out.lap) log->info("lap {} in {:.2f} s (stack's timing)", out.lap->lap, out.lap->time_s);
       cycles.fetch_add(1);
       ++cycle;
       if (telemetry || metrics) observe(now, as, out, cycle);

@@ -213,6 +213,7 @@ struct SimRun::Impl {
       }
       vcu->set_as_request(out.request);
       if (out.lap_line) log->info("{}", to_string(*out.lap_line));
+      if (out.lap) log->info("lap {} in {:.2f} s (stack's timing)", out.lap->lap, out.lap->time_s);
       if (out.planned) card->latency("planning").add(out.planning_time);
       card->latency("control").add(out.control_time);
 
