@@ -3,6 +3,8 @@
 //   rung (nearest left/right cone midpoints) facing along the track.
 //   Following: one follow() call on the lap-2 path (the smoothed closed centre line) and on a real-time plan,
 //   for each steering law, the car stepping round the lap.
+//   Lap build: lap 2's path from lap 1's recorded poses (the centre line driven at 0.3 m spacing) and the map,
+//   on the centre line or the minimum-curvature line: once per run, on the control thread.
 //   Run: build/bench/control_bench  (from the project root, so that ../shared resolves)
 #include <benchmark/benchmark.h>
 
@@ -13,6 +15,7 @@
 #include "common/track.hpp"
 #include "control/follower.hpp"
 #include "control/midline_planner.hpp"
+#include "control/recorded_trajectory.hpp"
 #include "control/smoothing.hpp"
 
 namespace fsd {
@@ -120,6 +123,33 @@ BENCHMARK(BM_Follow)
     ->ArgNames({"law", "on_plan"})
     ->Iterations(20000)
     ->Unit(benchmark::kMicrosecond);
+
+void BM_LapBuild(benchmark::State& state) {
+  const Fixture& f = fixture();
+  RecordedTrajectoryConfig config;
+  config.line = state.range(0) != 0 ? "min_curvature" : "centre";
+  RecordedTrajectory rec(config);
+  double t = 0;
+  for (const auto& q : f.lap.points) {
+    VehicleState s;
+    s.stamp = t += 0.05;
+    s.pose = {q.p.x(), q.p.y(), q.yaw};
+    rec.record(s);
+  }
+  SpeedLimits limits;
+  limits.mu = 1.2;
+  const SpeedProfile profile(limits);
+  std::vector<double> us;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = rec.build(0, t, f.cones, f.track.convention, profile);
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    if (!r.path) state.SkipWithError(r.reason.c_str());
+    benchmark::DoNotOptimize(r);
+  }
+  report(state, us);
+}
+BENCHMARK(BM_LapBuild)->Arg(0)->Arg(1)->ArgName("min_curvature")->Iterations(20)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace fsd

@@ -178,6 +178,8 @@ const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
           .boolean("recentre", &C::recentre, "Pull the lap onto the middle of the mapped cones.")
           .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m", "Cones this close along and across count for recentring.")
           .number("max_centre_offset", &C::max_centre_offset, 0, 5, "m", "The recentred lap, smoothed, stays this close to the centre line; 0 = unbounded.")
+          .string("line", &C::line, {"centre", "min_curvature"}, "Lap 2's line: the centre line, or the flattest line within the mapped boundaries.")
+          .number("racing_keep", &C::racing_keep, 0.5, 5, "m", "min_curvature: the line stays this far from each boundary's cone line.")
           .number("early_build_distance", &C::early_build_distance, 0, 50, "m", "Lap 1's path is built and taken this far before the line (0: at the line).");
   return s;
 }

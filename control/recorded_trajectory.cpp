@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "control/corridor.hpp"
+#include "control/racing_line.hpp"
 #include "control/smoothing.hpp"
 
 namespace fsd {
@@ -16,57 +18,12 @@ void RecordedTrajectory::record(const VehicleState& state) {
   samples_.push_back({state.stamp, p});
 }
 
-namespace {
-
-struct BoundaryCone {
-  double s;  // arc length of the cone's foot on the line
-  Vec2 p;
-};
-
-// Segments of a boundary or centre polyline longer than this many `reach` along the line jump over a gap in it.
-constexpr double kMaxSpanInReach = 3.0;
-
-// Closest point to p on the polyline `b` (sorted by s), among segments that reach within `window` of s along the
-// line and are no gap: a boundary of another stretch of the track that passes nearby is not this one, and neither
-// is a jump over missing cones.
-std::optional<Vec2> closest_on_boundary(const std::vector<BoundaryCone>& b, const Path& path, double s, const Vec2& p,
-                                        double window) {
-  if (b.size() < 2) return std::nullopt;
-  std::optional<Vec2> best;
-  double best_d = std::numeric_limits<double>::infinity();
-  const std::size_t n = path.closed ? b.size() : b.size() - 1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const BoundaryCone& u = b[i];
-    const BoundaryCone& v = b[(i + 1) % b.size()];
-    if (s_difference(path, s, u.s) > window || s_difference(path, v.s, s) > window) continue;
-    if (s_difference(path, u.s, v.s) > kMaxSpanInReach * window) continue;
-    const Vec2 d = v.p - u.p;
-    const double l2 = d.squaredNorm();
-    const double t = l2 > 0 ? std::clamp((p - u.p).dot(d) / l2, 0.0, 1.0) : 0.0;
-    const Vec2 q = u.p + t * d;
-    if ((q - p).norm() < best_d) best_d = (q - p).norm(), best = q;
-  }
-  return best;
-}
-
-}  // namespace
-
 double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention,
                          double reach) {
-  // Each boundary is the polyline through its cones in their order along the line (colour names the side; a cone
-  // without one is on the side of the line it stands).
-  std::vector<BoundaryCone> left, right;
-  for (const auto& c : cones) {
-    if (!c.position.allFinite()) continue;
-    const auto foot = project(path, c.position.head<2>());
-    if (!foot || foot->distance() > reach) continue;
-    const ConeRole role = convention.role_of(c.colour);
-    const bool is_left = role == ConeRole::Left || (role != ConeRole::Right && foot->lateral > 0);
-    (is_left ? left : right).push_back({foot->s, c.position.head<2>()});
-  }
-  auto by_s = [](const BoundaryCone& a, const BoundaryCone& b) { return a.s < b.s; };
-  std::sort(left.begin(), left.end(), by_s);
-  std::sort(right.begin(), right.end(), by_s);
+  // Each boundary is the polyline through its cones in their order along the line.
+  const Corridor corridor = corridor_along(path, cones, convention, reach);
+  const auto& left = corridor.left;
+  const auto& right = corridor.right;
   // The centre line: every point of the left boundary (each 0.25 m) and its closest point on the right one, half
   // way between. Built from the boundaries, not from the driven line: in a bend whose inner boundary turns at a
   // single cone, the middle of the driven line's nearest boundary points lies off the corridor's middle.
@@ -101,6 +58,11 @@ double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const Colou
   compute_geometry(path);
   return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
 }
+
+namespace {
+constexpr double kRacingRippleWavelength = 3.0;  // m
+constexpr double kRacingRippleRadius = 0.05;     // m
+}  // namespace
 
 TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector<Cone>& map_cones,
                                            const ColourConvention& convention, const SpeedProfile& speed,
@@ -142,6 +104,25 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
     // the corridor's middle (a hairpin's, or where the middle kinks at a boundary's corner cone) by as much as the
     // bend is sharp.
     lap = smooth_path(lap, config_.ds, config_.smoothing_wavelength, config_.max_centre_offset);
+    if (config_.line == "min_curvature") {
+      // The room either side: to each boundary's cone line, less the keep (a point without a boundary found
+      // near it stays where it is on that side).
+      const Corridor corridor = corridor_along(lap, map_cones, convention, config_.recentre_reach);
+      std::vector<double> room_left, room_right;
+      room_left.reserve(lap.points.size());
+      room_right.reserve(lap.points.size());
+      for (const auto& q : lap.points) {
+        const auto on_left = closest_on_boundary(corridor.left, lap, q.s, q.p, config_.recentre_reach);
+        const auto on_right = closest_on_boundary(corridor.right, lap, q.s, q.p, config_.recentre_reach);
+        room_left.push_back(on_left ? std::max(0.0, (*on_left - q.p).norm() - config_.racing_keep) : 0.0);
+        room_right.push_back(on_right ? std::max(0.0, (*on_right - q.p).norm() - config_.racing_keep) : 0.0);
+      }
+      auto racing = minimum_curvature_line(lap, room_left, room_right);
+      r.racing_offset = racing.max_offset;
+      // The line follows the boundaries' polygons where it touches them, a few millimetres of ripple that the
+      // curvature (and so the speed profile) would feel: smoothed over a few metres, within 5 cm of its place.
+      lap = smooth_path(racing.path, config_.ds, kRacingRippleWavelength, kRacingRippleRadius);
+    }
   }
   // Smoothing cuts a hairpin tighter than the steering can turn: there the lap gets the line lap 1's planner gave,
   // at that line's speed cap.

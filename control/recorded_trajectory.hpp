@@ -24,6 +24,10 @@ struct RecordedTrajectoryConfig {
   bool recentre = true;              // pull the line to the middle of the mapped cones
   double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
   double max_centre_offset = 0.4;    // m: the recentred lap, smoothed, stays this close to the centre line; 0 = free
+  // "centre": lap 2 on the centre line (what the scorecard's cross-track error measures); "min_curvature": the
+  // flattest line within the mapped boundaries, each cone's line kept `racing_keep` from the car's path.
+  std::string line = "centre";
+  double racing_keep = 1.2;          // m: half the body (0.7) + a cone's radius (0.12) + what tracking may stray
   double early_build_distance = 25.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
   TightTurnConfig tight_turn;        // turns at the steering lock get the car's line (control.tight_turn), as on lap 1
 };
@@ -34,6 +38,7 @@ struct TrajectoryResult {
   double closure_gap = 0;     // m
   double recentre_rms = 0;    // m, how far recentring moved the line
   int tight_turns = 0;        // turns re-shaped to the steering lock
+  double racing_offset = 0;   // m: the min-curvature line's largest move off the centre line
 };
 
 class RecordedTrajectory {

@@ -172,3 +172,53 @@ TEST(RecordedTrajectory, KeepsOnePosePerSpacing) {
 
 }  // namespace
 }  // namespace fsd
+
+namespace fsd {
+namespace {
+
+TEST(RecordedTrajectory, TheMinimumCurvatureLineRunsTheRingAtItsOuterEdgeLessTheKeep) {
+  // A ring track, counter-clockwise: inner (left, blue) cones at 8 m, outer (right, yellow) at 12 m, every 2 m
+  // along the outer edge; lap 1 driven on the centre circle (10 m). The flattest line is the largest circle the
+  // room allows: the outer cones' line (12 m, a chord's sagitta less) less racing_keep (1.2 m).
+  RecordedTrajectoryConfig cfg;
+  cfg.line = "min_curvature";
+  RecordedTrajectory rec(cfg);
+  const double r = 10.0, v = 5.0, lap = 2 * std::numbers::pi * r;
+  for (double t = 0; t <= lap / v; t += 0.02) {
+    const double a = v * t / r;
+    rec.record(at(t, r * Vec2(std::cos(a), std::sin(a))));
+  }
+  std::vector<Cone> cones;
+  const int n_out = 38, n_in = 25;  // ≈ 2 m apart on each edge
+  for (int i = 0; i < n_out; ++i) {
+    Cone c;
+    const double a = 2 * std::numbers::pi * i / n_out;
+    c.position = Vec3(12.0 * std::cos(a), 12.0 * std::sin(a), 0);
+    c.colour = ConeColour::Yellow;
+    cones.push_back(c);
+  }
+  for (int i = 0; i < n_in; ++i) {
+    Cone c;
+    const double a = 2 * std::numbers::pi * i / n_in;
+    c.position = Vec3(8.0 * std::cos(a), 8.0 * std::sin(a), 0);
+    c.colour = ConeColour::Blue;
+    cones.push_back(c);
+  }
+  SpeedLimits lim;
+  lim.mu = 1.0;
+  lim.v_max = 30;
+  const auto res = rec.build(0, lap / v, cones, ColourConvention{}, SpeedProfile(lim));
+  ASSERT_TRUE(res.path) << res.reason;
+  // The outer boundary between cones is a chord: 12·cos(π/38) ≈ 11.959 m at its middle.
+  const double outer_line = 12.0 * std::cos(std::numbers::pi / n_out);
+  for (const auto& q : res.path->points) {
+    EXPECT_LE(q.p.norm(), 12.0 - cfg.racing_keep + 0.02);
+    EXPECT_GE(q.p.norm(), outer_line - cfg.racing_keep - 0.1);
+  }
+  EXPECT_NEAR(res.racing_offset, outer_line - cfg.racing_keep - r, 0.1);
+  // Faster than the centre circle: √(μ g R) at the larger radius.
+  for (const auto& q : res.path->points) EXPECT_GT(q.v, std::sqrt(9.81 * r) * 1.02);
+}
+
+}  // namespace
+}  // namespace fsd

@@ -100,6 +100,45 @@ std::string fast_config() {
   return path;
 }
 
+// The same with lap 2 on the minimum-curvature line (control.trajectory.line).
+std::string racing_config() {
+  const std::string path = scratch_path("fsd_racing_all.json");
+  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false},
+                             "control": {"trajectory": {"line": "min_curvature"}}})";
+  return path;
+}
+
+struct Drive {
+  int rc = -1;
+  nlohmann::json report;
+  std::string log;
+};
+
+// `fsd run --sim --headless --until-finished` of a mission on a shared track; its scorecard.
+Drive drive(const std::string& track, const std::string& mission, int laps, const std::string& config) {
+  Drive d;
+  const std::string out = scratch_path(track + "_" + mission + "_" + std::to_string(laps) + "_" +
+                                       std::filesystem::path(config).stem().string() + ".json");
+  std::remove(out.c_str());
+  d.rc = run_fsd("run --sim --headless --until-finished --laps " + std::to_string(laps) + " --config " + config +
+                     " --mission " + mission + " --track " + kTracks + track + ".csv --report " + out,
+                 &d.log);
+  std::ifstream f(out);
+  if (f.good()) d.report = nlohmann::json::parse(f, nullptr, false);
+  return d;
+}
+
+// The mission done clean: finished, stopped after the finish, AS Finished, no cone, exit 0.
+void expect_clean_finish(const Drive& d) {
+  const auto& r = d.report;
+  ASSERT_TRUE(r.is_object()) << d.log;
+  EXPECT_EQ(d.rc, 0) << d.log;
+  EXPECT_EQ(r["cones_hit"], 0) << d.log;
+  EXPECT_TRUE(r["finished"]);
+  EXPECT_TRUE(r["stopped_after_finish"]);
+  EXPECT_EQ(r["as_state"], "Finished");
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // The friction-limited lap time of the true centre line, from the track file only (no fsd code).
 struct P2 {
@@ -294,14 +333,11 @@ TEST(AllTracksList, ReferenceLapTimeOfACircleIsHandComputed) {
 TEST_P(AllTracks, CompletesItsMission) {
   const TrackCase c = GetParam();
   const std::string file = kTracks + c.name + ".csv";
-  const std::string out = scratch_path(std::string(c.name) + "_all.json");
-  std::string log;
-  const int rc = run_fsd(std::string("run --sim --headless --until-finished --laps 2 --config ") + fast_config() +
-                         " --mission " + mission_of(c.kind) + " --track " + file + " --report " + out,
-                     &log);
-  std::ifstream f(out);
-  ASSERT_TRUE(f.good()) << log;
-  const auto r = nlohmann::json::parse(f);
+  const Drive d = drive(c.name, mission_of(c.kind), 2, fast_config());
+  ASSERT_TRUE(d.report.is_object()) << d.log;
+  const auto& r = d.report;
+  const int rc = d.rc;
+  const std::string& log = d.log;
   const auto& laps = r["laps"];
   std::string line = std::string(c.name) + " " + mission_of(c.kind) + ": cones hit " + r["cones_hit"].dump() +
                      ", AS " + r["as_state"].get<std::string>() + ", sim " + r["sim_time_s"].dump() + " s";
@@ -373,6 +409,15 @@ TEST_P(AllTracks, CompletesItsMission) {
   EXPECT_LE(l2["time_s"].get<double>(), (1.0 + kLap2Margin) * reference);
   // Much faster than the friction limit would mean the reference or the timing is wrong.
   EXPECT_GE(l2["time_s"].get<double>(), 0.85 * reference);
+
+  // The minimum-curvature option: the same two laps clean, lap 2 at least 1 % faster than on the centre line.
+  const Drive race = drive(c.name, "trackdrive", 2, racing_config());
+  expect_clean_finish(race);
+  ASSERT_EQ(race.report["laps"].size(), 2u);
+  const double race2 = race.report["laps"][1]["time_s"].get<double>();
+  std::printf("%s: lap 2 on the min-curvature line %.3f s (%+.1f %% on the centre line's)\n", c.name, race2,
+              100.0 * (race2 / l2["time_s"].get<double>() - 1.0));
+  EXPECT_LE(race2, 0.99 * l2["time_s"].get<double>());
 }
 
 std::string case_name(const ::testing::TestParamInfo<TrackCase>& info) { return info.param.name; }
@@ -382,20 +427,9 @@ INSTANTIATE_TEST_SUITE_P(SharedTracks, AllTracks, ::testing::ValuesIn(cases()), 
 TEST(AllTracksTight, TenLapsAsAtFormulaStudentGermany) {
   // FSG's trackdrive is 10 laps (the paper's FSAC had 2). Laps 3–10 run on the same recorded line as lap 2: each
   // as clean as lap 2 (the issue's CTE figures) and within 1 % of its time, then the stop after the tenth.
-  const std::string out = scratch_path("ten_laps.json");
-  std::string log;
-  const int rc = run_fsd("run --sim --headless --until-finished --laps 10 --mission trackdrive --config " +
-                             fast_config() + " --track " + kTracks + "epfl_track_1.csv --report " + out,
-                         &log);
-  std::ifstream f(out);
-  ASSERT_TRUE(f.good()) << log;
-  const auto r = nlohmann::json::parse(f);
-  EXPECT_EQ(rc, 0) << log;
-  EXPECT_EQ(r["cones_hit"], 0) << log;
-  EXPECT_TRUE(r["finished"]);
-  EXPECT_TRUE(r["stopped_after_finish"]);
-  EXPECT_EQ(r["as_state"], "Finished");
-  const auto& laps = r["laps"];
+  const Drive d = drive("epfl_track_1", "trackdrive", 10, fast_config());
+  expect_clean_finish(d);
+  const auto& laps = d.report["laps"];
   ASSERT_EQ(laps.size(), 10u);
   const double lap2 = laps[1]["time_s"].get<double>();
   for (std::size_t i = 1; i < laps.size(); ++i) {
@@ -410,20 +444,13 @@ TEST(AllTracksTight, TheAutocrossLayoutDrivenAsATwoLapTrackdrive) {
   // rules' tightest hairpin with an S straight out of it: on lap 2's recorded line, at lap 2's speeds, the line
   // through the hairpin must be shaped to the car as on lap 1, and driven at that line's cap. Only cones, the
   // finish and the stop are asserted: the layout is an autocross one, all corners, and lap 2 gains ~13 %, not 20.
-  const std::string out = scratch_path("autoX_trackdrive.json");
-  std::string log;
-  const int rc = run_fsd("run --sim --headless --until-finished --laps 2 --mission trackdrive --config " +
-                             fast_config() + " --track " + kTracks + "epfl_autoX_Vaudoise_Sponso.csv --report " + out,
-                         &log);
-  std::ifstream f(out);
-  ASSERT_TRUE(f.good()) << log;
-  const auto r = nlohmann::json::parse(f);
-  EXPECT_EQ(rc, 0) << log;
-  EXPECT_EQ(r["cones_hit"], 0) << log;
-  EXPECT_TRUE(r["finished"]);
-  EXPECT_TRUE(r["stopped_after_finish"]);
-  ASSERT_EQ(r["laps"].size(), 2u);
-  EXPECT_LT(r["laps"][1]["time_s"].get<double>(), r["laps"][0]["time_s"].get<double>());
+  // The same on the minimum-curvature line.
+  for (const std::string& config : {fast_config(), racing_config()}) {
+    const Drive d = drive("epfl_autoX_Vaudoise_Sponso", "trackdrive", 2, config);
+    expect_clean_finish(d);
+    ASSERT_EQ(d.report["laps"].size(), 2u) << config;
+    EXPECT_LT(d.report["laps"][1]["time_s"].get<double>(), d.report["laps"][0]["time_s"].get<double>()) << config;
+  }
 }
 
 }  // namespace
