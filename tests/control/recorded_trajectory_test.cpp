@@ -176,6 +176,18 @@ TEST(RecordedTrajectory, KeepsOnePosePerSpacing) {
 namespace fsd {
 namespace {
 
+std::vector<Cone> ring_of_cones(double radius, int n, ConeColour colour) {
+  std::vector<Cone> out;
+  for (int i = 0; i < n; ++i) {
+    Cone c;
+    const double a = 2 * std::numbers::pi * i / n;
+    c.position = Vec3(radius * std::cos(a), radius * std::sin(a), 0);
+    c.colour = colour;
+    out.push_back(c);
+  }
+  return out;
+}
+
 TEST(RecordedTrajectory, TheMinimumCurvatureLineRunsTheRingAtItsOuterEdgeLessTheKeep) {
   // A ring track, counter-clockwise: inner (left, blue) cones at 8 m, outer (right, yellow) at 12 m, every 2 m
   // along the outer edge; lap 1 driven on the centre circle (10 m). The flattest line is the largest circle the
@@ -188,22 +200,9 @@ TEST(RecordedTrajectory, TheMinimumCurvatureLineRunsTheRingAtItsOuterEdgeLessThe
     const double a = v * t / r;
     rec.record(at(t, r * Vec2(std::cos(a), std::sin(a))));
   }
-  std::vector<Cone> cones;
   const int n_out = 38, n_in = 25;  // ≈ 2 m apart on each edge
-  for (int i = 0; i < n_out; ++i) {
-    Cone c;
-    const double a = 2 * std::numbers::pi * i / n_out;
-    c.position = Vec3(12.0 * std::cos(a), 12.0 * std::sin(a), 0);
-    c.colour = ConeColour::Yellow;
-    cones.push_back(c);
-  }
-  for (int i = 0; i < n_in; ++i) {
-    Cone c;
-    const double a = 2 * std::numbers::pi * i / n_in;
-    c.position = Vec3(8.0 * std::cos(a), 8.0 * std::sin(a), 0);
-    c.colour = ConeColour::Blue;
-    cones.push_back(c);
-  }
+  std::vector<Cone> cones = ring_of_cones(12.0, n_out, ConeColour::Yellow);
+  for (const auto& c : ring_of_cones(8.0, n_in, ConeColour::Blue)) cones.push_back(c);
   SpeedLimits lim;
   lim.mu = 1.0;
   lim.v_max = 30;
