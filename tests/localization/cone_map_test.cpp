@@ -22,6 +22,31 @@ ConeDetections detect(const std::vector<std::pair<Vec2, ConeColour>>& world, con
   return d;
 }
 
+using World = std::vector<std::pair<Vec2, ConeColour>>;
+
+// The map after driving along +x past `world`, `frames` detections (σ 5 cm) `step` m apart.
+std::vector<Cone> drive_past(const World& world, int frames, double step, unsigned seed) {
+  ConeMap map;
+  std::mt19937 rng(seed);
+  for (int k = 0; k < frames; ++k) {
+    const Pose2 pose{step * k, 0.0, 0.0};
+    map.update(detect(world, pose, 0.05, rng), pose);
+  }
+  return map.cones();
+}
+
+// One mapped cone per true cone, each within 5 cm of it and of its colour.
+void expect_each_cone_mapped(const World& world, const std::vector<Cone>& cones) {
+  ASSERT_EQ(cones.size(), world.size());
+  for (const auto& [p, colour] : world) {
+    const auto it = std::min_element(cones.begin(), cones.end(), [&](const Cone& a, const Cone& b) {
+      return (a.position.head<2>() - p).norm() < (b.position.head<2>() - p).norm();
+    });
+    EXPECT_LT((it->position.head<2>() - p).norm(), 0.05);
+    EXPECT_EQ(it->colour, colour);
+  }
+}
+
 TEST(ConeMap, FusesRepeatedNoisyDetectionsToTheTruePosition) {
   const std::vector<std::pair<Vec2, ConeColour>> world{{{5, 2}, ConeColour::Blue}, {{5, -2}, ConeColour::Yellow},
                                                       {{9, 2}, ConeColour::Blue}};
@@ -72,21 +97,7 @@ TEST(ConeMap, ADoubledStartLineKeepsItsOrangeConesApartFromTheBoundaryCone) {
   const std::vector<std::pair<Vec2, ConeColour>> world{
       {{7.0, 1.5}, ConeColour::BigOrange}, {{7.5, 1.5}, ConeColour::Blue},   {{8.0, 1.5}, ConeColour::BigOrange},
       {{7.0, -1.5}, ConeColour::BigOrange}, {{7.5, -1.5}, ConeColour::Yellow}, {{8.0, -1.5}, ConeColour::BigOrange}};
-  ConeMap map;
-  std::mt19937 rng(5);
-  for (int k = 0; k < 50; ++k) {
-    const Pose2 pose{0.05 * k, 0.0, 0.0};
-    map.update(detect(world, pose, 0.05, rng), pose);
-  }
-  const auto cones = map.cones();
-  ASSERT_EQ(cones.size(), world.size());
-  for (const auto& [p, colour] : world) {
-    const auto it = std::min_element(cones.begin(), cones.end(), [&](const Cone& a, const Cone& b) {
-      return (a.position.head<2>() - p).norm() < (b.position.head<2>() - p).norm();
-    });
-    EXPECT_LT((it->position.head<2>() - p).norm(), 0.05);
-    EXPECT_EQ(it->colour, colour);
-  }
+  expect_each_cone_mapped(world, drive_past(world, 50, 0.05, 5));
 }
 
 TEST(ConeMap, SameColourConesNearerThanTheGateStayTwoCones) {
@@ -97,21 +108,7 @@ TEST(ConeMap, SameColourConesNearerThanTheGateStayTwoCones) {
                                                        {{10.5, 1.5}, ConeColour::BigOrange},
                                                        {{10.0, -1.5}, ConeColour::Yellow},
                                                        {{10.5, -1.5}, ConeColour::Yellow}};
-  ConeMap map;
-  std::mt19937 rng(11);
-  for (int k = 0; k < 60; ++k) {
-    const Pose2 pose{0.1 * k, 0.0, 0.0};
-    map.update(detect(world, pose, 0.05, rng), pose);
-  }
-  const auto cones = map.cones();
-  ASSERT_EQ(cones.size(), world.size());
-  for (const auto& [p, colour] : world) {
-    const auto it = std::min_element(cones.begin(), cones.end(), [&](const Cone& a, const Cone& b) {
-      return (a.position.head<2>() - p).norm() < (b.position.head<2>() - p).norm();
-    });
-    EXPECT_LT((it->position.head<2>() - p).norm(), 0.05);
-    EXPECT_EQ(it->colour, colour);
-  }
+  expect_each_cone_mapped(world, drive_past(world, 60, 0.1, 11));
 }
 
 TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
