@@ -18,6 +18,7 @@
 #include "control/control_config.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/dashboard_view.hpp"
+#include "daemon/fault_log.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/hardware_stats.hpp"
 #include "daemon/live_tuning.hpp"
@@ -97,6 +98,7 @@ struct HardwareRun::Impl {
   bool until_finished = false;
   RealClock clock;
   std::shared_ptr<spdlog::logger> log = logger("run");
+  FaultLog fault_log{log};
 
   Vlp16Config vlp_cfg;
   GnssConfig gnss_cfg;
@@ -323,6 +325,7 @@ struct HardwareRun::Impl {
       }
       if (params_changed.exchange(false)) autopilot->set_config(tuned_control(tuned, *params, run.laps));
       const ControlOutput out = autopilot->step(now);
+      fault_log.update(autopilot->faults());
       vcu->set_command(out.command);
       vcu->set_as_request(out.request);
       if (out.lap_line) log->info("{}", to_string(*out.lap_line));

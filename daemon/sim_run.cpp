@@ -13,6 +13,7 @@
 #include "control/control_config.hpp"
 #include "control/missions.hpp"
 #include "daemon/dashboard_view.hpp"
+#include "daemon/fault_log.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/map_score.hpp"
 #include "daemon/run_metrics.hpp"
@@ -87,6 +88,7 @@ struct SimRun::Impl {
   std::unique_ptr<DashboardView> view;
   std::vector<FaultRecord> link_faults;
   std::shared_ptr<spdlog::logger> log = logger("run");
+  FaultLog fault_log{log};
 
   Impl(const Config& cfg, const RunOptions& opt)
       : run(run_section().read(cfg)),
@@ -206,6 +208,7 @@ struct SimRun::Impl {
       autopilot->on_state(stack_state = state_from_truth(truth));
       if (params_changed.exchange(false)) apply_params();
       const ControlOutput out = autopilot->step(t);
+      fault_log.update(autopilot->faults());
       vcu->set_command(out.command, t);
       if (frame_start) {
         fig.end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - *frame_start).count();

@@ -220,6 +220,10 @@ TEST(FaultInjection, PlannerStalledIsAControlledStop) {
   const auto planning = faults_of(r, "planning");
   ASSERT_EQ(planning.size(), 1u) << rep["faults"].dump();
   EXPECT_EQ(planning[0]["action"], "controlled stop");
+  // The log says why the car stops, once.
+  const std::string line = "planning: no usable plan for 0.50 s -> controlled stop";
+  EXPECT_NE(r.log.find(line), std::string::npos) << r.log;
+  EXPECT_EQ(r.log.find(line), r.log.rfind(line)) << r.log;
   EXPECT_GE(planning[0]["t"].get<double>(), stall + 0.5 - 0.1);  // the last plan came at most 0.1 s earlier
   EXPECT_LE(planning[0]["t"].get<double>(), stall + 0.5 + 0.02);
   // From the truth: the service brakes stop the car; only then does the stack ask for the EBS to hold it
