@@ -49,8 +49,9 @@ void Autopilot::set_config(const AutopilotConfig& config) {
   follower_.set_config(config.follower);
   lap2_follower_.set_config(config.lap2.follower(config.follower));
   supervisor_.set_config(config.supervisor);
-  // The stored lap's speeds follow the car's limits (μ, margins, v_max) as they are tuned.
-  if (lap_path_) SpeedProfile(config.speed.known()).apply(*lap_path_, 0, 0);
+  // The stored lap's speeds follow the car's limits (μ, lap 2's share, v_max) as they are tuned, with the caps of
+  // its tight turns.
+  if (lap_path_) SpeedProfile(lap2_limits()).apply(*lap_path_, 0, 0, lap_zones_);
 }
 
 void Autopilot::on_vcu(const VcuStatus& status) { supervisor_.on_vcu(status); }
@@ -169,6 +170,7 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
   switch (mission_) {
     case Mission::Trackdrive:
     case Mission::Autocross: {
+      take_lap_build(now, out);
       const bool was_timing = lap_counter_->timing();
       const auto ev = lap_counter_->update(now, pos);
       if (!was_timing && lap_counter_->timing() && !lap1_start_) lap1_start_ = lap_counter_->last_crossing();
@@ -184,7 +186,8 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
       // Shortly before the end of lap 1, close the lap with the plan ahead and take it: the car then crosses the
       // line at the lap's speed, so lap 2 is a flying lap.
       const double early = config_.trajectory.early_build_distance;
-      if (!lap_path_ && !ev && early > 0 && target_laps() > 1 && lap_counter_->laps_completed() == 0 &&
+      if (!lap_path_ && !pending_build_.valid() && !ev && early > 0 && target_laps() > 1 &&
+          lap_counter_->laps_completed() == 0 &&
           lap_counter_->timing() && plan_ && odometer_ > config_.trajectory.min_lap_length) {
         const TimingLine& line = lap_counter_->line();
         const double before = -line.past(pos);
@@ -194,24 +197,19 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
         if (before > 0 && before < early && across && heading.dot(line.forward) > 0.7) {
           std::vector<Vec2> ahead;
           for (const auto& q : plan_->points) ahead.push_back(q.p);
-          const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), now, cones_, convention_,
-                                               SpeedProfile(lap2_limits()), ahead);
-          if (built.path) {
-            lap_path_ = *built.path;
-            lap2_follower_.reset();
-            out.lap_line = summary(built);
-          }
+          pending_early_ = true;
+          build_lap(now, now, std::move(ahead), out);
         }
       }
       if (ev) {
         lap_times_.push_back(ev->time_s);
         out.lap = ev;
-        if (ev->lap == 1 && target_laps() > 1 && !lap_path_) {
-          const auto built = trajectory_.build(lap1_start_.value_or(mission_start_), ev->t, cones_, convention_,
-                                               SpeedProfile(lap2_limits()));
-          if (built.path) lap_path_ = *built.path, out.lap_line = summary(built);
-          else supervisor_.report(now, "mission", "lap-2 trajectory not built: " + built.reason,
-                                  "keep real-time planning");
+        if (ev->lap == 1) lap1_end_ = ev->t;
+        // No lap path yet: built to the line now, unless the early build is still under way (should that one
+        // fail, this one follows).
+        if (ev->lap == 1 && target_laps() > 1 && !lap_path_ && !pending_build_.valid()) {
+          pending_early_ = false;
+          build_lap(now, ev->t, {}, out);
         }
         if (ev->lap >= target_laps()) finish(now);
       }
@@ -254,6 +252,55 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
     case Mission::None:
       break;
   }
+}
+
+void Autopilot::build_lap(Stamp now, Stamp t1, std::vector<Vec2> ahead, ControlOutput& out) {
+  const Stamp t0 = lap1_start_.value_or(mission_start_);
+  if (!lap_builder_) {
+    use_lap_build(now, trajectory_.build(t0, t1, cones_, convention_, SpeedProfile(lap2_limits()), ahead), out);
+    return;
+  }
+  // The job gets copies: lap 1's poses keep being recorded and the map keeps growing meanwhile.
+  LapBuildJob job = [trajectory = trajectory_, t0, t1, cones = cones_, convention = convention_,
+                     profile = SpeedProfile(lap2_limits()), ahead = std::move(ahead)] {
+    return trajectory.build(t0, t1, cones, convention, profile, ahead);
+  };
+  try {
+    pending_build_ = lap_builder_(job);
+  } catch (const std::exception&) {  // no worker to be had (no thread): build it here
+    use_lap_build(now, job(), out);
+  }
+}
+
+void Autopilot::take_lap_build(Stamp now, ControlOutput& out) {
+  if (!pending_build_.valid() || pending_build_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return;
+  TrajectoryResult built;
+  try {
+    built = pending_build_.get();
+  } catch (const std::exception& e) {  // the worker could not run it (or the build threw)
+    built.reason = e.what();
+  }
+  use_lap_build(now, built, out);
+}
+
+void Autopilot::use_lap_build(Stamp now, const TrajectoryResult& built, ControlOutput& out) {
+  if (built.path) {
+    pending_early_ = false;
+    lap_path_ = *built.path;
+    lap_zones_ = built.zones;
+    lap2_follower_.reset();
+    out.lap_line = summary(built);
+    return;
+  }
+  if (pending_early_) {
+    // The early build failed: it is tried again while the car is short of the line, or, past the line, the lap is
+    // built to the line.
+    pending_early_ = false;
+    if (lap1_end_) build_lap(now, *lap1_end_, {}, out);
+    return;
+  }
+  supervisor_.report(now, "mission", "lap-2 trajectory not built: " + built.reason, "keep real-time planning");
 }
 
 SpeedLimits Autopilot::lap2_limits() const {

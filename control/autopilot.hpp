@@ -12,7 +12,11 @@
 //   on_gnss(t, good)        the newest GNSS-INS sample's GnssSample::good
 //   out = step(now)         send out.command to the VCU every cycle, out.request while it is not None;
 //                           out.path / out.follow / out.lap / faults() feed telemetry and the scorecard.
-// step() runs the planner itself when new cones arrived or replan_period passed (≈ 0.2–0.5 ms).
+// step() runs the planner itself when new cones arrived or replan_period passed (≈ 0.2–0.5 ms). Lap 2's path
+// (built once, 10–30 ms) is built inside step() too unless a LapBuilder is set: the daemon on the car hands it to a
+// worker so that the control cycle keeps its period, and takes the lap when it is ready.
+#include <functional>
+#include <future>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -42,6 +46,10 @@ struct AutopilotConfig {
   double replan_period = 0.1;   // s: the real-time plan is refreshed at least this often (on new cones at once)
   double gnss_timeout = 0.5;    // s without a good GNSS fix: lap 2 falls back to real-time planning
 };
+
+// Runs a lap build somewhere else (a worker thread) and hands back its result. The job owns copies of its inputs.
+using LapBuildJob = std::function<TrajectoryResult()>;
+using LapBuilder = std::function<std::future<TrajectoryResult>(LapBuildJob)>;
 
 enum class PathSource { None, Planner, Recorded, Skidpad, Straight };
 std::string_view to_string(PathSource s);
@@ -105,6 +113,9 @@ class Autopilot {
 
   // Live tuning: the planner, follower, speed and supervisor settings take effect from the next step.
   void set_config(const AutopilotConfig& config);
+  // Lap 2's path built by `builder` instead of inside step(); empty: inside step() (deterministic).
+  void set_lap_builder(LapBuilder builder) { lap_builder_ = std::move(builder); }
+  bool lap_build_pending() const { return pending_build_.valid(); }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
 
@@ -116,6 +127,11 @@ class Autopilot {
   void detect_open_end(Stamp now);
   const Path* select_path(Stamp now, PathSource& source);
   SpeedLimits lap2_limits() const;
+  // Lap 2's path from lap 1's poses in [t0, t1] (and the plan `ahead` of an early build): built now, or handed to
+  // the lap builder and taken by take_lap_build() once ready.
+  void build_lap(Stamp now, Stamp t1, std::vector<Vec2> ahead, ControlOutput& out);
+  void take_lap_build(Stamp now, ControlOutput& out);
+  void use_lap_build(Stamp now, const TrajectoryResult& built, ControlOutput& out);
   bool uses_planner() const { return mission_ == Mission::Trackdrive || mission_ == Mission::Autocross; }
   int target_laps() const { return mission_ == Mission::Autocross ? 1 : config_.mission.laps; }
 
@@ -147,6 +163,11 @@ class Autopilot {
   std::optional<LapCounter> lap_counter_;
   std::optional<Stamp> lap1_start_;
   std::optional<Path> lap_path_;
+  std::vector<SpeedZone> lap_zones_;       // its profile's speed caps (tight turns)
+  LapBuilder lap_builder_;
+  std::future<TrajectoryResult> pending_build_;
+  bool pending_early_ = false;             // the pending build is the early one (before the line)
+  std::optional<Stamp> lap1_end_;          // lap 1's crossing, once it happened
   std::optional<Path> straight_;
   double straight_start_s_ = 0;
   std::optional<Stamp> straight_timing_start_;

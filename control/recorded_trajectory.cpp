@@ -138,6 +138,7 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
   speed.apply(lap, 0, 0, zones);
   lap.stamp = t1;
   r.path = std::move(lap);
+  r.zones = std::move(zones);
   return r;
 }
 

@@ -21,6 +21,7 @@
 #include "daemon/fault_log.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/hardware_stats.hpp"
+#include "daemon/lap_build_thread.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
@@ -221,6 +222,8 @@ struct HardwareRun::Impl {
     AutopilotConfig ac = read_control(cfg);
     ac.mission.laps = run.laps;
     autopilot = std::make_unique<Autopilot>(ac, mission, ColourConvention::named(run.colours));
+    // The lap-2 build must not hold up the 100 Hz control thread.
+    autopilot->set_lap_builder(lap_build_thread());
     view = std::make_unique<DashboardView>(mission, run.laps);
   }
 

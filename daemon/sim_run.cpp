@@ -14,6 +14,7 @@
 #include "control/missions.hpp"
 #include "daemon/dashboard_view.hpp"
 #include "daemon/fault_log.hpp"
+#include "daemon/lap_build_thread.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/map_score.hpp"
 #include "daemon/run_metrics.hpp"
@@ -142,6 +143,9 @@ struct SimRun::Impl {
     // In lockstep a slow plan delays no simulated time, and wall-clock checks would make runs unrepeatable.
     if (headless) ac.supervisor.check_plan_time = false;
     autopilot = std::make_unique<Autopilot>(ac, mission, track.convention);
+    // In real time the lap-2 build runs beside the control loop as on the car; in lockstep inside the step that
+    // asks for it, so that a run is the same every time.
+    if (!headless) autopilot->set_lap_builder(lap_build_thread());
 
     card = std::make_unique<Scorecard>(track, mission, timed_laps(mission, run.laps), stop_zone(mission), run.seed);
     view = std::make_unique<DashboardView>(mission, run.laps);
