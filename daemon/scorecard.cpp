@@ -66,26 +66,30 @@ void Scorecard::on_truth(const sim::VehicleTruth& truth) {
   std::optional<sim::Gate> crossed;
   Stamp t_cross = truth.t;
   if (!last_) {
-    // A car that starts just past a timing line (some FSDS layouts) has begun its first lap at the start, as the
-    // stack's lap counter also counts it; otherwise lap 1 begins at the first crossing.
+    // A car that starts just past a timing line (some layouts) begins its first lap when it first moves, as the
+    // stack's lap counter counts it from the go (not through the seconds it stands in Ready); otherwise lap 1
+    // begins at the first crossing.
     for (std::size_t g = 0; g < gates_.gates().size() && !open_; ++g) {
       const double past = gates_.past(g, pos);
       const Vec2 lat(-gates_.gates()[g].forward.y(), gates_.gates()[g].forward.x());
       if (past > 0.0 && past < 10.0 && std::fabs((pos - gates_.gates()[g].centre).dot(lat)) <= gates_.gates()[g].half_width)
-        lap_start_ = truth.t;
+        start_past_line_ = true;
     }
-  } else if (open_) {
-    // An open layout has no start line of its own: the run is timed from the first motion to the end line.
-    if (!lap_start_ && truth.speed() > 0.05) lap_start_ = last_->t;
-    if (const auto f = crossing(end_gate_, last_->pose.position(), pos)) {
-      crossed = end_gate_;
-      t_cross = last_->t + (truth.t - last_->t) * *f;
+  } else {
+    if (start_past_line_ && !lap_start_ && laps_.empty() && truth.speed() > 0.05) lap_start_ = last_->t;
+    if (open_) {
+      // An open layout has no start line of its own: the run is timed from the first motion to the end line.
+      if (!lap_start_ && truth.speed() > 0.05) lap_start_ = last_->t;
+      if (const auto f = crossing(end_gate_, last_->pose.position(), pos)) {
+        crossed = end_gate_;
+        t_cross = last_->t + (truth.t - last_->t) * *f;
+      }
+    } else if (const auto g = gates_.crossed(last_->pose.position(), pos)) {
+      // Interpolate the crossing time for lap times better than one step.
+      const double da = gates_.past(*g, last_->pose.position()), db = gates_.past(*g, pos);
+      crossed = gates_.gates()[*g];
+      t_cross = last_->t + (truth.t - last_->t) * (da / (da - db));
     }
-  } else if (const auto g = gates_.crossed(last_->pose.position(), pos)) {
-    // Interpolate the crossing time for lap times better than one step.
-    const double da = gates_.past(*g, last_->pose.position()), db = gates_.past(*g, pos);
-    crossed = gates_.gates()[*g];
-    t_cross = last_->t + (truth.t - last_->t) * (da / (da - db));
   }
   if (crossed && !finished_) {
     const Stamp t = t_cross;

@@ -74,6 +74,7 @@ class Scorecard {
   sim::ReferenceLine ref_;
   sim::TimingGates gates_;
   bool open_ = false;
+  bool start_past_line_ = false;  // the car stands just past a timing line: lap 1 from its first motion
   sim::Gate end_gate_;  // open layouts: across the last left and right boundary cones
   // Skid pad: its centre line is two circles (and the entry/exit axis), not a loop between the boundaries.
   std::vector<Vec2> skidpad_centres_;

@@ -59,6 +59,39 @@ TEST(Scorecard, LapsCrossTrackErrorAndStopOnAHandMadeDrive) {
     EXPECT_TRUE(j.contains(key)) << key;
 }
 
+TEST(Scorecard, AStartPastTheLineTimesLapOneFromTheFirstMotion) {
+  // epfl_21_05_2023's car stands just past its timing line. It waits 6 s (Ready, the RES go), then drives the
+  // centre line from where it stands at 5 m/s: lap 1 is the drive back to the line, not the drive plus the wait.
+  const Track track = load_track("../shared/tracks/epfl_21_05_2023.csv");
+  const sim::ReferenceLine ref(track);
+  Scorecard card(track, Mission::Trackdrive, 1, 30.0, 1);
+  const auto& pts = ref.points();
+  const std::size_t n = pts.size();
+  std::size_t k0 = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if ((pts[k] - track.start.position()).norm() < (pts[k0] - track.start.position()).norm()) k0 = k;
+  const double v = 5.0;
+  sim::VehicleTruth truth;
+  truth.pose = track.start;
+  for (truth.t = 0; truth.t < 6.0; truth.t += 0.01) card.on_truth(truth);  // standing
+  double driven = 0;
+  for (std::size_t k = k0; k < k0 + 2 * n && !card.finished(); ++k) {
+    const Vec2 a = pts[k % n], b = pts[(k + 1) % n];
+    const Vec2 dir = (b - a).normalized();
+    truth.pose = {a.x(), a.y(), std::atan2(dir.y(), dir.x())};
+    truth.vx = v;
+    card.on_truth(truth);
+    driven += (b - a).norm();
+    truth.t += (b - a).norm() / v;
+  }
+  ASSERT_EQ(card.laps_completed(), 1);
+  // Timed from t = 6 s: the line lies less than 10 m behind the start (what counts as starting past it), so
+  // the lap is a little under one length of driving; with the wait it would be 6 s over.
+  EXPECT_LT(card.laps()[0].time_s, ref.length() / v);
+  EXPECT_GT(card.laps()[0].time_s, (ref.length() - 10.0) / v);
+  EXPECT_LT(card.laps()[0].time_s, driven / v + 0.1);
+}
+
 TEST(Scorecard, SkidPadCrossTrackErrorIsMeasuredFromItsCircles) {
   // epfl_skidpad: start at the origin heading +y, the timing line at y = 15, the right circle's centre at
   // (9.125, 15), the left one's at (-9.125, 15) (18.25 m driving diameter, the rules'). Drive 0.3 m outside
