@@ -23,7 +23,7 @@ struct RecordedTrajectoryConfig {
   double min_lap_length = 30.0;      // m
   bool recentre = true;              // pull the line to the middle of the mapped cones
   double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
-  double max_centre_offset = 0.4;    // m: the recentred lap, smoothed, stays this close to the centre line; 0 = free
+  double max_centre_offset = 0.35;   // m: the recentred lap, smoothed, stays this close to the centre line; 0 = free
   // "centre": lap 2 on the centre line (what the scorecard's cross-track error measures); "min_curvature": the
   // flattest line within the mapped boundaries, each cone's line kept `racing_keep` from the car's path.
   std::string line = "centre";
