@@ -109,6 +109,9 @@ struct HardwareRun::Impl {
   // LiDAR: decoded on the receiver's thread; the scans wait in a slot for perception (not wired yet).
   std::unique_ptr<Vlp16ScanBuilder> scans;
   std::unique_ptr<UdpReceiver> lidar_rx;
+  std::unique_ptr<UdpReceiver> position_rx;   // VLP-16 position packets
+  PositionPacketParser position_parser;        // guarded by lidar_m
+  PpsState position_pps = PpsState::Absent;    // guarded by lidar_m
   LatestValue<std::shared_ptr<const Scan>> last_scan;
   mutable std::mutex lidar_m;
   LidarCounters lidar_counts;  // decode part, guarded by lidar_m
@@ -184,6 +187,14 @@ struct HardwareRun::Impl {
             lidar_counts.decode = scans->decode_counters();
             lidar_counts.lost_packets = scans->lost_packets();
           });
+      position_rx = std::make_unique<UdpReceiver>(
+          UdpReceiver::Options{vlp_cfg.address, static_cast<std::uint16_t>(vlp_cfg.position_port),
+                               1 << 16, "vlp16 position"},
+          clock, [this](Stamp, std::span<const std::uint8_t> payload) {
+            std::lock_guard lock(lidar_m);
+            PositionPacket p;
+            if (position_parser.parse(payload, p) == PositionStatus::Ok) position_pps = p.pps;
+          });
     } catch (const std::runtime_error& e) {
       throw std::invalid_argument(std::string("drivers.vlp16: ") + e.what());
     }
@@ -236,7 +247,10 @@ struct HardwareRun::Impl {
       c.lidar.decode = lidar_counts.decode;
       c.lidar.scans = lidar_counts.scans;
       c.lidar.lost_packets = lidar_counts.lost_packets;
+      c.lidar.position = position_parser.counters();
+      c.lidar.pps = position_pps;
     }
+    c.lidar.position_udp = position_rx->counters();
     {
       std::lock_guard lock(gnss_m);
       c.gnss.nmea = gnss_counts;
@@ -362,13 +376,14 @@ struct HardwareRun::Impl {
 
   int run_loop(const std::atomic<bool>& stop) {
     const auto wall0 = std::chrono::steady_clock::now();
-    log->info("{} on the car: VLP-16 on udp {}:{}, GNSS-INS on {} at {} baud, VCU on {} at {} baud, camera {}",
-              to_string(mission), vlp_cfg.address, lidar_rx->port(), gnss_cfg.device, gnss_cfg.baud,
+    log->info("{} on the car: VLP-16 on udp {}:{} (position packets :{}), GNSS-INS on {} at {} baud, VCU on {} at {} baud, camera {}",
+              to_string(mission), vlp_cfg.address, lidar_rx->port(), position_rx->port(), gnss_cfg.device, gnss_cfg.baud,
               vcu_cfg.device, vcu_cfg.baud, camera ? cam_cfg.source : std::string("off"));
     log->info("no perception in this version: state from GNSS-INS only, no cone detections");
     vcu->start();
     gnss_port->start();
     lidar_rx->start();
+    position_rx->start();
     if (camera) {
       camera->start();
       camera_thread = std::thread([this] { camera_loop(); });
@@ -400,6 +415,7 @@ struct HardwareRun::Impl {
     }
     gnss_port->stop();
     lidar_rx->stop();
+    position_rx->stop();
     final_counters = snapshot();
     log->info("totals: {}", rates_line(HardwareCounters{}, *final_counters));
     wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -18,11 +18,13 @@ std::string rates_line(const HardwareCounters& a, const HardwareCounters& b) {
   const auto& la = a.lidar;
   const auto& lb = b.lidar;
   std::string s = fmt::format(
-      "lidar {:.0f} pkt/s {:.1f} scan/s [kernel drops {}, rejected {}, lost {}, socket errors {}] | "
+      "lidar {:.0f} pkt/s {:.1f} scan/s [kernel drops {}, rejected {}, lost {}, socket errors {}], "
+      "position {:.1f} pkt/s PPS {} [rejected {}] | "
       "gnss {:.1f} Hz, good {:.1f} Hz [bad checksum {}, malformed {}, garbage bytes {}, port errors {}] | "
       "vcu status {:.0f} Hz, command {:.0f} Hz [timeouts {}, rejected {}, lost {}, port errors {}]",
       rate(la.udp.datagrams, lb.udp.datagrams, dt), rate(la.scans, lb.scans, dt), lb.udp.kernel_drops,
       lb.decode.rejected(), lb.lost_packets, lb.udp.errors,
+      rate(la.position_udp.datagrams, lb.position_udp.datagrams, dt), to_string(lb.pps), lb.position.rejected(),
       rate(a.gnss.nmea.samples, b.gnss.nmea.samples, dt), rate(a.gnss.nmea.good_samples, b.gnss.nmea.good_samples, dt),
       b.gnss.nmea.bad_checksum, b.gnss.nmea.malformed, b.gnss.nmea.framing.garbage_bytes, serial_errors(b.gnss.port),
       rate(a.vcu.session.statuses, b.vcu.session.statuses, dt),
@@ -50,7 +52,12 @@ nlohmann::json counters_json(const HardwareCounters& c) {
   const auto& l = c.lidar;
   j["vlp16"] = {{"datagrams", l.udp.datagrams}, {"bytes", l.udp.bytes}, {"kernel_drops", l.udp.kernel_drops},
                 {"socket_errors", l.udp.errors}, {"packets", l.decode.packets}, {"rejected", l.decode.rejected()},
-                {"returns", l.decode.returns}, {"lost_packets", l.lost_packets}, {"scans", l.scans}};
+                {"returns", l.decode.returns}, {"lost_packets", l.lost_packets}, {"scans", l.scans},
+                {"position", {{"datagrams", l.position_udp.datagrams}, {"packets", l.position.packets},
+                              {"rejected", l.position.rejected()}, {"pps", std::string(to_string(l.pps))},
+                              {"nmea_valid", l.position.nmea_valid}, {"nmea_absent", l.position.nmea_absent},
+                              {"nmea_bad_checksum", l.position.nmea_bad_checksum},
+                              {"nmea_malformed", l.position.nmea_malformed}}}};
   const auto& g = c.gnss.nmea;
   j["gnss"] = {{"bytes", g.framing.bytes},  {"garbage_bytes", g.framing.garbage_bytes},
                {"lines", g.lines},          {"bad_checksum", g.bad_checksum},

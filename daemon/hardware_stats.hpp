@@ -13,6 +13,7 @@
 #include "drivers/serial/serial_port.hpp"
 #include "drivers/vcu/vcu_link.hpp"
 #include "drivers/vlp16/decoder.hpp"
+#include "drivers/vlp16/position_packet.hpp"
 #include "drivers/vlp16/udp_receiver.hpp"
 
 namespace fsd {
@@ -22,6 +23,10 @@ struct LidarCounters {
   DecodeCounters decode;
   std::uint64_t scans = 0;
   std::uint64_t lost_packets = 0;  // gaps in the sensor's packet timestamps
+  // Position packets (drivers.vlp16.position_port): the sensor's clock, PPS lock and the GPS sentence it got.
+  UdpReceiverCounters position_udp;
+  PositionCounters position;
+  PpsState pps = PpsState::Absent;  // in the newest accepted position packet
 };
 
 struct GnssLinkCounters {

@@ -126,28 +126,33 @@ int free_udp_port() {
 // at the sensor's 754 packets/s) until stopped: the real sensor's bytes for the daemon's receiver.
 class Vlp16Replayer {
  public:
-  explicit Vlp16Replayer(int port) : thread_([this, port] { loop(port); }) {}
+  // Data packets to `port`; the capture's position packets (UDP 8308 in the file) to `position_port` if given.
+  explicit Vlp16Replayer(int port, int position_port = 0)
+      : thread_([this, port, position_port] { loop(port, position_port); }) {}
   ~Vlp16Replayer() {
     done_ = true;
     thread_.join();
   }
 
  private:
-  void loop(int port) {
-    std::vector<std::vector<std::uint8_t>> packets;
+  void loop(int port, int position_port) {
+    std::vector<std::pair<std::vector<std::uint8_t>, int>> packets;  // payload, destination port
     {
-      PcapReader pcap("../shared/data/vlp16/velodyne_vlp16.pcap", {2368});
+      PcapReader pcap("../shared/data/vlp16/velodyne_vlp16.pcap", {2368, 8308});
       UdpDatagram d;
-      while (pcap.next(d)) packets.emplace_back(d.payload.begin(), d.payload.end());
+      while (pcap.next(d))
+        if (d.dst_port == 2368 || position_port > 0)
+          packets.emplace_back(std::vector<std::uint8_t>(d.payload.begin(), d.payload.end()),
+                               d.dst_port == 2368 ? port : position_port);
     }
     const int s = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in a{};
     a.sin_family = AF_INET;
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<std::uint16_t>(port));
     for (int round = 0; round < 600 && !done_; ++round)  // at most a minute
-      for (const auto& p : packets) {
+      for (const auto& [p, to] : packets) {
         if (done_) break;
+        a.sin_port = htons(static_cast<std::uint16_t>(to));
         ::sendto(s, p.data(), p.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof a);
         std::this_thread::sleep_for(std::chrono::microseconds(1326));
       }
@@ -223,6 +228,10 @@ TEST(HardwareStats, RatesLineFromTwoSnapshots) {
   b.control_cycles = 200;
   const std::string line = rates_line(a, b);
   EXPECT_NE(line.find("lidar 754 pkt/s 10.0 scan/s [kernel drops 7,"), std::string::npos) << line;
+  EXPECT_NE(line.find("position 0.0 pkt/s PPS absent [rejected 0]"), std::string::npos) << line;
+  b.lidar.position_udp.datagrams = 2;
+  b.lidar.pps = PpsState::Locked;
+  EXPECT_NE(rates_line(a, b).find("position 1.0 pkt/s PPS locked"), std::string::npos) << rates_line(a, b);
   EXPECT_NE(line.find("gnss 50.0 Hz, good 45.0 Hz [bad checksum 3,"), std::string::npos) << line;
   EXPECT_NE(line.find("vcu status 100 Hz, command 99 Hz"), std::string::npos) << line;
   EXPECT_EQ(line.find("camera"), std::string::npos) << line;  // none configured
@@ -300,6 +309,7 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
   const std::string run_cfg = write_file(
       "hw_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"("}, "gnss": {"device": ")" + gnss +
                          R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
+                         R"(, "position_port": )" + std::to_string(free_udp_port()) +
                          R"(}}, "control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
                          R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
                          "run": {"stats_period": 1.0}, "web": {"bind": "127.0.0.1", "port": 0}})");
@@ -437,12 +447,13 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
     if (!w.isOpened()) GTEST_SKIP() << "this OpenCV cannot write MJPG/AVI";
     for (int k = 0; k < 10; ++k) w.write(cv::Mat(120, 160, CV_8UC3, cv::Scalar::all(20 * k)));
   }
-  const int lidar_port = free_udp_port();
+  const int lidar_port = free_udp_port(), position_port = free_udp_port();
   const std::string cfg = write_file(
       "hw_sigterm.json",
       R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() + R"("}, "gnss": {"device": ")" +
           dev.gnss().slave_path() + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
-          std::to_string(lidar_port) + R"(, "mount_x": 1.5, "mount_z": 0.8, "mount_yaw": 0.1},
+          std::to_string(lidar_port) + R"(, "position_port": )" + std::to_string(position_port) +
+          R"(, "mount_x": 1.5, "mount_z": 0.8, "mount_yaw": 0.1},
                       "camera": {"enabled": true, "source": ")" + video + R"(", "width": 160, "height": 120,
                                  "fps": 20, "loop_file": true}},
           "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5},
@@ -490,7 +501,7 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   {
     // The real capture's points on the dashboard, placed by the configured mount on the car standing at the
     // GNSS origin heading east (the stand-in's truth, RTK noise of 2 cm): 1.5 m ahead, 0.8 m up, yawed 0.1 rad.
-    Vlp16Replayer lidar(lidar_port);
+    Vlp16Replayer lidar(lidar_port, position_port);
     test::WsClient browser(port);
     ASSERT_TRUE(browser.handshake_ok());
     const auto subs = test::subscribe(browser, {"/lidar/points"});
@@ -540,6 +551,16 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   EXPECT_EQ(cam["size_mismatches"], 0);
   EXPECT_NE(out.find("camera "), std::string::npos) << out;
   EXPECT_NE(out.find(" fps [dropped"), std::string::npos) << out;
+  // The capture's position packets reached their own port: accepted, PPS absent and no GPS sentence in them
+  // (as `fsd lidar-dump` reads the file: 16 of 16 with NMEA absent).
+  const auto& pos = r["drivers"]["vlp16"]["position"];
+  ASSERT_TRUE(pos.is_object()) << r.dump(2);
+  EXPECT_GT(pos["packets"].get<int>(), 0) << pos.dump();
+  EXPECT_EQ(pos["packets"], pos["datagrams"]);
+  EXPECT_EQ(pos["rejected"], 0);
+  EXPECT_EQ(pos["pps"], "absent");
+  EXPECT_EQ(pos["nmea_absent"], pos["packets"]);
+  EXPECT_NE(out.find("position "), std::string::npos) << out;
 }
 
 }  // namespace
