@@ -1,10 +1,10 @@
 #include "daemon/map_score.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <tuple>
 
 #include <nlohmann/json.hpp>
+
+#include "daemon/cone_pairing.hpp"
 
 namespace fsd {
 
@@ -12,26 +12,15 @@ MapScore score_map(const std::vector<TrackCone>& truth, const std::vector<Cone>&
   MapScore s;
   s.true_cones = static_cast<int>(truth.size());
   s.mapped = static_cast<int>(mapped.size());
-  // Every candidate pair within the gate, nearest first; a pair is taken while both of its cones are free.
-  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
-  for (std::size_t m = 0; m < mapped.size(); ++m) {
-    const Vec2 p = mapped[m].position.head<2>();
-    if (!p.allFinite()) continue;
-    for (std::size_t t = 0; t < truth.size(); ++t) {
-      const double d = (truth[t].position - p).norm();
-      if (d <= gate) pairs.emplace_back(d, m, t);
-    }
-  }
-  std::sort(pairs.begin(), pairs.end());
-  std::vector<bool> map_used(mapped.size(), false), truth_used(truth.size(), false);
+  std::vector<Vec2> est, tru;
+  for (const auto& m : mapped) est.push_back(m.position.head<2>());
+  for (const auto& t : truth) tru.push_back(t.position);
   double sq = 0;
   int right_colour = 0;
-  for (const auto& [d, m, t] : pairs) {
-    if (map_used[m] || truth_used[t]) continue;
-    map_used[m] = truth_used[t] = true;
+  for (const auto& p : pair_cones(est, tru, gate)) {
     ++s.matched;
-    sq += d * d;
-    if (mapped[m].colour == truth[t].colour) ++right_colour;
+    sq += p.distance * p.distance;
+    if (mapped[p.estimate].colour == truth[p.truth].colour) ++right_colour;
   }
   s.missed = s.true_cones - s.matched;
   s.ghosts = s.mapped - s.matched;

@@ -17,6 +17,7 @@
 #include "daemon/lap_build_thread.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/map_score.hpp"
+#include "daemon/perception_score.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
@@ -73,6 +74,7 @@ struct SimRun::Impl {
   std::unique_ptr<Autopilot> autopilot;
   ConeMap cone_map;
   TruthPerception perception;
+  PerceptionScore perception_score;
   std::unique_ptr<Scorecard> card;
   Telemetry* telemetry = nullptr;
   RunMetrics* metrics = nullptr;
@@ -202,11 +204,13 @@ struct SimRun::Impl {
       if (faults->perception_due(t, last_scan.get())) {
         const auto p0 = std::chrono::steady_clock::now();
         frame_start = p0;
-        auto det = perception.detect(t, car->standing_cones(), truth.pose);
+        const std::vector<Cone> standing = car->standing_cones();
+        auto det = perception.detect(t, standing, truth.pose);
         cone_map.update(det, truth.pose);
         autopilot->on_cones(t, cone_map.cones());
         fig.perception_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
         card->latency("perception").add(fig.perception_s);
+        perception_score.add_frame(det, standing, truth.pose);  // the scorecard's, outside the stage's time
         last_detections = std::make_shared<const ConeDetections>(std::move(det));
       }
       autopilot->on_state(stack_state = state_from_truth(truth));
@@ -256,6 +260,7 @@ struct SimRun::Impl {
     for (const auto& f : autopilot->faults()) card->add_fault({f.t, f.source, f.what, f.action});
     card->set_section("injected_faults", faults->report());
     card->set_section("map", to_json(score_map(track.cones, cone_map.cones())));
+    card->set_section("perception", perception_score.to_json());
     const auto vc = vcu->counters();
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
               to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,

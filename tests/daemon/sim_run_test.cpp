@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -72,6 +73,14 @@ TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
   EXPECT_EQ(map["ghosts"], 0);
   EXPECT_LT(map["rmse_m"].get<double>(), 0.03);
   EXPECT_EQ(map["colour_accuracy"], 1.0);
+  // Perception is the truth source behind the real LiDAR's scans: every detection a cone, every cone within
+  // 20 m seen each frame, each position off by its configured noise (σ = 3 cm per axis: RMSE σ√2 = 4.24 cm).
+  const auto& per = r["perception"];
+  EXPECT_GT(per["frames"].get<int>(), 300);  // 10 Hz scans over the run
+  EXPECT_EQ(per["precision"], 1.0);
+  EXPECT_GE(per["recall_20m"].get<double>(), 0.99);
+  EXPECT_NEAR(per["position_rmse_m"].get<double>(), 0.03 * std::sqrt(2.0), 0.003);
+  EXPECT_EQ(per["colour_accuracy_12m"], 1.0);
 }
 
 TEST(SimRun, HeadlessRunsAreDeterministic) {

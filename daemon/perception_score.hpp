@@ -1,0 +1,33 @@
+#pragma once
+// The scorecard's "perception" section (DESIGN.md §8): every perception frame's cone detections against the
+// simulated world's standing cones at that instant, placed by the car's true pose. Detections and true cones are
+// paired one to one within a gate (daemon/cone_pairing). Precision over all detections; recall over the true
+// cones within 15 m and 20 m of the car; position RMSE over the pairs; colour accuracy over the pairs within
+// 12 m (where the camera is expected to tell the colour).
+#include <cstdint>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "common/types.hpp"
+
+namespace fsd {
+
+class PerceptionScore {
+ public:
+  explicit PerceptionScore(double gate = 0.5) : gate_(gate) {}
+  // `detections` in the vehicle frame; `truth` the standing cones in the map frame; `pose` the true pose.
+  void add_frame(const ConeDetections& detections, const std::vector<Cone>& truth, const Pose2& pose);
+  int frames() const { return frames_; }
+  nlohmann::json to_json() const;
+
+ private:
+  double gate_;
+  int frames_ = 0;
+  std::uint64_t detections_ = 0, true_positives_ = 0;
+  std::uint64_t truth_15_ = 0, found_15_ = 0, truth_20_ = 0, found_20_ = 0;
+  std::uint64_t pairs_12_ = 0, right_colour_12_ = 0;
+  double sq_error_ = 0;
+};
+
+}  // namespace fsd
