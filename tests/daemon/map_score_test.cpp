@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "daemon/map_score.hpp"
+#include "tests/cone_at.hpp"
 
 namespace fsd {
 namespace {
@@ -17,12 +18,7 @@ TrackCone truth_cone(double x, double y, ConeColour c) {
   return t;
 }
 
-Cone mapped_cone(double x, double y, ConeColour c) {
-  Cone m;
-  m.position = Vec3(x, y, 0);
-  m.colour = c;
-  return m;
-}
+const auto mapped_cone = test::cone_at;
 
 TEST(MapScore, PairsMissesGhostsErrorAndColour) {
   const std::vector<TrackCone> truth = {truth_cone(0, 0, ConeColour::Blue), truth_cone(5, 0, ConeColour::Blue),

@@ -8,16 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "daemon/perception_score.hpp"
+#include "tests/cone_at.hpp"
 
 namespace fsd {
 namespace {
 
-Cone cone(double x, double y, ConeColour c) {
-  Cone k;
-  k.position = Vec3(x, y, 0);
-  k.colour = c;
-  return k;
-}
+const auto cone = test::cone_at;
 
 TEST(PerceptionScore, PrecisionRecallByRangeErrorAndColour) {
   // The car at (10, 0) heading +y (vehicle x = map +y, vehicle y = map −x). True cones straight ahead at 5, 13,

@@ -10,6 +10,7 @@
 
 #include "web/base64.hpp"
 #include "web/channels.hpp"
+#include "tests/cone_at.hpp"
 
 namespace fsd::web {
 namespace {
@@ -49,12 +50,7 @@ TEST(Base64, Rfc4648Vectors) {
   EXPECT_EQ(base64_encode(high), "//79");
 }
 
-Cone cone(double x, double y, ConeColour c) {
-  Cone k;
-  k.position = Vec3(x, y, 0);
-  k.colour = c;
-  return k;
-}
+const auto cone = test::cone_at;
 
 TEST(Channels, ConeMapAsColouredTruncatedCylinders) {
   const auto j = json::parse(cone_map_scene(12.25, {cone(1, 2, ConeColour::Blue), cone(3, -2, ConeColour::Yellow),
