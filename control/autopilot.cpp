@@ -83,7 +83,7 @@ void Autopilot::on_gnss(Stamp t, bool good) {
 
 namespace {
 LapLineBuilt summary(const TrajectoryResult& r) {
-  return {r.path ? r.path->length() : 0.0, r.closure_gap, r.recentre_rms, r.tight_turns};
+  return {r.path ? r.path->length() : 0.0, r.closure_gap, r.recentre_rms, static_cast<int>(r.zones.size())};
 }
 }  // namespace
 

@@ -115,7 +115,6 @@ class Autopilot {
   void set_config(const AutopilotConfig& config);
   // Lap 2's path built by `builder` instead of inside step(); empty: inside step() (deterministic).
   void set_lap_builder(LapBuilder builder) { lap_builder_ = std::move(builder); }
-  bool lap_build_pending() const { return pending_build_.valid(); }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
 

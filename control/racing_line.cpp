@@ -14,7 +14,7 @@ namespace {
 // what makes a constant offset outward in a bend flatter). Minimises Σ of its squares (+ ε|α|², so that a
 // straight keeps its place) with lo ≤ α ≤ hi, by ADMM with the matrix factored once.
 Eigen::VectorXd solve_step(const Path& ref, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, double ds,
-                           int& iterations, bool& converged) {
+                           bool& converged) {
   const auto n = static_cast<Eigen::Index>(ref.points.size());
   // Scaled by ds² so that the second difference has entries 1, −2, 1.
   std::vector<Eigen::Triplet<double>> trip;
@@ -42,7 +42,7 @@ Eigen::VectorXd solve_step(const Path& ref, const Eigen::VectorXd& lo, const Eig
   if (solver.info() != Eigen::Success) return z;
   const Eigen::VectorXd g = -(A.transpose() * k0);
   converged = false;
-  for (iterations = 1; iterations <= kMaxIterations; ++iterations) {
+  for (int it = 0; it < kMaxIterations; ++it) {
     const Eigen::VectorXd alpha = solver.solve(g + kRho * (z - u));
     if (!alpha.allFinite()) break;
     const Eigen::VectorXd z_next = (alpha + u).cwiseMax(lo).cwiseMin(hi);
@@ -78,10 +78,8 @@ RacingLineResult minimum_curvature_line(const Path& centre, const std::vector<do
       lo(i) = -std::max(0.0, room_right[static_cast<std::size_t>(i)]) - total(i);
       hi(i) = std::max(0.0, room_left[static_cast<std::size_t>(i)]) - total(i);
     }
-    int it = 0;
     bool ok = false;
-    const Eigen::VectorXd step = solve_step(r.path, lo, hi, ds, it, ok);
-    r.iterations += it;
+    const Eigen::VectorXd step = solve_step(r.path, lo, hi, ds, ok);
     r.converged = r.converged && ok;
     for (Eigen::Index i = 0; i < n; ++i) {
       auto& q = r.path.points[static_cast<std::size_t>(i)];

@@ -133,7 +133,6 @@ TrajectoryResult RecordedTrajectory::build(Stamp t0, Stamp t1, const std::vector
       if (c.position.allFinite()) positions.push_back(c.position.head<2>());
     for (const auto& turn : shape_tight_turns_on_lap(lap, positions, config_.tight_turn))
       zones.push_back({turn.s_begin, turn.s_end, config_.tight_turn.v_max});
-    r.tight_turns = static_cast<int>(zones.size());
   }
   speed.apply(lap, 0, 0, zones);
   lap.stamp = t1;

@@ -37,7 +37,6 @@ struct TrajectoryResult {
   std::string reason;         // why not, when empty
   double closure_gap = 0;     // m
   double recentre_rms = 0;    // m, how far recentring moved the line
-  int tight_turns = 0;        // turns re-shaped to the steering lock
   double racing_offset = 0;   // m: the min-curvature line's largest move off the centre line
   std::vector<SpeedZone> zones;  // the speed caps its profile was computed with (tight turns): kept for re-profiling
 };
