@@ -18,13 +18,13 @@
 #include "control/control_config.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/dashboard_view.hpp"
-#include "daemon/fault_log.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/hardware_stats.hpp"
 #include "daemon/lap_build_thread.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
+#include "daemon/step_log.hpp"
 #include "daemon/telemetry.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/gnss/gnss_driver.hpp"
@@ -99,7 +99,7 @@ struct HardwareRun::Impl {
   bool until_finished = false;
   RealClock clock;
   std::shared_ptr<spdlog::logger> log = logger("run");
-  FaultLog fault_log{log};
+  StepLog step_log{log};
 
   Vlp16Config vlp_cfg;
   GnssConfig gnss_cfg;
@@ -342,11 +342,9 @@ struct HardwareRun::Impl {
       }
       if (params_changed.exchange(false)) autopilot->set_config(tuned_control(tuned, *params, run.laps));
       const ControlOutput out = autopilot->step(now);
-      fault_log.update(autopilot->faults());
+      step_log.update(out, autopilot->faults());
       vcu->set_command(out.command);
       vcu->set_as_request(out.request);
-      if (out.lap_line) log->info("{}", to_string(*out.lap_line));
-      if (out.lap) log->info("lap {} in {:.2f} s (stack's timing)", out.lap->lap, out.lap->time_s);
       cycles.fetch_add(1);
       ++cycle;
       if (telemetry || metrics) observe(now, as, out, cycle);

@@ -13,7 +13,6 @@
 #include "control/control_config.hpp"
 #include "control/missions.hpp"
 #include "daemon/dashboard_view.hpp"
-#include "daemon/fault_log.hpp"
 #include "daemon/lap_build_thread.hpp"
 #include "daemon/live_tuning.hpp"
 #include "daemon/map_score.hpp"
@@ -22,6 +21,7 @@
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
 #include "daemon/sim_truth.hpp"
+#include "daemon/step_log.hpp"
 #include "daemon/telemetry.hpp"
 #include "daemon/truth_perception.hpp"
 #include "drivers/gnss/gnss_driver.hpp"
@@ -91,7 +91,7 @@ struct SimRun::Impl {
   std::unique_ptr<DashboardView> view;
   std::vector<FaultRecord> link_faults;
   std::shared_ptr<spdlog::logger> log = logger("run");
-  FaultLog fault_log{log};
+  StepLog step_log{log};
 
   Impl(const Config& cfg, const RunOptions& opt)
       : run(run_section().read(cfg)),
@@ -216,15 +216,13 @@ struct SimRun::Impl {
       autopilot->on_state(stack_state = state_from_truth(truth));
       if (params_changed.exchange(false)) apply_params();
       const ControlOutput out = autopilot->step(t);
-      fault_log.update(autopilot->faults());
+      step_log.update(out, autopilot->faults());
       vcu->set_command(out.command, t);
       if (frame_start) {
         fig.end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - *frame_start).count();
         card->latency("end_to_end").add(fig.end_to_end_s);
       }
       vcu->set_as_request(out.request);
-      if (out.lap_line) log->info("{}", to_string(*out.lap_line));
-      if (out.lap) log->info("lap {} in {:.2f} s (stack's timing)", out.lap->lap, out.lap->time_s);
       if (out.planned) card->latency("planning").add(out.planning_time);
       card->latency("control").add(out.control_time);
 
