@@ -13,17 +13,7 @@
 namespace fsd {
 namespace {
 
-AutopilotConfig bicycle_config() {
-  // As autopilot_test.cpp: lap-1 gains on lap 2 and no sideslip feed-forward on a car without tyres.
-  AutopilotConfig c;
-  c.speed.mu = 1.2;
-  c.supervisor.check_plan_time = false;
-  c.lap2.lqr_q_lateral = c.follower.lqr_q_lateral;
-  c.lap2.lqr_q_heading = c.follower.lqr_q_heading;
-  c.lap2.lqr_r = c.follower.lqr_r;
-  c.follower.lqr_sideslip_gain = 0;
-  return c;
-}
+const auto bicycle_config = test::bicycle_autopilot_config;
 
 // A builder that holds each job until the test releases it `delay` control cycles later.
 struct DeferredBuilder {

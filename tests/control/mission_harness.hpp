@@ -13,6 +13,25 @@
 
 namespace fsd::test {
 
+// The autopilot's configuration for this harness's car: the defaults with μ 1.2, and what only the virtual car's
+// tyre model justifies switched off.
+inline AutopilotConfig bicycle_autopilot_config() {
+  AutopilotConfig c;
+  c.speed.mu = 1.2;
+  // The planner's wall-clock budget is checked by the supervisor tests; here a loaded machine must not turn
+  // a slow plan into a stop (the runs would stop being reproducible).
+  c.supervisor.check_plan_time = false;
+  // The lap-2 LQR gains (control.lap2) are tuned on the virtual car's dynamic model, whose tyre slip damps the
+  // steering loop; this kinematic bicycle has none and oscillates into the cones with them (q 3, r 1). Its lap 2
+  // is driven with the lap-1 gains.
+  c.lap2.lqr_q_lateral = c.follower.lqr_q_lateral;
+  c.lap2.lqr_q_heading = c.follower.lqr_q_heading;
+  c.lap2.lqr_r = c.follower.lqr_r;
+  // No tyres, no slip: the sideslip feed-forward would only bias this bicycle's heading.
+  c.follower.lqr_sideslip_gain = 0;
+  return c;
+}
+
 struct HarnessOptions {
   double sensor_range = 20.0;
   double control_period = 0.02;
