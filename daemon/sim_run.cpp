@@ -187,8 +187,8 @@ struct SimRun::Impl {
     Stamp t = 0;
     double stopped_since = -1;
     int cycle = 0;
-    log->info("driving {} on {} ({} lap(s)), seed {}, {}", to_string(mission), track.name, run.laps, run.seed,
-              headless ? "headless lockstep" : "real time");
+    log->info("driving {} on {} ({} lap(s)), seed {}, {}", to_string(mission), track.name,
+              timed_laps(mission, run.laps), run.seed, headless ? "headless lockstep" : "real time");
     while (!stop.load(std::memory_order_relaxed)) {
       t = (++cycle) * kControlPeriod;
       if (!headless && !pace.sleep_until(t)) break;
