@@ -5,6 +5,13 @@ JOBS ?= 2
 CMAKE_FLAGS ?=
 RUN_ARGS ?= run --sim
 
+# ccache, when installed (deploy/install-deps.sh adds it), makes rebuilds fast; paths are hashed relative to the
+# checkout, so another checkout of the tree reuses the same cache.
+ifneq ($(shell command -v ccache 2>/dev/null),)
+CMAKE_FLAGS += -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+export CCACHE_BASEDIR := $(CURDIR)
+endif
+
 .PHONY: run test build deps clean bench fuzz
 
 deps:

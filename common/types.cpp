@@ -21,6 +21,11 @@ std::string_view name_of(const std::array<std::pair<E, std::string_view>, N>& ta
 constexpr std::array<std::pair<ConeColour, std::string_view>, 6> kColours{{
     {ConeColour::Unknown, "unknown"}, {ConeColour::Blue, "blue"}, {ConeColour::Yellow, "yellow"},
     {ConeColour::Orange, "orange"}, {ConeColour::BigOrange, "big_orange"}, {ConeColour::Red, "red"}}};
+constexpr std::array<std::pair<DetectionStage, std::string_view>, 3> kStages{{
+    {DetectionStage::Truth, "truth"}, {DetectionStage::Lidar, "lidar"}, {DetectionStage::Camera, "camera"}}};
+constexpr std::array<std::pair<ColourSource, std::string_view>, 4> kColourSources{{
+    {ColourSource::None, "none"}, {ColourSource::Truth, "truth"}, {ColourSource::Camera, "camera"},
+    {ColourSource::LidarIntensity, "lidar_intensity"}}};
 constexpr std::array<std::pair<ConeRole, std::string_view>, 5> kRoles{{
     {ConeRole::Unknown, "unknown"}, {ConeRole::Left, "left"}, {ConeRole::Right, "right"},
     {ConeRole::Timing, "timing"}, {ConeRole::Other, "other"}}};
@@ -36,6 +41,8 @@ constexpr std::array<std::pair<Mission, std::string_view>, 7> kMissions{{
 std::string_view to_string(ConeColour c) { return name_of(kColours, c); }
 std::optional<ConeColour> cone_colour_from_string(std::string_view s) { return lookup(kColours, s); }
 std::string_view to_string(ConeRole r) { return name_of(kRoles, r); }
+std::string_view to_string(DetectionStage s) { return name_of(kStages, s); }
+std::string_view to_string(ColourSource s) { return name_of(kColourSources, s); }
 std::string_view to_string(AsState s) { return name_of(kStates, s); }
 std::optional<AsState> as_state_from_string(std::string_view s) { return lookup(kStates, s); }
 std::string_view to_string(Mission m) { return name_of(kMissions, m); }

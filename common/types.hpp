@@ -39,12 +39,26 @@ std::optional<ConeColour> cone_colour_from_string(std::string_view s);
 enum class ConeRole : std::uint8_t { Unknown = 0, Left, Right, Timing, Other };
 std::string_view to_string(ConeRole r);
 
+// The last perception stage a detection passed (DESIGN.md §5b): LiDAR alone (unverified: the camera was down or
+// the cone outside the image), or verified by the camera's classifier. Truth: the simulator's ideal detector.
+enum class DetectionStage : std::uint8_t { Truth = 0, Lidar, Camera };
+std::string_view to_string(DetectionStage s);
+
+// Where a detection's colour came from.
+enum class ColourSource : std::uint8_t { None = 0, Truth, Camera, LidarIntensity };
+std::string_view to_string(ColourSource s);
+
 struct Cone {
   Vec3 position = Vec3::Zero();              // frame named by the container (map or vehicle)
   ConeColour colour = ConeColour::Unknown;
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity() * 0.01;  // x/y, m²
   double confidence = 1.0;                   // 0..1 detection or mapping confidence
   std::uint32_t id = 0;                      // stable id in a map, 0 for a raw detection
+  // Detections only (0 / defaults in a map):
+  double colour_confidence = 1.0;            // 0..1; Unknown colour when too low to name one
+  ColourSource colour_source = ColourSource::Truth;
+  DetectionStage stage = DetectionStage::Truth;
+  std::uint32_t points = 0;                  // LiDAR points of its cluster
 };
 
 struct ConeDetections {

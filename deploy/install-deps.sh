@@ -13,6 +13,7 @@ packages=(
   nlohmann-json3-dev libfastrtps-dev libfastcdr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libpcap-dev libspdlog-dev libfmt-dev libcli11-dev libzstd-dev liblz4-dev
+  libceres-dev libnanoflann-dev ccache
   clang libclang-rt-14-dev tcpdump
   nodejs npm chromium
 )
