@@ -7,8 +7,10 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -100,6 +102,23 @@ class ConfigSection {
     for (const auto& r : readers_) r(cfg, s);
     return s;
   }
+  // A live parameter change (ParamRegistry values are doubles; integers and booleans as numbers): sets the member
+  // of `s` that the full dotted `key` names, through its member pointer. False when the key is not this section's
+  // or not a number, integer or boolean.
+  bool apply(const std::string& key, double value, S& s) const {
+    for (const auto& [k, set] : setters_)
+      if (k == key) {
+        set(s, value);
+        return true;
+      }
+    return false;
+  }
+  // The value of the member `key` names, as a parameter's number; nullopt when the key is not this section's.
+  std::optional<double> value(const std::string& key, const S& s) const {
+    for (const auto& [k, get] : getters_)
+      if (k == key) return get(s);
+    return std::nullopt;
+  }
   const std::string& prefix() const { return prefix_; }
 
  private:
@@ -107,6 +126,8 @@ class ConfigSection {
   S defaults_;
   std::vector<ConfigEntry> entries_;
   std::vector<std::function<void(const Config&, S&)>> readers_;
+  std::vector<std::pair<std::string, std::function<void(S&, double)>>> setters_;
+  std::vector<std::pair<std::string, std::function<double(const S&)>>> getters_;
   std::string key(const std::string& name) const { return prefix_.empty() ? name : prefix_ + "." + name; }
   ConfigEntry base(const std::string& name, ValueType t, std::string unit, std::string doc, bool tunable) const;
 };
@@ -138,6 +159,8 @@ ConfigSection<S>& ConfigSection<S>::number(const std::string& name, double S::*m
   e.default_value = make_json_number(defaults_.*m);
   entries_.push_back(std::move(e));
   readers_.push_back([k = key(name), m](const Config& c, S& s) { s.*m = c.number(k); });
+  setters_.emplace_back(key(name), [m](S& s, double v) { s.*m = v; });
+  getters_.emplace_back(key(name), [m](const S& s) { return s.*m; });
   return *this;
 }
 
@@ -150,6 +173,8 @@ ConfigSection<S>& ConfigSection<S>::integer(const std::string& name, int S::*m, 
   e.default_value = make_json_integer(defaults_.*m);
   entries_.push_back(std::move(e));
   readers_.push_back([k = key(name), m](const Config& c, S& s) { s.*m = static_cast<int>(c.integer(k)); });
+  setters_.emplace_back(key(name), [m](S& s, double v) { s.*m = static_cast<int>(v); });
+  getters_.emplace_back(key(name), [m](const S& s) { return static_cast<double>(s.*m); });
   return *this;
 }
 
@@ -159,6 +184,8 @@ ConfigSection<S>& ConfigSection<S>::boolean(const std::string& name, bool S::*m,
   e.default_value = make_json_bool(defaults_.*m);
   entries_.push_back(std::move(e));
   readers_.push_back([k = key(name), m](const Config& c, S& s) { s.*m = c.boolean(k); });
+  setters_.emplace_back(key(name), [m](S& s, double v) { s.*m = v != 0.0; });
+  getters_.emplace_back(key(name), [m](const S& s) { return s.*m ? 1.0 : 0.0; });
   return *this;
 }
 

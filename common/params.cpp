@@ -22,11 +22,6 @@ ParamRegistry::ParamRegistry(const Config& config, const Clock* clock, std::size
   }
 }
 
-ParamHandle ParamRegistry::handle(const std::string& key) const {
-  const auto it = by_key_.find(key);
-  if (it == by_key_.end()) throw std::out_of_range("unknown parameter '" + key + "'");
-  return ParamHandle(&it->second->value);
-}
 
 std::optional<double> ParamRegistry::get(const std::string& key) const {
   const auto it = by_key_.find(key);

@@ -26,19 +26,6 @@ struct ParamChange {
   std::string who;   // e.g. "web 192.168.1.20 (token ok)", "cli"
 };
 
-// A lock-free read handle to one parameter. Cheap to copy; valid as long as the registry lives.
-class ParamHandle {
- public:
-  ParamHandle() = default;
-  double get() const { return value_ ? value_->load(std::memory_order_relaxed) : 0.0; }
-  explicit operator bool() const { return value_ != nullptr; }
-
- private:
-  friend class ParamRegistry;
-  explicit ParamHandle(const std::atomic<double>* v) : value_(v) {}
-  const std::atomic<double>* value_ = nullptr;
-};
-
 class ParamRegistry {
  public:
   struct Info {
@@ -54,7 +41,6 @@ class ParamRegistry {
   // Declares every tunable key of the config's schema, with the config's current values.
   ParamRegistry(const Config& config, const Clock* clock = nullptr, std::size_t history = 256);
 
-  ParamHandle handle(const std::string& key) const;  // throws std::out_of_range for an unknown key
   std::optional<double> get(const std::string& key) const;
   // Validates and applies one change; on failure nothing changes and the error names the key and the problem.
   Result set(const std::string& key, double value, const std::string& who);
@@ -67,7 +53,7 @@ class ParamRegistry {
     const ConfigEntry* entry;
     std::atomic<double> value;
   };
-  std::deque<Slot> slots_;  // stable addresses for handles
+  std::deque<Slot> slots_;  // stable addresses for by_key_
   std::unordered_map<std::string, Slot*> by_key_;
   std::shared_ptr<const ConfigSchema> schema_keepalive_;
   const Clock* clock_;

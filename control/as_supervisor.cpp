@@ -45,13 +45,7 @@ void AsSupervisor::heartbeat(InputStream s, Stamp t) {
   if (!last || t > *last) last = t;
 }
 
-void AsSupervisor::on_plan(Stamp t, bool ok, Duration compute_time, Duration budget) {
-  if (config_.check_plan_time && compute_time > budget) {
-    late_plan_ = true;
-    late_plan_time_ = compute_time;
-    late_plan_budget_ = budget;
-    return;  // a late plan is not used
-  }
+void AsSupervisor::on_plan(Stamp t, bool ok) {
   if (ok) heartbeat(InputStream::Plan, t);
 }
 
@@ -123,11 +117,6 @@ Supervision AsSupervisor::evaluate(Stamp now, double speed, bool finished) {
     cap = config_.degraded_speed;
   } else {
     clear("lidar", "detections stale");
-  }
-  if (late_plan_) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "plan took %.1f ms (budget %.1f ms)", late_plan_time_ * 1e3, late_plan_budget_ * 1e3);
-    stop(now, "planning", buf);
   }
   if (required_[idx(InputStream::Plan)] && !finished) {
     const auto& last = last_[idx(InputStream::Plan)];

@@ -1,7 +1,6 @@
 #include "control/autopilot.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -59,6 +58,7 @@ void Autopilot::on_vcu(const VcuStatus& status) { supervisor_.on_vcu(status); }
 void Autopilot::on_cones(Stamp t, std::vector<Cone> map_cones) {
   if (!std::isfinite(t)) return;
   cones_ = std::move(map_cones);
+  if (cones_stamp_ < 0 || t - cones_stamp_ > config_.supervisor.lidar_timeout) cones_unbroken_since_ = t;
   cones_stamp_ = t;
   new_cones_ = true;
   supervisor_.heartbeat(InputStream::Lidar, t);
@@ -87,21 +87,17 @@ LapLineBuilt summary(const TrajectoryResult& r) {
 }
 }  // namespace
 
-void Autopilot::plan_realtime(Stamp now, ControlOutput& out) {
-  if (!state_ || planner_stalled_) return;
-  if (!new_cones_ && now - last_plan_attempt_ < config_.replan_period) return;
+bool Autopilot::plan(Stamp now) {
+  plan_outcome_ = {};
+  if (!uses_planner() || !state_ || planner_stalled_) return false;
+  if (!new_cones_ && now - last_plan_attempt_ < config_.replan_period) return false;
   new_cones_ = false;
   last_plan_attempt_ = now;
   PlanResult r = planner_.plan(cones_, *state_);
-  out.planned = true;
-  out.plan_ok = r.ok;
-  out.planning_time = r.compute_time;
-  out.plan_one_boundary = r.single_boundary;
-  out.plan_colour_blind = r.ignored_colours;
-  out.plan_tight_turn = r.tight_turn.has_value();
-  supervisor_.on_plan(now, r.ok, r.compute_time, config_.planner.time_budget);
-  const bool late = config_.supervisor.check_plan_time && r.over_budget;
-  if (r.ok && !late) plan_ = std::move(r.path);
+  plan_outcome_ = {true, r.ok, r.single_boundary, r.ignored_colours, r.tight_turn.has_value()};
+  supervisor_.on_plan(now, r.ok);
+  if (r.ok) plan_ = std::move(r.path);
+  return true;
 }
 
 void Autopilot::start_mission(Stamp now) {
@@ -138,8 +134,9 @@ void Autopilot::detect_open_end(Stamp now) {
       lap_counter_->laps_completed() > 0 || config_.mission.open_end_sight <= 0 ||
       odometer_ < config_.mission.open_end_min_travel)
     return;
-  // Only on a fresh view: with the sensors silent, no cones beyond the plan proves nothing.
-  if (now - cones_stamp_ > 0.3) return;
+  // Only on a fresh view: with the sensors silent, no cones beyond the plan proves nothing; nor just after a gap,
+  // while the map has not yet confirmed the cones that came into range meanwhile.
+  if (now - cones_stamp_ > 0.3 || now - cones_unbroken_since_ < config_.mission.open_end_settle) return;
   const PathPoint& end = plan_->points.back();
   const Vec2 dir(std::cos(end.yaw), std::sin(end.yaw));
   // The walk stopped well inside what the sensors see: if the track went on, its next cones (≤ 5 m apart by the
@@ -186,7 +183,7 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
       // Shortly before the end of lap 1, close the lap with the plan ahead and take it: the car then crosses the
       // line at the lap's speed, so lap 2 is a flying lap.
       const double early = config_.trajectory.early_build_distance;
-      if (!lap_path_ && !pending_build_.valid() && !ev && early > 0 && target_laps() > 1 &&
+      if (!lap_path_ && !build_pending_ && !ev && early > 0 && target_laps() > 1 &&
           lap_counter_->laps_completed() == 0 &&
           lap_counter_->timing() && plan_ && odometer_ > config_.trajectory.min_lap_length) {
         const TimingLine& line = lap_counter_->line();
@@ -207,7 +204,7 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
         if (ev->lap == 1) lap1_end_ = ev->t;
         // No lap path yet: built to the line now, unless the early build is still under way (should that one
         // fail, this one follows).
-        if (ev->lap == 1 && target_laps() > 1 && !lap_path_ && !pending_build_.valid()) {
+        if (ev->lap == 1 && target_laps() > 1 && !lap_path_ && !build_pending_) {
           pending_early_ = false;
           build_lap(now, ev->t, {}, out);
         }
@@ -265,23 +262,19 @@ void Autopilot::build_lap(Stamp now, Stamp t1, std::vector<Vec2> ahead, ControlO
                      profile = SpeedProfile(lap2_limits()), ahead = std::move(ahead)] {
     return trajectory.build(t0, t1, cones, convention, profile, ahead);
   };
-  try {
-    pending_build_ = lap_builder_(job);
-  } catch (const std::exception&) {  // no worker to be had (no thread): build it here
-    use_lap_build(now, job(), out);
+  if (lap_builder_->submit(job)) {
+    build_pending_ = true;
+    return;
   }
+  use_lap_build(now, job(), out);  // no worker to be had: build it here
 }
 
 void Autopilot::take_lap_build(Stamp now, ControlOutput& out) {
-  if (!pending_build_.valid() || pending_build_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-    return;
-  TrajectoryResult built;
-  try {
-    built = pending_build_.get();
-  } catch (const std::exception& e) {  // the worker could not run it (or the build threw)
-    built.reason = e.what();
-  }
-  use_lap_build(now, built, out);
+  if (!build_pending_) return;
+  std::optional<TrajectoryResult> built = lap_builder_->poll();
+  if (!built) return;
+  build_pending_ = false;
+  use_lap_build(now, *built, out);
 }
 
 void Autopilot::use_lap_build(Stamp now, const TrajectoryResult& built, ControlOutput& out) {
@@ -347,9 +340,14 @@ const Path* Autopilot::select_path(Stamp now, PathSource& source) {
 }
 
 ControlOutput Autopilot::step(Stamp now) {
-  const auto wall0 = std::chrono::steady_clock::now();
   ControlOutput out;
   out.command.stamp = now;
+  out.planned = plan_outcome_.planned;
+  out.plan_ok = plan_outcome_.ok;
+  out.plan_one_boundary = plan_outcome_.one_boundary;
+  out.plan_colour_blind = plan_outcome_.colour_blind;
+  out.plan_tight_turn = plan_outcome_.tight_turn;
+  plan_outcome_ = {};
   const double speed = state_ ? std::max(0.0, state_->speed()) : 0.0;
   if (state_) {
     const Vec2 p = state_->pose.position();
@@ -359,11 +357,8 @@ ControlOutput Autopilot::step(Stamp now) {
   const bool driving = supervisor_.as_state() == AsState::Driving;
   if (driving && !started_ && state_) start_mission(now);
 
-  // Paths of the mission: real-time plan, acceleration straight, skid pad figure of eight.
-  if (uses_planner()) {
-    plan_realtime(now, out);
-    if (started_ && out.plan_ok) detect_open_end(now);
-  }
+  // Paths of the mission: real-time plan (plan()), acceleration straight, skid pad figure of eight.
+  if (uses_planner() && started_ && out.plan_ok) detect_open_end(now);
   // The lane is refitted as more of it is seen, until the car is well down it: at speed a refit's sideways jump
   // would only shake the car.
   const bool lane_settled = straight_ && straight_timing_start_ && progress_s_ > straight_start_s_ + 30.0;
@@ -472,7 +467,6 @@ ControlOutput Autopilot::step(Stamp now) {
   out.follow = follow;
   out.finished = finished_;
   out.stopping = supervisor_.stopping();
-  out.control_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
 }
 

@@ -10,13 +10,12 @@
 //   on_cones(t, map)        only when mapping produced a new cone map (map frame, all cones so far; ~10 Hz)
 //   on_state(state)         the fused VehicleState (map frame; steering = measured wheel angle)
 //   on_gnss(t, good)        the newest GNSS-INS sample's GnssSample::good
+//   plan(now)               the real-time planner, when new cones arrived or replan_period passed (≈ 0.2–0.5 ms)
 //   out = step(now)         send out.command to the VCU every cycle, out.request while it is not None;
 //                           out.path / out.follow / out.lap / faults() feed telemetry and the scorecard.
-// step() runs the planner itself when new cones arrived or replan_period passed (≈ 0.2–0.5 ms). Lap 2's path
-// (built once, 10–30 ms) is built inside step() too unless a LapBuilder is set: the daemon on the car hands it to a
-// worker so that the control cycle keeps its period, and takes the lap when it is ready.
-#include <functional>
-#include <future>
+// plan() and step() are separate calls so that the caller can time each (the core reads no clock). Lap 2's path
+// (built once, 10–30 ms) is built inside step() unless a LapBuildService is set: the daemon on the car hands it to
+// a worker so that the control cycle keeps its period, and takes the lap when it is ready.
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -26,6 +25,7 @@
 #include "control/as_supervisor.hpp"
 #include "control/follower.hpp"
 #include "control/lap2_config.hpp"
+#include "control/lap_build_service.hpp"
 #include "control/lap_counter.hpp"
 #include "control/midline_planner.hpp"
 #include "control/missions.hpp"
@@ -46,10 +46,6 @@ struct AutopilotConfig {
   double replan_period = 0.1;   // s: the real-time plan is refreshed at least this often (on new cones at once)
   double gnss_timeout = 0.5;    // s without a good GNSS fix: lap 2 falls back to real-time planning
 };
-
-// Runs a lap build somewhere else (a worker thread) and hands back its result. The job owns copies of its inputs.
-using LapBuildJob = std::function<TrajectoryResult()>;
-using LapBuilder = std::function<std::future<TrajectoryResult>(LapBuildJob)>;
 
 enum class PathSource { None, Planner, Recorded, Skidpad, Straight };
 std::string_view to_string(PathSource s);
@@ -73,14 +69,12 @@ struct ControlOutput {
   const Path* path = nullptr;          // the path followed this cycle (valid until the next call)
   FollowResult follow;                 // tracking diagnostics (cross-track error, look-ahead point)
   std::optional<LapEvent> lap;         // a lap (or skid pad circle, or acceleration run) completed this cycle
-  bool planned = false;                // the real-time planner ran this cycle
+  bool planned = false;                // the real-time planner ran this cycle (plan())
   bool plan_ok = false;                // its outcome when it ran
-  Duration planning_time = 0;          // s, wall clock of that plan
   bool plan_one_boundary = false;      // that plan ran half a width inside the only boundary seen
   bool plan_colour_blind = false;      // that plan ignored cone colours that contradicted the geometry
   bool plan_tight_turn = false;        // that plan shaped a turn to the steering lock
   std::optional<LapLineBuilt> lap_line;  // the lap path was built this cycle
-  Duration control_time = 0;           // s, wall clock of the whole step
   bool finished = false;               // past the mission's finish (stopping or stopped)
   bool stopping = false;               // a fault stop is under way
 };
@@ -95,8 +89,11 @@ class Autopilot {
   void on_state(const VehicleState& state);             // fused pose and motion, map frame
   void on_gnss(Stamp t, bool good);                     // each GNSS-INS sample: usable for lap-2 tracking?
 
-  // One control cycle at time `now` (≥ the newest input stamp): plans when due, runs the mission, follows,
-  // supervises. Always returns a command; outside AS Driving it holds the car.
+  // The real-time planner at time `now`, when it is due (new cones, or replan_period since the last attempt);
+  // returns whether it ran. Call before step() in each cycle of a mission that plans (trackdrive, autocross).
+  bool plan(Stamp now);
+  // One control cycle at time `now` (≥ the newest input stamp): runs the mission, follows, supervises. Always
+  // returns a command; outside AS Driving it holds the car.
   ControlOutput step(Stamp now);
 
   // Read-outs for telemetry and the scorecard.
@@ -113,14 +110,13 @@ class Autopilot {
 
   // Live tuning: the planner, follower, speed and supervisor settings take effect from the next step.
   void set_config(const AutopilotConfig& config);
-  // Lap 2's path built by `builder` instead of inside step(); empty: inside step() (deterministic).
-  void set_lap_builder(LapBuilder builder) { lap_builder_ = std::move(builder); }
+  // Lap 2's path built by `service` (which must outlive the autopilot) instead of inside step(); null: inside step().
+  void set_lap_builder(LapBuildService* service) { lap_builder_ = service; }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
 
  private:
   void start_mission(Stamp now);
-  void plan_realtime(Stamp now, ControlOutput& out);
   void update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out);
   void finish(Stamp now);
   void detect_open_end(Stamp now);
@@ -147,6 +143,7 @@ class Autopilot {
   std::optional<VehicleState> state_;
   std::vector<Cone> cones_;
   Stamp cones_stamp_ = -1;
+  Stamp cones_unbroken_since_ = -1;      // the cone updates have come without a gap since then
   bool new_cones_ = false;
   std::optional<Stamp> gnss_good_since_;  // stamp of the newest good fix
   bool gnss_good_ = false;
@@ -155,6 +152,9 @@ class Autopilot {
   std::optional<Path> plan_;
   Stamp last_plan_attempt_ = -1e9;
   bool planner_stalled_ = false;
+  struct PlanOutcome {  // of the plan() call of this cycle, for step()'s output
+    bool planned = false, ok = false, one_boundary = false, colour_blind = false, tight_turn = false;
+  } plan_outcome_;
 
   // Mission state.
   bool started_ = false;
@@ -163,8 +163,8 @@ class Autopilot {
   std::optional<Stamp> lap1_start_;
   std::optional<Path> lap_path_;
   std::vector<SpeedZone> lap_zones_;       // its profile's speed caps (tight turns)
-  LapBuilder lap_builder_;
-  std::future<TrajectoryResult> pending_build_;
+  LapBuildService* lap_builder_ = nullptr;
+  bool build_pending_ = false;             // a job is out with the lap builder
   bool pending_early_ = false;             // the pending build is the early one (before the line)
   std::optional<Stamp> lap1_end_;          // lap 1's crossing, once it happened
   std::optional<Path> straight_;

@@ -42,7 +42,7 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
           .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")
           .number("fallback_below", &C::fallback_below, 0, 50, "m", "Walks ending nearer try the single-boundary fallback.")
           .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)
-          .number("time_budget", &C::time_budget, 0.001, 1, "s", "A plan slower than this is late (a fault).", true);
+          .number("time_budget", &C::time_budget, 0.001, 1, "s", "A plan slower than this is counted late (a warning in the log and /metrics).", true);
   return s;
 }
 
@@ -126,6 +126,7 @@ const ConfigSection<MissionConfig>& mission_section() {
           .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m", "Start pose to start line when no timing cones are seen.")
           .number("open_end_sight", &C::open_end_sight, 0, 50, "m", "Open layout: a plan ending this near with no cone beyond ends the track (0: off).")
           .number("open_end_min_travel", &C::open_end_min_travel, 0, 1000, "m", "Open layout: driven this far before an end of the track is believed.")
+          .number("open_end_settle", &C::open_end_settle, 0, 10, "s", "Open layout: cone updates unbroken this long before an end of the track is believed (the map refills after a sensor gap).")
           .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m", "EBS test: ask for Emergency this far past the start line.")
           .number("skidpad_exit_length", &C::skidpad_exit_length, 5, 100, "m", "Skid pad exit lane past the crossing.")
           .number("skidpad_entry_speed", &C::skidpad_entry_speed, 0.5, 20, "m/s", "Skid pad speed until the circles are fitted.", true)
@@ -145,7 +146,6 @@ const ConfigSection<SupervisorConfig>& supervisor_section() {
           .number("pose_timeout", &C::pose_timeout, 0.02, 5, "s", "No pose this long: controlled stop.")
           .number("vcu_timeout", &C::vcu_timeout, 0.02, 5, "s", "No VCU status this long: controlled stop.")
           .number("plan_timeout", &C::plan_timeout, 0.05, 10, "s", "No usable plan this long: controlled stop.")
-          .boolean("check_plan_time", &C::check_plan_time, "A plan over its compute budget is a fault (wall clock).")
           .number("degraded_speed", &C::degraded_speed, 0, 20, "m/s", "Speed cap while the LiDAR is stale.", true)
           .number("standstill_speed", &C::standstill_speed, 0.01, 2, "m/s", "Below this the car stands.")
           .number("standstill_time", &C::standstill_time, 0, 10, "s", "Standing this long counts as standstill.")
@@ -220,21 +220,49 @@ void describe_control(ConfigSchema& schema) {
   autopilot_section().describe(schema);
 }
 
+namespace {
+// The settings that more than one part reads, copied from the one place the configuration sets them.
+void share_settings(AutopilotConfig& c) {
+  c.planner.tight_turn.wheelbase = c.follower.wheelbase;
+  c.planner.tight_turn.max_steer = c.follower.max_steer;
+  c.trajectory.tight_turn = c.planner.tight_turn;
+}
+}  // namespace
+
 AutopilotConfig read_control(const Config& config) {
   AutopilotConfig c = autopilot_section().read(config);
   c.planner = planner_section().read(config);
   c.follower = follower_section().read(config);
   c.planner.tight_turn = tight_turn_section().read(config);
-  c.planner.tight_turn.wheelbase = c.follower.wheelbase;
-  c.planner.tight_turn.max_steer = c.follower.max_steer;
   c.speed = speed_section().read(config);
   c.mission = mission_section().read(config);
   c.supervisor = supervisor_section().read(config);
   c.laps = lap_counter_section().read(config);
   c.trajectory = trajectory_section().read(config);
-  c.trajectory.tight_turn = c.planner.tight_turn;
   c.lap2 = lap2_section().read(config);
+  share_settings(c);
   return c;
+}
+
+std::optional<double> control_param(const AutopilotConfig& c, const std::string& key) {
+  for (auto v : {planner_section().value(key, c.planner), tight_turn_section().value(key, c.planner.tight_turn),
+                 follower_section().value(key, c.follower), speed_section().value(key, c.speed),
+                 mission_section().value(key, c.mission), supervisor_section().value(key, c.supervisor),
+                 lap_counter_section().value(key, c.laps), trajectory_section().value(key, c.trajectory),
+                 lap2_section().value(key, c.lap2), autopilot_section().value(key, c)})
+    if (v) return v;
+  return std::nullopt;
+}
+
+bool apply_control_param(AutopilotConfig& c, const std::string& key, double value) {
+  const bool applied =
+      planner_section().apply(key, value, c.planner) || tight_turn_section().apply(key, value, c.planner.tight_turn) ||
+      follower_section().apply(key, value, c.follower) || speed_section().apply(key, value, c.speed) ||
+      mission_section().apply(key, value, c.mission) || supervisor_section().apply(key, value, c.supervisor) ||
+      lap_counter_section().apply(key, value, c.laps) || trajectory_section().apply(key, value, c.trajectory) ||
+      lap2_section().apply(key, value, c.lap2) || autopilot_section().apply(key, value, c);
+  if (applied) share_settings(c);
+  return applied;
 }
 
 }  // namespace fsd

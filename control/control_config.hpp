@@ -1,6 +1,9 @@
 #pragma once
 // Configuration sections of the control library (keys under "control.*"); see docs/configuration.md once the
 // daemon gathers them. Tunable keys can change while the car runs (Autopilot::set_config).
+#include <optional>
+#include <string>
+
 #include "common/config.hpp"
 #include "control/autopilot.hpp"
 
@@ -20,5 +23,10 @@ const ConfigSection<AutopilotConfig>& autopilot_section();           // control 
 // Every control section into a schema, and all of them back into one AutopilotConfig.
 void describe_control(ConfigSchema& schema);
 AutopilotConfig read_control(const Config& config);
+// A live parameter change of a control.* key applied to `c` through its section's member pointer (and to the
+// copies other parts keep of it). False for a key that is not control's.
+bool apply_control_param(AutopilotConfig& c, const std::string& key, double value);
+// The value of a control.* number, integer or boolean key in `c`; nullopt for a key that is not control's.
+std::optional<double> control_param(const AutopilotConfig& c, const std::string& key);
 
 }  // namespace fsd

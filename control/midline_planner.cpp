@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
@@ -358,13 +357,8 @@ MidlinePlanner::MidlinePlanner(MidlinePlannerConfig config, ColourConvention con
     : config_(config), convention_(std::move(convention)), speed_(limits) {}
 
 PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleState& state) const {
-  const auto t0 = std::chrono::steady_clock::now();
   PlanResult result;
-  auto finish = [&](PlanResult r) {
-    r.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.over_budget = r.compute_time > config_.time_budget;
-    return r;
-  };
+  auto finish = [](PlanResult r) { return r; };
   const Pose2& pose = state.pose;
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
     result.reason = "vehicle pose not finite";

@@ -55,7 +55,7 @@ struct MidlinePlannerConfig {
   double min_length = 3.0;        // m: shorter walks are a failed plan
   double fallback_below = 8.0;    // m: a walk ending nearer than this tries the single-boundary fallback
   double end_speed = 0.0;         // m/s: speed allowed at the end of the planned horizon
-  double time_budget = 0.025;     // s: a plan slower than this is reported over budget
+  double time_budget = 0.025;     // s: the caller counts a plan slower than this as late (a warning)
   TightTurnConfig tight_turn;     // the line through hairpins and other turns at the steering lock
   bool keep_clear = true;         // push the path off cones nearer than the body's half width (tight_turn's body)
   double keep_clear_window = 3.0; // m: a push fades out over this either side of the cone
@@ -65,8 +65,6 @@ struct PlanResult {
   Path path;                      // empty unless ok
   bool ok = false;
   std::string reason;             // why the plan failed, empty when ok
-  Duration compute_time = 0;      // s, wall clock spent in plan()
-  bool over_budget = false;       // compute_time > time_budget: the supervisor treats the plan as late
   bool single_boundary = false;   // planned half a width inside one boundary (the other one is missing)
   bool ignored_colours = false;   // colours contradicted the geometry; planned colour-blind
   int cones_used = 0;

@@ -1,19 +1,19 @@
 #pragma once
-// `fsd run` without --sim: the stack on the car's own interfaces (DESIGN.md §3–4). One thread per driver, each
-// handing over by a latest-value slot; a control thread at 100 Hz runs the autopilot:
+// `fsd run` without --sim: the car's own interfaces as one of the Stack's feeders (daemon/stack.hpp, DESIGN.md
+// §3–4). One thread per driver; each hands the raw frames it receives to one bounded queue, and a control thread
+// at 100 Hz feeds them to the Stack in arrival order and runs one cycle:
 //
-//   VLP-16 UDP ─► UdpReceiver thread: Vlp16ScanBuilder ─► latest Scan          (counted; no perception yet)
-//   GNSS-INS tty ─► SerialPort thread: GnssDriver ─► latest GnssSample ─┐
-//   VCU tty ◄─► VcuLink (port thread + 100 Hz sender) ─► latest VcuStatus ─┼─► control thread (100 Hz): Autopilot
-//   camera ─► CameraSource thread ─► latest Frame (when drivers.camera.enabled)  │       │
-//                                                          ControlCommand, AS request ◄─┘
-// Perception and localization have not landed: the vehicle state comes from GNSS-INS alone and there is no cone
-// source, so only missions that need no cones run (inspection); the others are refused at start.
-// With a dashboard (set_telemetry etc., `fsd run` without --headless) the control thread hands a snapshot to the
-// telemetry every 4th cycle (latest-value slot, never waits) and its figures to /metrics; the camera thread
-// encodes a JPEG for it at 5 Hz; tuned parameters reach the autopilot at the start of the next cycle.
-// SIGINT/SIGTERM (or, with --until-finished, AS Finished or Emergency) ends the run: the control thread stops,
-// the VCU link sends its safe-stop Commands (speed 0, brake) before its port closes, then the other drivers stop.
+//   VLP-16 UDP (data, position) ─► UdpReceiver threads ─┐
+//   GNSS-INS tty ─► SerialPort thread ──────────────────┤
+//   VCU tty ◄─► VcuLink (port thread, 100 Hz sender) ───┼─► frame queue ─► control thread (100 Hz): Stack::feed…, step
+//   camera ─► CameraSource thread (JPEG) ───────────────┘                  │
+//                                 the Stack's VcuSession ◄─ command, AS request
+// The VcuLink's sender writes the Commands from the Stack's session at its own rate. Perception has not landed:
+// the vehicle state comes from GNSS-INS alone and there is no cone source, so only missions that need no cones run
+// (inspection); the others are refused at start. With a dashboard the Stack hands a snapshot to the telemetry every
+// 4th cycle and its figures to /metrics (both without waiting); tuned parameters apply at the next cycle.
+// SIGINT/SIGTERM (or, with --until-finished, AS Finished or Emergency) ends the run: the control thread stops, the
+// VCU link sends its safe-stop Commands (speed 0, brake) before its port closes, then the other drivers stop.
 #include <atomic>
 #include <memory>
 #include <optional>

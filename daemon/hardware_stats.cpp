@@ -36,8 +36,8 @@ std::string rates_line(const HardwareCounters& a, const HardwareCounters& b) {
                      rate(before, b.camera->frames, dt), b.camera->dropped, b.camera->read_failures,
                      b.camera->open_failures);
   }
-  s += fmt::format(" | control {:.0f} Hz [overruns {}]", rate(a.control_cycles, b.control_cycles, dt),
-                   b.control_overruns);
+  s += fmt::format(" | control {:.0f} Hz [overruns {}, frames dropped {}]", rate(a.control_cycles, b.control_cycles, dt),
+                   b.control_overruns, b.frames_dropped);
   return s;
 }
 
@@ -76,7 +76,7 @@ nlohmann::json counters_json(const HardwareCounters& c) {
                    {"reconnects", c.camera->reconnects},   {"size_mismatches", c.camera->size_mismatches}};
   else
     j["camera"] = nullptr;
-  j["control"] = {{"cycles", c.control_cycles}, {"overruns", c.control_overruns}};
+  j["control"] = {{"cycles", c.control_cycles}, {"overruns", c.control_overruns}, {"frames_dropped", c.frames_dropped}};
   return j;
 }
 

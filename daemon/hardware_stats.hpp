@@ -42,6 +42,7 @@ struct HardwareCounters {
   std::optional<CameraStats> camera;  // nullopt: no camera configured
   std::uint64_t control_cycles = 0;
   std::uint64_t control_overruns = 0;  // cycles that started a whole period late
+  std::uint64_t frames_dropped = 0;    // raw frames the control thread's queue had to drop (it fell behind)
 };
 
 // One line: per-driver rates between `before` and `now`, then the error counters' totals since the start.

@@ -4,15 +4,6 @@
 
 namespace fsd {
 
-void add_step_figures(CycleFigures& f, const ControlOutput& out) {
-  f.planning_s = out.planned ? out.planning_time : -1;
-  f.control_s = out.control_time;
-  f.planned = out.planned;
-  f.plan_one_boundary = out.plan_one_boundary;
-  f.plan_colour_blind = out.plan_colour_blind;
-  f.plan_tight_turn = out.plan_tight_turn;
-}
-
 namespace {
 
 constexpr const char* kLatency = "fsd_stage_latency_seconds";

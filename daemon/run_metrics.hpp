@@ -27,9 +27,6 @@ struct CycleFigures {
   int cones_hit = -1;             // -1: unknown (not a simulated run)
 };
 
-// Fills the planning and control figures of one autopilot step.
-void add_step_figures(CycleFigures& f, const ControlOutput& out);
-
 class RunMetrics {
  public:
   explicit RunMetrics(web::Metrics& metrics);

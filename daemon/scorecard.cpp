@@ -180,16 +180,22 @@ nlohmann::json Scorecard::to_json() const {
                   {"a_accel_max", limits_.a_accel_max},
                   {"a_brake_max", limits_.a_brake_max},
                   {"v_max", limits_.v_max}};
-  json lat = json::object();
-  for (const auto& [stage, s] : latency_)
-    lat[stage] = {{"p50", s.quantile(0.5) * 1e3}, {"p99", s.quantile(0.99) * 1e3}, {"max", s.max() * 1e3},
-                  {"n", s.count()}};
-  j["latency_ms"] = lat;
-  j["faults"] = json::array();
-  for (const auto& f : faults_)
-    j["faults"].push_back({{"t", f.t}, {"source", f.source}, {"what", f.what}, {"action", f.action}});
+  j["latency_ms"] = latency_ms_ ? *latency_ms_ : json::object();
+  j["faults"] = faults_json(faults_);
   for (const auto& [k, v] : sections_) j[k] = *v;
   return j;
+}
+
+nlohmann::json latency_json(const std::map<std::string, LatencyStats>& stages) {
+  nlohmann::json lat = nlohmann::json::object();
+  for (const auto& [stage, s] : stages)
+    lat[stage] = {{"p50", s.quantile(0.5) * 1e3}, {"p99", s.quantile(0.99) * 1e3}, {"max", s.max() * 1e3},
+                  {"n", s.count()}};
+  return lat;
+}
+
+void Scorecard::set_latencies(const std::map<std::string, LatencyStats>& stages) {
+  latency_ms_ = std::make_shared<const nlohmann::json>(latency_json(stages));
 }
 
 }  // namespace fsd

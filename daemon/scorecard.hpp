@@ -11,6 +11,7 @@
 
 #include "common/latency_stats.hpp"
 #include "common/types.hpp"
+#include "daemon/fault_record.hpp"
 #include "drivers/sim/reference_line.hpp"
 #include "drivers/sim/timing_gates.hpp"
 #include "drivers/sim/vehicle_truth.hpp"
@@ -21,11 +22,6 @@ namespace fsd {
 // stand at 7.47-7.62 m inside and 10.6-10.8 m outside it).
 inline constexpr double kSkidpadRadius = 9.125;
 
-struct FaultRecord {
-  Stamp t = 0;
-  std::string source, what, action;
-};
-
 struct LapRecord {
   int lap = 0;
   double time_s = 0;
@@ -35,6 +31,9 @@ struct LapRecord {
 struct VehicleLimits {
   double mu = 0, a_accel_max = 0, a_brake_max = 0, v_max = 0;
 };
+
+// {"<stage>": {"p50", "p99", "max" (ms), "n"}, ...}: the report's "latency_ms", on the car and in the simulator.
+nlohmann::json latency_json(const std::map<std::string, LatencyStats>& stages);
 
 class Scorecard {
  public:
@@ -52,7 +51,8 @@ class Scorecard {
   void add_fault(const FaultRecord& f) { faults_.push_back(f); }
   void set_vehicle_limits(const VehicleLimits& v) { limits_ = v; }
   void set_wall_time(double s) { wall_time_s_ = s; }
-  LatencyStats& latency(const std::string& stage) { return latency_[stage]; }
+  // The stack's compute-time figures per stage (the "latency_ms" section).
+  void set_latencies(const std::map<std::string, LatencyStats>& stages);
   // Extra sections measured elsewhere (map, perception, odometry).
   void set_section(const std::string& key, const nlohmann::json& value);
 
@@ -95,7 +95,7 @@ class Scorecard {
   AsState as_state_ = AsState::Off;
   VehicleLimits limits_;
   std::vector<FaultRecord> faults_;
-  std::map<std::string, LatencyStats> latency_;
+  std::shared_ptr<const nlohmann::json> latency_ms_;
   std::map<std::string, std::shared_ptr<const nlohmann::json>> sections_;
 };
 

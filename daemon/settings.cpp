@@ -1,6 +1,6 @@
 #include "daemon/settings.hpp"
 
-#include "daemon/truth_perception.hpp"
+#include "perception/truth_perception.hpp"
 #include "control/control_config.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/sim/virtual_car.hpp"
@@ -32,8 +32,9 @@ const ConfigSection<RunSettings>& run_section() {
                   "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
           .string("perception_source", &RunSettings::perception_source, {"truth"},
                   "Where cone detections come from: truth = the virtual car's cones within sensor range.")
-          .string("localization_source", &RunSettings::localization_source, {"truth"},
-                  "Where the pose comes from: truth = the virtual car's true pose.")
+          .string("localization_source", &RunSettings::localization_source, {"truth", "gnss"},
+                  "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
+                  "gnss = the GNSS-INS pose as reported.")
           .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
                   "Headless runs give up after this much simulated time.")
           .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",

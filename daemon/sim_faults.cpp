@@ -5,7 +5,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "control/autopilot.hpp"
 
 namespace fsd {
 
@@ -21,9 +20,10 @@ double round3(double v) { return std::round(v * 1e3) / 1e3; }
 
 SimFaults::SimFaults(sim::VirtualCar& car, bool lidar_simulated) : car_(car), lidar_simulated_(lidar_simulated) {}
 
-void SimFaults::on_cycle(Stamp t, Autopilot& autopilot) {
+bool SimFaults::planner_stalled(Stamp t) const { return car_.faults().active(sim::FaultKind::PlannerStall, t); }
+
+void SimFaults::on_cycle(Stamp t) {
   const sim::FaultSchedule& schedule = car_.faults();
-  autopilot.set_planner_stalled(schedule.active(sim::FaultKind::PlannerStall, t));
   if (!schedule.any_enabled()) return;
 
   const sim::VehicleTruth& truth = car_.truth();
@@ -44,13 +44,9 @@ void SimFaults::on_cycle(Stamp t, Autopilot& autopilot) {
   while (!recent_.empty() && recent_.front().t < t - kBefore) recent_.pop_front();
 }
 
-bool SimFaults::perception_due(Stamp t, const Scan* newest_scan) {
-  if (lidar_simulated_) {
-    // A scan completes every revolution while the LiDAR sends; a silent one completes none.
-    if (!newest_scan || (last_scan_stamp_ && newest_scan->stamp <= *last_scan_stamp_)) return false;
-    last_scan_stamp_ = newest_scan->stamp;
-    return true;
-  }
+bool SimFaults::truth_scan_due(Stamp t) {
+  // With the VLP-16 simulated its scans drive perception, and a silent one completes none.
+  if (lidar_simulated_) return false;
   if (t + 1e-9 < next_perception_) return false;
   next_perception_ += kPerceptionPeriod;
   return !car_.faults().active(sim::FaultKind::Lidar, t);

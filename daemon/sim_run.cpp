@@ -2,39 +2,26 @@
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
-#include "common/params.hpp"
-#include "control/autopilot.hpp"
-#include "control/control_config.hpp"
 #include "control/missions.hpp"
-#include "daemon/dashboard_view.hpp"
-#include "daemon/lap_build_thread.hpp"
-#include "daemon/live_tuning.hpp"
 #include "daemon/map_score.hpp"
 #include "daemon/perception_score.hpp"
-#include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
 #include "daemon/sim_truth.hpp"
-#include "daemon/step_log.hpp"
-#include "daemon/telemetry.hpp"
-#include "daemon/truth_perception.hpp"
-#include "drivers/gnss/gnss_driver.hpp"
+#include "daemon/stack.hpp"
+#include "daemon/truth_frames.hpp"
 #include "drivers/sim/virtual_car.hpp"
-#include "drivers/vcu/vcu_session.hpp"
-#include "drivers/vlp16/scan_builder.hpp"
-#include "localization/cone_map.hpp"
 
 namespace fsd {
 
 namespace {
 
-constexpr double kControlPeriod = 0.01;    // s: the control loop runs at 100 Hz
+constexpr double kControlPeriod = 0.01;  // s: the control loop runs at 100 Hz
 
 // The stop zone after a mission's last timing line.
 double stop_zone(Mission m) {
@@ -59,126 +46,103 @@ VehicleState state_from_truth(const sim::VehicleTruth& t) {
   return s;
 }
 
+// The Stack's configuration in a simulated run: the GNSS receiver's local frame is the track's map frame (the
+// simulated receiver's origin), not the first fix.
+Config stack_config(const Config& cfg, const sim::VirtualCarSettings& car) {
+  Config c = cfg;
+  c.set("drivers.gnss.use_first_fix", false, "the virtual car");
+  c.set("drivers.gnss.origin_lat_deg", car.gnss.origin_lat_deg, "the virtual car");
+  c.set("drivers.gnss.origin_lon_deg", car.gnss.origin_lon_deg, "the virtual car");
+  c.set("drivers.gnss.origin_height_m", car.gnss.origin_height_m, "the virtual car");
+  return c;
+}
+
+Mission mission_of(const RunSettings& run) {
+  const auto m = mission_from_string(run.mission);
+  if (!m) throw std::invalid_argument("unknown mission '" + run.mission + "'");
+  return *m;
+}
+
 }  // namespace
 
 struct SimRun::Impl {
   RunSettings run;
-  Mission mission = Mission::Trackdrive;
+  Mission mission;
+  bool headless, until_finished;
   Track track;
   sim::VirtualCarSettings car_settings;
   std::unique_ptr<sim::VirtualCar> car;
-  std::unique_ptr<SimFaults> faults;  // sim.faults: perception input, planner stall, truth around each fault
-  std::unique_ptr<VcuSession> vcu;
-  std::unique_ptr<GnssDriver> gnss;
-  std::unique_ptr<Vlp16ScanBuilder> lidar;
-  std::unique_ptr<Autopilot> autopilot;
-  ConeMap cone_map;
-  TruthPerception perception;
-  PerceptionScore perception_score;
+  std::unique_ptr<SimFaults> faults;
+  std::unique_ptr<Stack> stack;
   std::unique_ptr<Scorecard> card;
-  Telemetry* telemetry = nullptr;
-  RunMetrics* metrics = nullptr;
-  VehicleState stack_state;  // what the autopilot was given this cycle (the dashboard's /vehicle/state)
-  std::shared_ptr<const std::vector<web::TruthCone>> truth_cones;  // rebuilt when a cone falls
+  PerceptionScore perception_score;
+  std::vector<Cone> truth_cones;  // the standing cones as last sent to the Stack
   int truth_cones_hit = -1;
-  ParamRegistry* params = nullptr;
-  std::atomic<bool> params_changed{false};
-  Config tuned;  // the configuration with the live parameter values
-  bool headless = true, until_finished = false;
-  std::shared_ptr<const Scan> last_scan;
-  std::shared_ptr<const ConeDetections> last_detections;
-  std::shared_ptr<const std::vector<std::uint8_t>> last_image;
-  std::unique_ptr<DashboardView> view;
-  std::vector<FaultRecord> link_faults;
+  std::shared_ptr<const std::vector<web::TruthCone>> dashboard_truth_cones;  // rebuilt when a cone falls
+  int dashboard_cones_hit = -1;
   std::shared_ptr<spdlog::logger> log = logger("run");
-  StepLog step_log{log};
 
   Impl(const Config& cfg, const RunOptions& opt)
-      : run(run_section().read(cfg)),
-        cone_map(cone_map_section().read(cfg)),
-        perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5),
-        tuned(cfg) {
-    headless = opt.headless;
-    until_finished = opt.until_finished;
-    const auto m = mission_from_string(run.mission);
-    if (!m) throw std::invalid_argument("unknown mission '" + run.mission + "'");
-    mission = *m;
+      : run(run_section().read(cfg)), mission(mission_of(run)), headless(opt.headless), until_finished(opt.until_finished) {
     track = load_track(run.track, ColourConvention::named(run.colours));
     if (track.duplicates_dropped > 0)
-      logger("run")->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
-                          track.duplicates_dropped);
+      log->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
+                track.duplicates_dropped);
     car_settings = sim::read_virtual_car_settings(cfg);
     // The simulated RES operator presses go shortly after the rules' 5 s in Ready unless configured otherwise.
     if (car_settings.vcu.res_go_at_s < 0) car_settings.vcu.res_go_at_s = car_settings.vcu.ready_to_drive_s + 0.5;
 
-    const auto seed = static_cast<std::uint64_t>(run.seed);
-    sim::SensorSinks sinks;
-    sinks.vcu_status = [this](Stamp t, std::span<const std::uint8_t> b) { vcu->on_bytes(t, b); };
-    sinks.gnss = [this](Stamp t, std::span<const std::uint8_t> b) { gnss->feed(b, t); };
-    sinks.lidar = [this](Stamp t, std::span<const std::uint8_t> b) { lidar->on_data_packet(t, b); };
-    // Camera frames go to the dashboard as the camera sent them (JPEG); perception does not use them yet.
-    sinks.camera = [this](Stamp, std::span<const std::uint8_t> b) {
-      if (telemetry) last_image = std::make_shared<const std::vector<std::uint8_t>>(b.begin(), b.end());
-    };
-    car = std::make_unique<sim::VirtualCar>(track, car_settings, seed, sinks);
-    faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
-
-    vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), 0.0, [this](const VcuLinkEvent& e) {
-      link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog"});
-    });
-    vcu->set_mission(mission);
-
-    // The receiver's local frame is the track's map frame: same origin as the simulated GNSS.
-    GnssConfig gc = gnss_section().read(cfg);
-    gc.use_first_fix = false;
-    gc.origin_lat_deg = car_settings.gnss.origin_lat_deg;
-    gc.origin_lon_deg = car_settings.gnss.origin_lon_deg;
-    gc.origin_height_m = car_settings.gnss.origin_height_m;
-    gnss = std::make_unique<GnssDriver>(gc, [this](const GnssSample& s) { autopilot->on_gnss(s.stamp, s.good); });
-
-    lidar = std::make_unique<Vlp16ScanBuilder>(vlp16_section().read(cfg), [this](Scan&& scan) {
-      last_scan = std::make_shared<const Scan>(std::move(scan));
-    });
-
-    AutopilotConfig ac = read_control(cfg);
-    ac.mission.laps = run.laps;
-    // In lockstep a slow plan delays no simulated time, and wall-clock checks would make runs unrepeatable.
-    if (headless) ac.supervisor.check_plan_time = false;
-    autopilot = std::make_unique<Autopilot>(ac, mission, track.convention);
+    StackOptions so;
+    so.mission = mission;
+    so.laps = run.laps;
+    so.simulator = true;
     // In real time the lap-2 build runs beside the control loop as on the car; in lockstep inside the step that
     // asks for it, so that a run is the same every time.
-    if (!headless) autopilot->set_lap_builder(lap_build_thread());
+    so.lap_build_worker = !headless;
+    stack = std::make_unique<Stack>(stack_config(cfg, car_settings), so);
+
+    // The car's sensors hand their bytes straight to the Stack, as the devices' transports would.
+    sim::SensorSinks sinks;
+    sinks.vcu_status = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::VcuRx, t, b}); };
+    sinks.gnss = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::Nmea, t, b}); };
+    sinks.lidar = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::Vlp16Data, t, b}); };
+    sinks.camera = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::Camera, t, b}); };
+    car = std::make_unique<sim::VirtualCar>(track, car_settings, static_cast<std::uint64_t>(run.seed), sinks);
+    faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
 
     card = std::make_unique<Scorecard>(track, mission, timed_laps(mission, run.laps), stop_zone(mission), run.seed);
-    view = std::make_unique<DashboardView>(mission, run.laps);
     // The limits the stack plans with (the scorecard's "vehicle" object).
-    card->set_vehicle_limits({ac.speed.mu, ac.speed.a_accel_max, ac.speed.a_brake_max, ac.speed.v_max});
+    const SpeedConfig& sp = stack->autopilot().config().speed;
+    card->set_vehicle_limits({sp.mu, sp.a_accel_max, sp.a_brake_max, sp.v_max});
+    stack->on_detections([this](const ConeDetections& det, const Pose2& pose) {
+      perception_score.add_frame(det, truth_cones, pose);
+    });
   }
 
-  void publish_telemetry(Stamp t, const ControlOutput& out) {
-    if (!telemetry) return;
-    TelemetrySnapshot s = view->snapshot(t, car->vcu().state(), out, *autopilot, vcu->status());
-    s.state = stack_state;
-    s.detections = last_detections;
-    s.scan = last_scan;
-    s.camera_jpeg = last_image;
-    s.lidar_pose = car->truth().body_pose3() * sim::lidar_mount(car_settings.lidar);
-    // Ground truth on its own channels, so the stack's estimate above is never confused with it.
-    s.truth = fsd::truth_state(*car);
-    if (!truth_cones || car->cones_hit() != truth_cones_hit) {
-      truth_cones = std::make_shared<const std::vector<web::TruthCone>>(fsd::truth_cones(car->world()));
+  // The simulator's truth for this cycle, as frames: the state, the standing cones when they changed, the ideal
+  // detector's scan tick without a simulated LiDAR.
+  void feed_truth(Stamp t) {
+    TruthStateFrame ts{state_from_truth(car->truth()), faults->planner_stalled(t),
+                       static_cast<std::uint32_t>(car->cones_hit()), car->vcu().state()};
+    const auto state = encode_truth_state(ts);
+    stack->feed({RawChannel::TruthState, t, state});
+    if (car->cones_hit() != truth_cones_hit) {
+      truth_cones = car->standing_cones();
       truth_cones_hit = car->cones_hit();
+      const auto cones = encode_truth_cones(truth_cones);
+      stack->feed({RawChannel::TruthCones, t, cones});
     }
-    s.truth_cones = truth_cones;
-    telemetry->publish(std::move(s));
+    if (faults->truth_scan_due(t)) stack->feed({RawChannel::TruthScan, t, {}});
   }
 
-  // Copies the registry's values into the configuration and hands the control part to the autopilot; runs on the
-  // loop's thread, so the autopilot is never touched from the web's.
-  void apply_params() {
-    AutopilotConfig ac = tuned_control(tuned, *params, run.laps);
-    if (headless) ac.supervisor.check_plan_time = false;
-    autopilot->set_config(ac);
+  // The simulator's ground truth on the dashboard's /truth/* channels, never mixed into the stack's own.
+  void add_truth(TelemetrySnapshot& s) {
+    s.truth = fsd::truth_state(*car);
+    if (!dashboard_truth_cones || car->cones_hit() != dashboard_cones_hit) {
+      dashboard_truth_cones = std::make_shared<const std::vector<web::TruthCone>>(fsd::truth_cones(car->world()));
+      dashboard_cones_hit = car->cones_hit();
+    }
+    s.truth_cones = dashboard_truth_cones;
   }
 
   int run_loop(const std::atomic<bool>& stop) {
@@ -193,56 +157,20 @@ struct SimRun::Impl {
       t = (++cycle) * kControlPeriod;
       if (!headless && !pace.sleep_until(t)) break;
       car->advance_to(t);
-      faults->on_cycle(t, *autopilot);
+      faults->on_cycle(t);
       card->on_truth(car->truth());
-      vcu->tick(t, [this, t](std::vector<std::uint8_t> bytes) { car->feed_vcu(t, bytes); });
-      if (const auto st = vcu->status()) autopilot->on_vcu(*st);
-
-      const sim::VehicleTruth& truth = car->truth();
-      CycleFigures fig;  // for /metrics
-      std::optional<std::chrono::steady_clock::time_point> frame_start;
-      if (faults->perception_due(t, last_scan.get())) {
-        const auto p0 = std::chrono::steady_clock::now();
-        frame_start = p0;
-        const std::vector<Cone> standing = car->standing_cones();
-        auto det = perception.detect(t, standing, truth.pose);
-        cone_map.update(det, truth.pose);
-        autopilot->on_cones(t, cone_map.cones());
-        fig.perception_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
-        card->latency("perception").add(fig.perception_s);
-        perception_score.add_frame(det, standing, truth.pose);  // the scorecard's, outside the stage's time
-        last_detections = std::make_shared<const ConeDetections>(std::move(det));
-      }
-      autopilot->on_state(stack_state = state_from_truth(truth));
-      if (params_changed.exchange(false)) apply_params();
-      const ControlOutput out = autopilot->step(t);
-      step_log.update(out, autopilot->faults());
-      vcu->set_command(out.command, t);
-      if (frame_start) {
-        fig.end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - *frame_start).count();
-        card->latency("end_to_end").add(fig.end_to_end_s);
-      }
-      vcu->set_as_request(out.request);
-      if (out.planned) card->latency("planning").add(out.planning_time);
-      card->latency("control").add(out.control_time);
-
-      const std::size_t laps_done = autopilot->lap_times().size();
-      view->on_cycle(t, car->vcu().state(), out, laps_done, stack_state.pose.position(), static_cast<std::uint64_t>(cycle));
+      feed_truth(t);
+      stack->vcu().tick(t, [this, t](std::vector<std::uint8_t> bytes) {
+        stack->feed({RawChannel::VcuTx, t, bytes});
+        car->feed_vcu(t, bytes);
+      });
+      stack->step(t);
       card->set_as_state(car->vcu().state());
       card->set_cones_hit(car->cones_hit());
-      if (cycle % 4 == 0) publish_telemetry(t, out);
-      if (metrics) {
-        fig.t = t;
-        add_step_figures(fig, out);
-        fig.as_state = car->vcu().state();
-        fig.laps = static_cast<int>(laps_done);
-        fig.cones_hit = car->cones_hit();
-        metrics->on_cycle(fig);
-      }
 
       // The end of a run: the mission is over and the car stands (Finished or Emergency), or time ran out.
       const AsState as = car->vcu().state();
-      const bool resting = truth.speed() < 0.05;
+      const bool resting = car->truth().speed() < 0.05;
       stopped_since = resting ? (stopped_since < 0 ? t : stopped_since) : -1;
       if (until_finished || headless) {
         if (as == AsState::Finished && stopped_since >= 0 && t - stopped_since > 1.0) break;
@@ -254,12 +182,12 @@ struct SimRun::Impl {
       }
     }
     card->set_wall_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
-    for (const auto& f : link_faults) card->add_fault(f);
-    for (const auto& f : autopilot->faults()) card->add_fault({f.t, f.source, f.what, f.action});
+    card->set_latencies(stack->latencies());
+    for (const auto& f : stack->faults()) card->add_fault(f);
     card->set_section("injected_faults", faults->report());
-    card->set_section("map", to_json(score_map(track.cones, cone_map.cones())));
+    card->set_section("map", to_json(score_map(track.cones, stack->cone_map())));
     card->set_section("perception", perception_score.to_json());
-    const auto vc = vcu->counters();
+    const auto vc = stack->counters().vcu;
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
               to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,
               vc.statuses);
@@ -272,11 +200,12 @@ SimRun::SimRun(const Config& config, const RunOptions& options) : impl_(std::mak
 SimRun::~SimRun() = default;
 int SimRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
 const Scorecard& SimRun::scorecard() const { return *impl_->card; }
-void SimRun::set_telemetry(Telemetry* telemetry) { impl_->telemetry = telemetry; }
-void SimRun::set_metrics(RunMetrics* metrics) { impl_->metrics = metrics; }
-void SimRun::set_params(ParamRegistry* params) {
-  impl_->params = params;
-  if (params) params->subscribe([this](const ParamChange&) { impl_->params_changed = true; });
+void SimRun::set_telemetry(Telemetry* telemetry) {
+  impl_->stack->set_telemetry(telemetry, [this](TelemetrySnapshot& s) { impl_->add_truth(s); });
 }
+void SimRun::set_metrics(RunMetrics* metrics) {
+  impl_->stack->set_metrics(metrics, [this](CycleFigures& f) { f.cones_hit = impl_->car->cones_hit(); });
+}
+void SimRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
 }  // namespace fsd

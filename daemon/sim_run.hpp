@@ -1,9 +1,11 @@
 #pragma once
-// `fsd run --sim`: the full stack driving the virtual car in-process. The car's sensors emit the real wire
-// formats, handed straight to the real decoders (VLP-16 scan builder, NMEA driver, VCU session); perception and
-// localization run from the configured source; the autopilot drives; the scorecard measures against the truth.
-// Headless runs advance a LockstepClock as fast as the CPU allows (deterministic); otherwise the loop is paced
-// in real time and the dashboard is served.
+// `fsd run --sim`: the virtual car as one of the Stack's feeders (daemon/stack.hpp). One thread at the control
+// period: the car advances and its sensors hand their wire-format bytes straight to Stack::feed (VLP-16 packets,
+// NMEA, camera JPEGs, VCU status), the simulator's truth follows as truth frames (state, standing cones, the ideal
+// detector's scan tick), the VCU Command due is sent to the car, and the Stack steps. The scorecard measures the
+// run against the truth. Headless runs advance simulated time as fast as the CPU allows (deterministic, the lap-2
+// build inside the step); otherwise the loop is paced in real time, the lap is built on the Stack's worker and the
+// dashboard is served.
 #include <atomic>
 #include <functional>
 #include <memory>

@@ -1,23 +1,27 @@
 #include "drivers/vcu/vcu_link.hpp"
 
 #include <chrono>
+#include <stdexcept>
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 
 namespace fsd {
 
-VcuLink::VcuLink(const VcuLinkConfig& cfg, const Clock& clock, Handlers h)
+namespace {
+VcuLink::Handlers checked(VcuLink::Handlers h) {
+  if (!h.on_rx_bytes) throw std::invalid_argument("VcuLink: on_rx_bytes must hand the received bytes to the session");
+  return h;
+}
+}  // namespace
+
+VcuLink::VcuLink(const VcuLinkConfig& cfg, VcuSession& session, const Clock& clock, Handlers h)
     : cfg_(cfg),
       clock_(clock),
-      h_(std::move(h)),
-      session_(cfg_, clock_.now(), [this](const VcuLinkEvent& e) { event(e); }),
+      h_(checked(std::move(h))),
+      session_(session),
       port_({.device = cfg_.device, .baud = cfg_.baud, .reopen_interval_ms = cfg_.reopen_ms},
-            {[this](std::span<const std::uint8_t> b) {
-               const Stamp now = clock_.now();
-               if (h_.on_rx_bytes) h_.on_rx_bytes(now, b);
-               session_.on_bytes(now, b);
-             },
+            {[this](std::span<const std::uint8_t> b) { h_.on_rx_bytes(clock_.now(), b); },
              [this] { session_.on_stream_reset(); },
              [this](Stamp t, const std::string& why) {
                session_.on_stream_reset();

@@ -2,6 +2,9 @@
 // the defaults back gives the structs' own defaults; a file value overrides and is bounds-checked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "control/control_config.hpp"
@@ -55,6 +58,44 @@ TEST(ControlConfig, LapTwoHasItsOwnGainsAndFrictionShare) {
   EXPECT_DOUBLE_EQ(f2.lqr_r, 0.7);
   EXPECT_DOUBLE_EQ(f2.max_steer, 0.45);  // the car's limits come from control.follower
   EXPECT_THROW(cfg.set("control.lap2.mu_margin", 1.5, "test"), ConfigError);
+}
+
+// A live change through the section's member pointer gives what reading a configuration with that value gives,
+// for every tunable key (each set to a value inside its bounds other than its default), copies included.
+TEST(ControlConfig, LiveChangeEqualsReadingTheChangedConfiguration) {
+  auto schema = std::make_shared<ConfigSchema>();
+  describe_control(*schema);
+  const Config defaults(schema);
+  int tunables = 0;
+  for (const auto& e : schema->entries()) {
+    if (!e.tunable) continue;
+    ++tunables;
+    const double def = e.type == ValueType::Boolean ? (defaults.boolean(e.key) ? 1.0 : 0.0) : defaults.number(e.key);
+    double v = e.type == ValueType::Boolean ? 1.0 - def : std::min(e.max, def + 1.0);
+    if (v == def) v = std::max(e.min, def - 1.0);
+    if (e.type == ValueType::Integer) v = std::round(v);
+    Config changed = defaults;
+    if (e.type == ValueType::Boolean) changed.set(e.key, v != 0.0, "test");
+    else if (e.type == ValueType::Integer) changed.set(e.key, static_cast<long long>(v), "test");
+    else changed.set(e.key, v, "test");
+    AutopilotConfig live = read_control(defaults);
+    ASSERT_TRUE(apply_control_param(live, e.key, v)) << e.key;
+    ASSERT_NE(v, def) << e.key;
+    EXPECT_EQ(control_param(live, e.key), v) << e.key;
+    const AutopilotConfig read = read_control(changed);
+    // Every number, integer and boolean key of the sections reads the same from both, the copies too.
+    for (const auto& k : schema->entries()) {
+      if (k.type == ValueType::String) continue;
+      EXPECT_EQ(control_param(live, k.key), control_param(read, k.key)) << "after " << e.key << ": " << k.key;
+    }
+    EXPECT_EQ(live.trajectory.tight_turn.clearance, read.trajectory.tight_turn.clearance) << e.key;
+    EXPECT_EQ(live.trajectory.tight_turn.v_max, read.trajectory.tight_turn.v_max) << e.key;
+    EXPECT_EQ(live.trajectory.tight_turn.clearance, live.planner.tight_turn.clearance) << e.key;
+  }
+  EXPECT_GT(tunables, 20);
+  AutopilotConfig c;
+  EXPECT_FALSE(apply_control_param(c, "sim.vehicle.mass", 200.0));
+  EXPECT_FALSE(apply_control_param(c, "control.no_such_key", 1.0));
 }
 
 }  // namespace

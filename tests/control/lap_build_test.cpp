@@ -4,9 +4,12 @@
 // the lap's own speed profile.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <deque>
 #include <future>
 #include <memory>
+#include <optional>
+#include <utility>
 
 #include "tests/control/mission_harness.hpp"
 
@@ -15,34 +18,47 @@ namespace {
 
 const auto bicycle_config = test::bicycle_autopilot_config;
 
-// A builder that holds each job until the test releases it `delay` control cycles later.
-struct DeferredBuilder {
+// A lap builder that holds each job until the test releases it `delay` control cycles later.
+struct DeferredBuilder final : LapBuildService {
   int delay = 0;
   struct Job {
     int due;
-    std::packaged_task<TrajectoryResult()> task;
+    LapBuildJob job;
   };
   std::deque<Job> jobs;
+  std::optional<TrajectoryResult> done;
   int cycle = 0, requests = 0;
   std::vector<double> requested_at, delivered_at;
 
-  LapBuilder builder() {
-    return [this](LapBuildJob job) {
-      ++requests;
-      std::packaged_task<TrajectoryResult()> task(std::move(job));
-      auto f = task.get_future();
-      jobs.push_back({cycle + delay, std::move(task)});
-      return f;
-    };
+  bool submit(LapBuildJob job) override {
+    ++requests;
+    jobs.push_back({cycle + delay, std::move(job)});
+    return true;
   }
+  std::optional<TrajectoryResult> poll() override { return std::exchange(done, std::nullopt); }
   // After each control cycle.
   void tick(double t) {
     ++cycle;
     while (!jobs.empty() && jobs.front().due <= cycle) {
-      jobs.front().task();
+      done = jobs.front().job();
       jobs.pop_front();
       delivered_at.push_back(t);
     }
+  }
+};
+
+// A real worker thread per job, as the daemon runs it.
+struct ThreadBuilder final : LapBuildService {
+  int requests = 0;
+  std::future<TrajectoryResult> pending;
+  bool submit(LapBuildJob job) override {
+    ++requests;
+    pending = std::async(std::launch::async, std::move(job));
+    return true;
+  }
+  std::optional<TrajectoryResult> poll() override {
+    if (!pending.valid() || pending.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+    return pending.get();
   }
 };
 
@@ -74,7 +90,7 @@ TEST(LapBuild, WhileTheBuildIsOutLapOnePlanningDrivesThenTheLapIsTaken) {
     b.tick(t);
   };
   test::MissionHarness h(track, Mission::Trackdrive, bicycle_config(), options);
-  h.autopilot().set_lap_builder(b.builder());
+  h.autopilot().set_lap_builder(&b);
   h.run();
   expect_two_clean_laps(h);
   // One build, before the line (the early build), taken the cycle after it was delivered, 5 cycles on.
@@ -105,7 +121,7 @@ TEST(LapBuild, AnEarlyBuildStillOutAtTheLineIsTakenAfterIt) {
     b.tick(t);
   };
   test::MissionHarness h(track, Mission::Trackdrive, bicycle_config(), options);
-  h.autopilot().set_lap_builder(b.builder());
+  h.autopilot().set_lap_builder(&b);
   h.run();
   // The crossing did not start a second build; the first was taken after the line, and lap 2 ran on it.
   EXPECT_EQ(b.requests, 1);
@@ -118,14 +134,11 @@ TEST(LapBuild, AnEarlyBuildStillOutAtTheLineIsTakenAfterIt) {
 
 TEST(LapBuild, OnAWorkerThreadTheTwoLapsAreTheSame) {
   const Track track = test::shared_track("epfl_track_1");
-  int requests = 0;
+  ThreadBuilder builder;
   test::MissionHarness h(track, Mission::Trackdrive, bicycle_config());
-  h.autopilot().set_lap_builder([&](LapBuildJob job) {
-    ++requests;
-    return std::async(std::launch::async, std::move(job));
-  });
+  h.autopilot().set_lap_builder(&builder);
   h.run();
-  EXPECT_EQ(requests, 1);
+  EXPECT_EQ(builder.requests, 1);
   expect_two_clean_laps(h);
   EXPECT_NE(h.autopilot().recorded_path(), nullptr);
 }

@@ -1,13 +1,25 @@
 #pragma once
-// A closed loop for the Autopilot, written for the tests: the bicycle car of bicycle_sim.hpp, "perception"
-// that adds the true cones within sensor range to a cone map at 10 Hz, a fused pose and GNSS at 50 Hz, and a
-// VCU stand-in with the Formula Student AS state machine (Off → Ready on request, Ready → Driving on RES go
-// 5 s later, Driving → Finished on request at standstill, → Emergency on request with the EBS braking).
+// A closed loop for the control tests: the daemon's own Stack (daemon/stack.hpp) driving the bicycle car of
+// bicycle_sim.hpp, fed as the virtual car feeds it but without its cost: the true state and the true cones as truth
+// frames (the truth sources: an ideal detector with the harness's sensor range and no noise, at 10 Hz), NMEA epochs
+// at 50 Hz whose fix quality follows gnss_good(t), and a VCU stand-in with the Formula Student AS state machine
+// (Off → Ready on request, Ready → Driving on RES go 5 s later, Driving → Finished on request at standstill,
+// → Emergency on request with the EBS braking) speaking the VCU protocol's Status frames.
 // Records what the scorecard would: laps, cone hits, stop position, AS state, faults.
+#include <cmath>
 #include <functional>
+#include <numbers>
+#include <span>
+#include <string>
 #include <set>
 
+#include "common/track.hpp"
+#include "common/wire/nmea.hpp"
+#include "common/wire/vcu_protocol.hpp"
 #include "control/autopilot.hpp"
+#include "daemon/settings.hpp"
+#include "daemon/stack.hpp"
+#include "daemon/truth_frames.hpp"
 #include "tests/control/bicycle_sim.hpp"
 #include "tests/control/track_truth.hpp"
 
@@ -18,9 +30,6 @@ namespace fsd::test {
 inline AutopilotConfig bicycle_autopilot_config() {
   AutopilotConfig c;
   c.speed.mu = 1.2;
-  // The planner's wall-clock budget is checked by the supervisor tests; here a loaded machine must not turn
-  // a slow plan into a stop (the runs would stop being reproducible).
-  c.supervisor.check_plan_time = false;
   // The lap-2 LQR gains (control.lap2) are tuned on the virtual car's dynamic model, whose tyre slip damps the
   // steering loop; this kinematic bicycle has none and oscillates into the cones with them (q 3, r 1). Its lap 2
   // is driven with the lap-1 gains.
@@ -42,6 +51,9 @@ struct HarnessOptions {
   std::function<bool(double)> gnss_good = [](double) { return true; };
   std::function<bool(double)> lidar_alive = [](double) { return true; };
   std::function<bool(double)> planner_stalled = [](double) { return false; };
+  // The Stack's compute-time clock (empty: the wall clock) and its lap-2 worker thread.
+  std::function<double()> wall_clock;
+  bool lap_build_worker = false;
   // Sees every cycle's output (checks inside the loop, debugging).
   std::function<void(double, const ControlOutput&, const BicycleSim&)> observe;
 };
@@ -58,7 +70,7 @@ struct CycleRecord {
 class MissionHarness {
  public:
   MissionHarness(const Track& track, Mission mission, AutopilotConfig config, HarnessOptions options = {})
-      : track_(track), truth_(track), options_(options), autopilot_(config, mission, track.convention) {
+      : track_(track), truth_(track), options_(options), stack_(stack_config(track, options), stack_options(mission, config, options)) {
     car_.pose = track.start;
     car_.wheelbase = config.follower.wheelbase;
     car_.max_steer = config.follower.max_steer;
@@ -71,38 +83,31 @@ class MissionHarness {
   // Runs until the AS is Finished or Emergency and the car stands, or max_time.
   void run() {
     double next_perception = 0;
+    const auto cones = encode_truth_cones(true_cones());
+    stack_.feed({RawChannel::TruthCones, 0.0, cones});
     while (car_.t < options_.max_time) {
       const double t = car_.t;
-      // VCU stand-in: the AS state machine.
+      // VCU stand-in: the AS state machine, its Status frame to the stack.
       if (vcu_.as_state == AsState::Ready && t >= go_time_) vcu_.as_state = AsState::Driving;
       vcu_.stamp = t;
       vcu_.steering_measured = car_.delta;
-      autopilot_.on_vcu(vcu_);
-      // Perception at 10 Hz: the true cones within range join the map.
+      const auto status = wire::vcu::encode(vcu_, vcu_seq_++);
+      stack_.feed({RawChannel::VcuRx, t, status});
+      // The GNSS-INS epoch: good, or degraded to a single-point fix.
+      const std::string nmea = nmea_epoch(t, options_.gnss_good(t));
+      stack_.feed({RawChannel::Nmea, t, std::span(reinterpret_cast<const std::uint8_t*>(nmea.data()), nmea.size())});
+      // The truth: the state (with the planner stall), and the ideal detector's scan at 10 Hz while the LiDAR lives.
+      const auto state = encode_truth_state({car_.state(), options_.planner_stalled(t),
+                                             static_cast<std::uint32_t>(hit_.size()), vcu_.as_state});
+      stack_.feed({RawChannel::TruthState, t, state});
       if (t + 1e-9 >= next_perception) {
         next_perception += options_.perception_period;
-        if (options_.lidar_alive(t)) {
-          for (std::size_t i = 0; i < track_.cones.size(); ++i)
-            if ((track_.cones[i].position - car_.pose.position()).norm() <= options_.sensor_range) seen_.insert(i);
-          std::vector<Cone> map;
-          for (const auto i : seen_) {
-            Cone c;
-            c.position = Vec3(track_.cones[i].position.x(), track_.cones[i].position.y(), 0);
-            c.colour = track_.cones[i].colour;
-            c.id = static_cast<std::uint32_t>(i + 1);
-            map.push_back(c);
-          }
-          autopilot_.on_cones(t, std::move(map));
-        }
+        if (options_.lidar_alive(t)) stack_.feed({RawChannel::TruthScan, t, {}});
       }
-      autopilot_.on_state(car_.state());
-      autopilot_.on_gnss(t, options_.gnss_good(t));
-      autopilot_.set_planner_stalled(options_.planner_stalled(t));
-      const ControlOutput out = autopilot_.step(t);
+      const ControlOutput out = stack_.step(t).out;
       if (options_.observe) options_.observe(t, out, car_);
       outputs_.push_back(out.request);
       if (out.lap) laps_.push_back(*out.lap);
-      max_plan_time_ = std::max(max_plan_time_, out.planning_time);
       handle_request(out.request, t);
       ControlCommand cmd = out.command;
       if (vcu_.as_state == AsState::Emergency) {  // EBS: full braking, whatever the stack says
@@ -125,7 +130,8 @@ class MissionHarness {
     }
   }
 
-  Autopilot& autopilot() { return autopilot_; }
+  Autopilot& autopilot() { return stack_.autopilot(); }
+  Stack& stack() { return stack_; }
   const test::BicycleSim& car() const { return car_; }
   AsState as_state() const { return vcu_.as_state; }
   const std::vector<LapEvent>& laps() const { return laps_; }
@@ -135,7 +141,6 @@ class MissionHarness {
   const std::vector<std::pair<double, Vec2>>& hits() const { return hits_; }
   // Distance the car rolled while the AS was not Driving (nor braking in Emergency).
   double moved_outside_driving() const { return moved_outside_; }
-  double max_plan_time() const { return max_plan_time_; }
   std::optional<double> finished_at() const { return finished_at_; }
   std::optional<double> emergency_at() const { return emergency_at_; }
 
@@ -182,20 +187,68 @@ class MissionHarness {
     }
   }
 
+  static Config stack_config(const Track& track, const HarnessOptions& o) {
+    Config c(config_schema());
+    c.set("run.colours", track.convention.name, "harness");
+    c.set("run.truth_perception.range", o.sensor_range, "harness");
+    c.set("run.truth_perception.position_noise", 0.0, "harness");
+    c.set("run.truth_perception.min_range", 0.0, "harness");
+    c.set("drivers.gnss.use_first_fix", false, "harness");
+    c.set("drivers.gnss.origin_lat_deg", kLat, "harness");
+    c.set("drivers.gnss.origin_lon_deg", kLon, "harness");
+    c.set("drivers.gnss.emit_on", std::string("HDT"), "harness");
+    return c;
+  }
+  static StackOptions stack_options(Mission mission, const AutopilotConfig& config, const HarnessOptions& h) {
+    StackOptions o;
+    o.mission = mission;
+    o.laps = config.mission.laps;
+    o.simulator = true;
+    o.control = config;
+    o.wall_clock = h.wall_clock;
+    o.lap_build_worker = h.lap_build_worker;
+    return o;
+  }
+  std::vector<Cone> true_cones() const {
+    std::vector<Cone> out;
+    for (std::size_t i = 0; i < track_.cones.size(); ++i) {
+      Cone c;
+      c.position = Vec3(track_.cones[i].position.x(), track_.cones[i].position.y(), 0);
+      c.colour = track_.cones[i].colour;
+      c.id = static_cast<std::uint32_t>(i + 1);
+      out.push_back(c);
+    }
+    return out;
+  }
+  // GGA (RTK fixed, or a single-point fix when bad) and HDT: what the GNSS driver needs to call the fix good. The
+  // position is the origin's: the harness localizes on the truth.
+  std::string nmea_epoch(double t, bool good) const {
+    const auto lat = nmea::format_latitude(kLat, 6), lon = nmea::format_longitude(kLon, 6);
+    const std::string hhmmss = nmea::format_time_of_day(36000.0 + t, 2);
+    std::string out = nmea::build("GPGGA", std::vector<std::string>{hhmmss, lat.value, lat.hemisphere, lon.value,
+                                                                    lon.hemisphere, good ? "4" : "1", "12", "0.80",
+                                                                    "400.000", "M", "0.000", "M", good ? "0.5" : "",
+                                                                    good ? "0000" : ""});
+    const double north_deg = std::fmod(std::fmod(90.0 - car_.pose.yaw * 180.0 / std::numbers::pi, 360.0) + 360.0, 360.0);
+    out += nmea::build("GPHDT", std::vector<std::string>{nmea::format_fixed(north_deg, 3), "T"});
+    return out;
+  }
+  static constexpr double kLat = 47.0, kLon = 8.0;
+
   Track track_;
   TrackTruth truth_;
   HarnessOptions options_;
-  Autopilot autopilot_;
+  Stack stack_;
+  std::uint16_t vcu_seq_ = 0;
   test::BicycleSim car_;
   VcuStatus vcu_;
   double go_time_ = 1e9;
-  std::set<std::size_t> seen_, hit_;
+  std::set<std::size_t> hit_;
   std::vector<std::pair<double, Vec2>> hits_;  // (time, cone) of each cone's first hit
   std::vector<AsRequest> outputs_;
   std::vector<LapEvent> laps_;
   std::vector<CycleRecord> records_;
   double moved_outside_ = 0;
-  double max_plan_time_ = 0;
   std::optional<double> finished_at_, emergency_at_;
 };
 

@@ -126,9 +126,14 @@ TEST(VcuLinkOverPty, DrivesTheStandinAndRecoversFromAPulledDevice) {
   cfg.reopen_ms = 20;
   EventLog events;
   std::atomic<std::uint64_t> rx_bytes{0}, tx_bytes{0};
-  VcuLink link(cfg, clock,
+  // The session is the stack's; the link is its transport and hands it every received byte.
+  VcuSession session(cfg, clock.now(), [&](const VcuLinkEvent& e) { events.add(e); });
+  VcuLink link(cfg, session, clock,
                {[&](const VcuLinkEvent& e) { events.add(e); },
-                [&](Stamp, std::span<const std::uint8_t> b) { rx_bytes += b.size(); },
+                [&](Stamp t, std::span<const std::uint8_t> b) {
+                  rx_bytes += b.size();
+                  session.on_bytes(t, b);
+                },
                 [&](Stamp, std::span<const std::uint8_t> b) { tx_bytes += b.size(); }});
   link.set_mission(Mission::Trackdrive);
   link.set_as_request(AsRequest::Ready);

@@ -1,4 +1,4 @@
-#include "daemon/truth_perception.hpp"
+#include "perception/truth_perception.hpp"
 
 #include <cmath>
 

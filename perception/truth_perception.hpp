@@ -3,6 +3,7 @@
 // virtual car's standing cones within range and field of view, in the vehicle frame, with a small seeded
 // position noise and the true colour. It keeps the loop running end to end before perception lands, and stays
 // as the reference for control work.
+#include <numbers>
 #include <random>
 #include <vector>
 

@@ -1,0 +1,401 @@
+#include "daemon/stack.hpp"
+
+#include <chrono>
+#include <mutex>
+#include <stdexcept>
+
+#include "common/bounded_queue.hpp"
+#include "common/logging.hpp"
+#include "common/params.hpp"
+#include "common/track.hpp"
+#include "control/control_config.hpp"
+#include "daemon/dashboard_view.hpp"
+#include "daemon/gnss_state.hpp"
+#include "daemon/lap_build_thread.hpp"
+#include "daemon/settings.hpp"
+#include "daemon/step_log.hpp"
+#include "daemon/truth_frames.hpp"
+#include "drivers/vlp16/scan_builder.hpp"
+#include "localization/cone_map.hpp"
+#include "perception/truth_perception.hpp"
+
+namespace fsd {
+
+namespace {
+
+constexpr int kTelemetryEvery = 4;          // control cycles between dashboard snapshots (25 Hz at 100 Hz)
+constexpr std::size_t kMaxLinkFaults = 256;  // VCU link events kept for the report
+constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
+
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+struct Stack::Impl {
+  StackOptions opt;
+  RunSettings run;
+  std::string localization_source;  // run.localization_source as it applies to this run
+  ColourConvention convention;
+  std::shared_ptr<spdlog::logger> log = logger("stack");
+  StepLog step_log{logger("run")};
+  std::function<double()> wall;
+
+  // Decoders.
+  Vlp16Config vlp_cfg;
+  std::unique_ptr<Vlp16ScanBuilder> lidar;
+  std::shared_ptr<const Scan> last_scan;
+  bool new_scan = false;
+  PositionPacketParser position;
+  PpsState pps = PpsState::Absent;
+  std::unique_ptr<GnssDriver> gnss;
+  std::vector<GnssSample> gnss_pending;
+  std::unique_ptr<VcuSession> vcu;
+  std::shared_ptr<const std::vector<std::uint8_t>> last_jpeg;
+  std::uint64_t camera_frames = 0;
+
+  // The simulator's truth (truth sources).
+  std::optional<TruthStateFrame> truth;
+  std::vector<Cone> truth_cones;
+  bool truth_scan = false;
+  std::uint64_t truth_rejected = 0;
+
+  // Perception and mapping.
+  TruthPerception truth_perception;
+  ConeMap cone_map;
+  std::shared_ptr<const ConeDetections> last_detections;
+  std::function<void(const ConeDetections&, const Pose2&)> detections_hook;
+
+  // Control.
+  AutopilotConfig control;
+  std::unique_ptr<LapBuildThread> lap_worker;
+  std::unique_ptr<Autopilot> autopilot;
+  std::optional<VehicleState> state;
+  DashboardView view;
+  Duration plan_budget = 0;
+  std::uint64_t late_plans = 0;
+
+  // Feeder hooks.
+  std::vector<StackTap*> taps;
+  ParamRegistry* params = nullptr;
+  std::shared_ptr<BoundedQueue<std::string>> changed_keys = std::make_shared<BoundedQueue<std::string>>(1024);
+  std::uint64_t changes_dropped = 0;
+  Telemetry* telemetry = nullptr;
+  std::function<void(TelemetrySnapshot&)> telemetry_extras;
+  RunMetrics* metrics = nullptr;
+  std::function<void(CycleFigures&)> metrics_extras;
+
+  // Results.
+  std::map<std::string, LatencyStats> latency;
+  StackCycle cycle;
+  std::uint64_t cycles = 0;
+  mutable std::mutex link_m;
+  std::vector<FaultRecord> link_faults;  // guarded by link_m: the VCU link's threads report here too
+  mutable std::mutex counters_m;
+  StackCounters counters;  // guarded by counters_m, refreshed at the end of each cycle
+
+  Impl(const Config& cfg, StackOptions o)
+      : opt(std::move(o)),
+        run(run_section().read(cfg)),
+        convention(ColourConvention::named(run.colours)),
+        wall(opt.wall_clock ? opt.wall_clock : steady_seconds),
+        vlp_cfg(vlp16_section().read(cfg)),
+        truth_perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5),
+        cone_map(cone_map_section().read(cfg)),
+        view(opt.mission, opt.laps) {
+    // The car has no ground truth: the truth sources stand for what the car has today (no detections; the
+    // GNSS-INS pose), and the log says so.
+    localization_source = run.localization_source;
+    if (!opt.simulator && localization_source == "truth") {
+      localization_source = "gnss";
+      log->info("no ground truth on the car: run.localization_source = truth drives on the GNSS-INS pose");
+    }
+    if (!opt.simulator && run.perception_source == "truth")
+      log->info("no ground truth on the car: run.perception_source = truth gives no cone detections");
+
+    lidar = std::make_unique<Vlp16ScanBuilder>(vlp_cfg, [this](Scan&& scan) {
+      last_scan = std::make_shared<const Scan>(std::move(scan));
+      new_scan = true;
+    });
+    gnss = std::make_unique<GnssDriver>(gnss_section().read(cfg), [this](const GnssSample& s) {
+      if (gnss_pending.size() < kMaxGnssPending) gnss_pending.push_back(s);
+    });
+    vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), opt.start, [this](const VcuLinkEvent& e) {
+      on_link_event(e);
+    });
+    vcu->set_mission(opt.mission);
+
+    control = opt.control ? *opt.control : read_control(cfg);
+    control.mission.laps = opt.laps;
+    plan_budget = control.planner.time_budget;
+    autopilot = std::make_unique<Autopilot>(control, opt.mission, convention);
+    if (opt.lap_build_worker) {
+      lap_worker = std::make_unique<LapBuildThread>();
+      autopilot->set_lap_builder(lap_worker.get());
+    }
+  }
+
+  void on_link_event(const VcuLinkEvent& e) {
+    switch (e.kind) {
+      case VcuLinkEventKind::StatusRestored:
+      case VcuLinkEventKind::PortRestored: logger("vcu")->info("{} (gap {:.3f} s)", describe(e), e.gap); break;
+      default: logger("vcu")->warn("{}", describe(e)); break;
+    }
+    std::lock_guard lock(link_m);
+    if (link_faults.size() < kMaxLinkFaults) link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog"});
+  }
+
+  void decode(const RawFrame& f) {
+    switch (f.channel) {
+      case RawChannel::Vlp16Data: lidar->on_data_packet(f.t, f.bytes); break;
+      case RawChannel::Vlp16Position: {
+        PositionPacket p;
+        if (position.parse(f.bytes, p) == PositionStatus::Ok) pps = p.pps;
+        break;
+      }
+      case RawChannel::Nmea: gnss->feed(f.bytes, f.t); break;
+      case RawChannel::Camera:
+        // Kept as the camera sent it (JPEG) for the dashboard; the camera stages decode what they use.
+        last_jpeg = std::make_shared<const std::vector<std::uint8_t>>(f.bytes.begin(), f.bytes.end());
+        ++camera_frames;
+        break;
+      case RawChannel::VcuRx: vcu->on_bytes(f.t, f.bytes); break;
+      case RawChannel::VcuTx: break;  // what the stack sent: recorded, nothing to decode
+      case RawChannel::TruthState:
+        if (auto s = decode_truth_state(f.bytes)) truth = *s;
+        else ++truth_rejected;
+        break;
+      case RawChannel::TruthCones:
+        if (auto c = decode_truth_cones(f.bytes)) truth_cones = std::move(*c);
+        else ++truth_rejected;
+        break;
+      case RawChannel::TruthScan: truth_scan = true; break;
+    }
+  }
+
+  // Live parameter changes, on the Stack's thread: each changed key's current value into the typed config through
+  // its section's member pointer. After an overflow of the queue every tunable key is applied again.
+  void apply_param_changes() {
+    if (!params) return;
+    bool any = false;
+    const std::uint64_t dropped = changed_keys->dropped();
+    if (dropped != changes_dropped) {
+      changes_dropped = dropped;
+      while (changed_keys->try_pop()) {
+      }
+      for (const auto& p : params->list()) any |= apply_control_param(control, p.entry->key, p.value);
+    }
+    while (auto key = changed_keys->try_pop())
+      if (auto v = params->get(*key)) any |= apply_control_param(control, *key, *v);
+    if (!any) return;
+    control.mission.laps = opt.laps;
+    plan_budget = control.planner.time_budget;
+    autopilot->set_config(control);
+  }
+
+  // The perception source's frame, when one is due: detections (vehicle frame) into the map, the map to control.
+  bool perceive(Stamp now) {
+    const bool due = new_scan || truth_scan;
+    new_scan = truth_scan = false;
+    if (!due || !truth) return false;
+    const double w0 = wall();
+    const Pose2 pose = truth->state.pose;
+    auto det = truth_perception.detect(now, truth_cones, pose);
+    cone_map.update(det, pose);
+    autopilot->on_cones(now, cone_map.cones());
+    const double dt = wall() - w0;
+    latency["perception"].add(dt);
+    cycle.figures.perception_s = dt;
+    if (detections_hook) detections_hook(det, pose);  // the scorecard's, outside the stage's time
+    last_detections = std::make_shared<const ConeDetections>(std::move(det));
+    return true;
+  }
+
+  void localize() {
+    const double steering = vcu_steering();
+    for (const auto& s : gnss_pending) {
+      autopilot->on_gnss(s.stamp, s.good);
+      if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value())) {
+        state = state_from_gnss(s, steering);
+        autopilot->on_state(*state);
+      }
+    }
+    gnss_pending.clear();
+    if (localization_source == "truth" && truth) {
+      state = truth->state;
+      autopilot->on_state(*state);
+    }
+  }
+
+  double vcu_steering() const {
+    const auto st = vcu->status();
+    return st ? st->steering_measured : 0.0;
+  }
+
+  const StackCycle& step(Stamp now) {
+    for (auto* tap : taps) tap->on_cycle(now);
+    cycle = {};
+    ++cycles;
+    if (const auto st = vcu->status()) autopilot->on_vcu(*st);
+    if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
+    const double w_perception = wall();
+    cycle.perceived = perceive(now);
+    localize();
+    apply_param_changes();
+
+    const double w0 = wall();
+    const bool planned = autopilot->plan(now);
+    const double w1 = wall();
+    cycle.out = autopilot->step(now);
+    const double w2 = wall();
+    const ControlOutput& out = cycle.out;
+    step_log.update(out, autopilot->faults());
+    vcu->set_command(out.command, now);
+    vcu->set_as_request(out.request);
+    const double w3 = wall();
+
+    CycleFigures& fig = cycle.figures;
+    fig.t = now;
+    if (planned) {
+      fig.planning_s = w1 - w0;
+      latency["planning"].add(fig.planning_s);
+      if (fig.planning_s > plan_budget) note_late_plan(now, fig.planning_s);
+    }
+    fig.control_s = w2 - w1;
+    latency["control"].add(fig.control_s);
+    if (cycle.perceived) {
+      fig.end_to_end_s = w3 - w_perception;
+      latency["end_to_end"].add(fig.end_to_end_s);
+    }
+    fig.planned = out.planned;
+    fig.plan_one_boundary = out.plan_one_boundary;
+    fig.plan_colour_blind = out.plan_colour_blind;
+    fig.plan_tight_turn = out.plan_tight_turn;
+    fig.as_state = as_state();
+    fig.laps = static_cast<int>(autopilot->lap_times().size());
+
+    std::optional<Vec2> position;
+    if (state) position = state->pose.position();
+    view.on_cycle(now, fig.as_state, out, autopilot->lap_times().size(), position, cycles);
+    publish(now);
+    refresh_counters();
+    return cycle;
+  }
+
+  // One late plan is a warning: the plan is used, the count goes to /metrics, the log says it (at most once a
+  // second). The supervisor stops the car only when no usable plan arrived for control.supervisor.plan_timeout.
+  Stamp last_late_log = -1e9;
+  void note_late_plan(Stamp now, double took) {
+    ++late_plans;
+    if (now - last_late_log < 1.0) return;
+    last_late_log = now;
+    log->warn("plan took {:.1f} ms (budget {:.1f} ms): late, used ({} late so far)", took * 1e3, plan_budget * 1e3,
+              late_plans);
+  }
+
+  void publish(Stamp now) {
+    if (metrics) {
+      CycleFigures fig = cycle.figures;
+      if (metrics_extras) metrics_extras(fig);
+      metrics->on_cycle(fig);
+    }
+    if (!telemetry || cycles % kTelemetryEvery != 0) return;
+    TelemetrySnapshot s = view.snapshot(now, as_state(), cycle.out, *autopilot, vcu->status());
+    if (state) {
+      s.state = *state;
+      // The newest scan, placed by the estimated pose and the configured mount (drivers.vlp16.mount_*).
+      if (last_scan) {
+        s.scan = last_scan;
+        s.lidar_pose = state->pose.to_pose3() * vlp_cfg.body_from_sensor();
+      }
+    }
+    s.detections = last_detections;
+    s.camera_jpeg = last_jpeg;
+    if (telemetry_extras) telemetry_extras(s);
+    telemetry->publish(std::move(s));
+  }
+
+  AsState as_state() const {
+    const auto st = vcu->status();
+    return st ? st->as_state : AsState::Off;
+  }
+
+  std::vector<FaultRecord> faults() const {
+    std::vector<FaultRecord> all;
+    {
+      std::lock_guard lock(link_m);
+      all = link_faults;
+    }
+    for (const auto& f : autopilot->faults()) all.push_back({f.t, f.source, f.what, f.action});
+    return all;
+  }
+
+  void refresh_counters() {
+    std::lock_guard lock(counters_m);
+    counters.lidar = lidar->decode_counters();
+    counters.scans = lidar->frames();
+    counters.lidar_lost_packets = lidar->lost_packets();
+    counters.position = position.counters();
+    counters.pps = pps;
+    counters.gnss = gnss->counters();
+    counters.vcu = vcu->counters();
+    counters.camera_frames = camera_frames;
+    counters.truth_frames_rejected = truth_rejected;
+    counters.cycles = cycles;
+    counters.late_plans = late_plans;
+  }
+};
+
+Stack::Stack(const Config& config, StackOptions options) : impl_(std::make_unique<Impl>(config, std::move(options))) {}
+Stack::~Stack() = default;
+
+void Stack::feed(const RawFrame& frame) {
+  for (auto* tap : impl_->taps) tap->on_frame(frame);
+  impl_->decode(frame);
+  impl_->refresh_counters();  // cheap (a lock and a copy): the counters never lag the frames taken
+}
+
+VcuSession& Stack::vcu() { return *impl_->vcu; }
+void Stack::report_link_event(const VcuLinkEvent& e) { impl_->on_link_event(e); }
+const StackCycle& Stack::step(Stamp now) { return impl_->step(now); }
+
+void Stack::add_tap(StackTap* tap) {
+  if (tap) impl_->taps.push_back(tap);
+}
+
+void Stack::set_params(ParamRegistry* params) {
+  impl_->params = params;
+  if (params) params->subscribe([q = impl_->changed_keys](const ParamChange& c) { q->push(c.key); });
+}
+
+void Stack::set_telemetry(Telemetry* telemetry, std::function<void(TelemetrySnapshot&)> extras) {
+  impl_->telemetry = telemetry;
+  impl_->telemetry_extras = std::move(extras);
+}
+
+void Stack::set_metrics(RunMetrics* metrics, std::function<void(CycleFigures&)> extras) {
+  impl_->metrics = metrics;
+  impl_->metrics_extras = std::move(extras);
+}
+
+void Stack::on_detections(std::function<void(const ConeDetections&, const Pose2&)> hook) {
+  impl_->detections_hook = std::move(hook);
+}
+
+Mission Stack::mission() const { return impl_->opt.mission; }
+int Stack::laps() const { return impl_->opt.laps; }
+const Autopilot& Stack::autopilot() const { return *impl_->autopilot; }
+Autopilot& Stack::autopilot() { return *impl_->autopilot; }
+const std::vector<Cone>& Stack::cone_map() const { return impl_->autopilot->cones(); }
+const std::optional<VehicleState>& Stack::state() const { return impl_->state; }
+AsState Stack::as_state() const { return impl_->as_state(); }
+std::vector<FaultRecord> Stack::faults() const { return impl_->faults(); }
+const std::map<std::string, LatencyStats>& Stack::latencies() const { return impl_->latency; }
+
+StackCounters Stack::counters() const {
+  std::lock_guard lock(impl_->counters_m);
+  return impl_->counters;
+}
+
+}  // namespace fsd

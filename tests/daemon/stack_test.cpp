@@ -1,0 +1,129 @@
+// The one Stack: a late plan is a warning, not a stop; live tuning reaches the autopilot through the sections'
+// member pointers; the lap-2 build on the Stack's worker gives the laps the inline build gives; truth frames are
+// checked like any other input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/params.hpp"
+#include "control/control_config.hpp"
+#include "daemon/settings.hpp"
+#include "daemon/stack.hpp"
+#include "daemon/truth_frames.hpp"
+#include "tests/control/mission_harness.hpp"
+
+namespace fsd {
+namespace {
+
+TEST(Stack, ALatePlanIsCountedAndUsedNotAStop) {
+  // Every interval the Stack times reads 80 ms: every plan is over its 25 ms budget, as on a starved desk.
+  double fake_wall = 0;
+  test::HarnessOptions o;
+  o.wall_clock = [&fake_wall] { return fake_wall += 0.08; };
+  test::MissionHarness h(test::shared_track("epfl_track_1"), Mission::Trackdrive, test::bicycle_autopilot_config(), o);
+  h.run();
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  ASSERT_EQ(h.laps().size(), 2u);
+  EXPECT_GT(h.stack().counters().late_plans, 100u);
+  for (const auto& f : h.stack().faults()) EXPECT_NE(f.source, "planning") << f.what;
+}
+
+TEST(Stack, TheLapBuiltOnItsWorkerDrivesTheSameCleanLaps) {
+  test::HarnessOptions o;
+  o.lap_build_worker = true;
+  test::MissionHarness h(test::shared_track("epfl_track_1"), Mission::Trackdrive, test::bicycle_autopilot_config(), o);
+  h.run();
+  ASSERT_EQ(h.laps().size(), 2u);
+  EXPECT_EQ(h.as_state(), AsState::Finished);
+  EXPECT_EQ(h.cones_hit(), 0);
+  EXPECT_LT(h.laps()[1].time_s, 0.8 * h.laps()[0].time_s);
+  EXPECT_NE(h.autopilot().recorded_path(), nullptr);
+}
+
+TEST(Stack, ALiveParameterChangeReachesTheAutopilotAtTheNextCycle) {
+  Config cfg(config_schema());
+  StackOptions so;
+  so.simulator = true;
+  Stack stack(cfg, so);
+  ParamRegistry params(cfg);
+  stack.set_params(&params);
+  const double before = stack.autopilot().config().speed.v_max;
+  ASSERT_TRUE(params.set("control.speed.v_max", before - 2.0, "test").ok);
+  ASSERT_TRUE(params.set("control.follower.pp_gain", 0.5, "test").ok);
+  EXPECT_EQ(stack.autopilot().config().speed.v_max, before);  // not before the Stack's own thread applies it
+  stack.step(0.01);
+  EXPECT_EQ(stack.autopilot().config().speed.v_max, before - 2.0);
+  EXPECT_EQ(stack.autopilot().config().follower.pp_gain, 0.5);
+  // What reading the changed configuration gives, copies included.
+  Config changed = cfg;
+  changed.set("control.speed.v_max", before - 2.0, "test");
+  changed.set("control.follower.pp_gain", 0.5, "test");
+  EXPECT_EQ(stack.autopilot().config().speed.realtime().v_max, read_control(changed).speed.realtime().v_max);
+}
+
+TEST(Stack, MalformedTruthFramesAreCountedAndIgnored) {
+  Config cfg(config_schema());
+  StackOptions so;
+  so.simulator = true;
+  Stack stack(cfg, so);
+  const std::vector<std::uint8_t> junk{1, 2, 3};
+  stack.feed({RawChannel::TruthState, 0.0, junk});
+  stack.feed({RawChannel::TruthCones, 0.0, junk});
+  auto state = encode_truth_state({VehicleState{}, false, 0, AsState::Off});
+  for (int i = 3; i < 10; ++i) state[static_cast<std::size_t>(i)] = 0xff;  // the stamp's exponent all ones: a NaN
+  stack.feed({RawChannel::TruthState, 0.0, state});
+  stack.step(0.01);
+  EXPECT_EQ(stack.counters().truth_frames_rejected, 3u);
+  EXPECT_FALSE(stack.state().has_value());  // no truth taken, so no pose
+}
+
+TEST(TruthFrames, RoundTripAndRejectWhatIsNotOne) {
+  VehicleState s;
+  s.stamp = 12.5;
+  s.pose = {1.5, -2.25, 0.75};
+  s.vx = 8;
+  s.vy = -0.25;
+  s.yaw_rate = 0.5;
+  s.ax = 1;
+  s.ay = -3;
+  s.steering = 0.1;
+  const auto bytes = encode_truth_state({s, true, 3, AsState::Driving});
+  const auto back = decode_truth_state(bytes);
+  ASSERT_TRUE(back);
+  EXPECT_TRUE(back->planner_stalled);
+  EXPECT_EQ(back->state.stamp, 12.5);
+  EXPECT_EQ(back->state.pose.y, -2.25);
+  EXPECT_EQ(back->state.steering, 0.1);
+  EXPECT_EQ(back->cones_hit, 3u);
+  EXPECT_EQ(back->as_state, AsState::Driving);
+  auto bad_as = bytes;
+  bad_as.back() = 9;
+  EXPECT_FALSE(decode_truth_state(bad_as));
+  auto wrong_version = bytes;
+  wrong_version[0] = 2;
+  EXPECT_FALSE(decode_truth_state(wrong_version));
+  EXPECT_FALSE(decode_truth_state(std::span(bytes).first(bytes.size() - 1)));
+
+  std::vector<Cone> cones(2);
+  cones[0].position = {1, 2, 0};
+  cones[0].colour = ConeColour::Blue;
+  cones[0].id = 7;
+  cones[1].position = {-3, 4, 0.1};
+  cones[1].colour = ConeColour::BigOrange;
+  const auto cb = encode_truth_cones(cones);
+  const auto cback = decode_truth_cones(cb);
+  ASSERT_TRUE(cback);
+  ASSERT_EQ(cback->size(), 2u);
+  EXPECT_EQ((*cback)[0].id, 7u);
+  EXPECT_EQ((*cback)[1].colour, ConeColour::BigOrange);
+  EXPECT_EQ((*cback)[1].position.z(), 0.1);
+  EXPECT_FALSE(decode_truth_cones(cb, 1));  // more than allowed
+  auto bad_colour = cb;
+  bad_colour[5 + 24] = 99;
+  EXPECT_FALSE(decode_truth_cones(bad_colour));
+  EXPECT_FALSE(decode_truth_cones(std::span(cb).first(cb.size() - 2)));
+}
+
+}  // namespace
+}  // namespace fsd
