@@ -124,6 +124,8 @@ void SummaryReader::read_indexed(const std::function<void(const Message&, const 
   const std::uint64_t data_end = summary_->footer.summary_start;
   std::vector<Record> records;
   std::vector<const Message*> messages;
+  // The summary's channels, and those a chunk defines itself (a summary need not repeat them).
+  std::map<std::uint16_t, Channel> channels = summary_->channels;
   for (const ChunkIndex* ci : order) {
     const std::uint64_t at = ci->chunk_start_offset;
     auto fail = [&](Issue::Kind kind, const std::string& what) {
@@ -152,13 +154,15 @@ void SummaryReader::read_indexed(const std::function<void(const Message&, const 
       continue;
     }
     messages.clear();
-    for (const auto& r : records)
+    for (const auto& r : records) {
       if (const auto* m = std::get_if<Message>(&r)) messages.push_back(m);
+      if (const auto* c = std::get_if<Channel>(&r)) channels.try_emplace(c->id, *c);
+    }
     std::stable_sort(messages.begin(), messages.end(),
                      [](const Message* a, const Message* b) { return a->log_time < b->log_time; });
     for (const Message* m : messages) {
-      const auto ch = summary_->channels.find(m->channel_id);
-      if (ch != summary_->channels.end()) visit(*m, ch->second);
+      const auto ch = channels.find(m->channel_id);
+      if (ch != channels.end()) visit(*m, ch->second);
     }
   }
 }

@@ -47,8 +47,9 @@ class SummaryReader {
   bool indexed() const { return indexed_; }
 
   // Every intact message with its channel, chunk by chunk in order of start time, each chunk's messages in
-  // log-time order (stable). Channels come from the summary or, for a linear scan, from the file as read. A
-  // damaged chunk is an issue and skipped (strict mode: McapError).
+  // log-time order (stable). Channels come from the summary and the chunks themselves or, for a linear scan, from
+  // the file as read; a message whose channel is defined nowhere is skipped. A damaged chunk is an issue and
+  // skipped (strict mode: McapError).
   void for_each_message(const std::function<void(const Message&, const Channel&)>& visit);
   const std::vector<Issue>& issues() const { return issues_; }
 
