@@ -23,7 +23,7 @@ RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOpt
       if (auto* c = std::get_if<Channel>(&r->record)) channels.try_emplace(c->id, std::move(*c));
     }
   }
-  if (!header) throw McapError("no complete header record: nothing to recover");
+  if (!header) throw NothingToRecover("no complete header record: nothing to recover");
 
   RecoverReport report;
   options.profile = header->profile;

@@ -27,9 +27,15 @@ struct RecoverReport {
   std::vector<Issue> issues;                  // what the linear read of the input found
 };
 
+// The input holds nothing to recover (not even a complete header).
+class NothingToRecover : public McapError {
+ public:
+  using McapError::McapError;
+};
+
 // Reads `in` linearly (never strictly) and writes what it holds through a Writer on `out`; the profile of the
 // input's header is kept, the library is `options.library`. Throws McapError when `in` is no MCAP file at all
-// (check_magic) or has not even a complete header, and when `out` fails.
+// (check_magic), NothingToRecover when it has not even a complete header, and McapError when `out` fails.
 RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOptions options = {});
 
 }  // namespace fsd::mcap
