@@ -6,8 +6,8 @@
 
 namespace fsd::mcap {
 
-RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOptions options) {
-  ReaderOptions lenient;
+RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOptions options, ReaderOptions read) {
+  ReaderOptions lenient = read;
   lenient.strict = false;
 
   // Pass 1: every schema and channel anywhere in the file (the summary repeats them), so messages whose channel

@@ -36,6 +36,7 @@ class NothingToRecover : public McapError {
 // Reads `in` linearly (never strictly) and writes what it holds through a Writer on `out`; the profile of the
 // input's header is kept, the library is `options.library`. Throws McapError when `in` is no MCAP file at all
 // (check_magic), NothingToRecover when it has not even a complete header, and McapError when `out` fails.
-RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOptions options = {});
+RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOptions options = {},
+                      ReaderOptions read = {});  // read.strict is ignored
 
 }  // namespace fsd::mcap

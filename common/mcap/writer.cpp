@@ -11,9 +11,8 @@ namespace fsd::mcap {
 std::string library_name() { return std::string("fsd-daemon ") + FSD_VERSION; }
 
 Writer::Writer(ByteSink& sink, WriterOptions options)
-    : sink_(sink), options_(std::move(options)), zstd_(options_.zstd_level) {
+    : sink_(sink), options_(std::move(options)) {
   if (options_.chunk_size == 0) throw McapError("chunk size must be at least 1 byte");
-  chunk_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(options_.chunk_size, 64u << 20)) + 4096);
   emit(kMagic);
   emit_record(Header{options_.profile, options_.library});
 }
@@ -158,7 +157,8 @@ void Writer::flush_chunk() {
   const std::uint32_t crc = crc32(chunk_);
   std::span<const std::uint8_t> stored = chunk_;
   if (options_.compression == Compression::Zstd) {
-    zstd_.compress(chunk_, compressed_);
+    if (!zstd_) zstd_ = std::make_unique<ZstdCompressor>(options_.zstd_level);
+    zstd_->compress(chunk_, compressed_);
     stored = compressed_;
   }
   const std::string compression = to_string(options_.compression);

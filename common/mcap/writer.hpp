@@ -10,6 +10,7 @@
 // caller's (it opens a new Writer); bytes_written() says how far the current file has grown.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -78,7 +79,7 @@ class Writer {
 
   ByteSink& sink_;
   WriterOptions options_;
-  ZstdCompressor zstd_;
+  std::unique_ptr<ZstdCompressor> zstd_;  // made with the first zstd chunk
   std::uint64_t offset_ = 0;
   std::uint32_t data_crc_ = 0;     // of every byte before the DataEnd record
   bool in_data_section_ = true;
