@@ -93,6 +93,7 @@ std::optional<Summary> read_summary(std::span<const std::uint8_t> file, const Re
     *why = std::string("summary record at offset ") + std::to_string(at) + ": " + e.what();
     return std::nullopt;
   }
+  why->clear();  // a header that did not parse leaves no reason behind when the summary itself is fine
   return s;
 }
 
