@@ -221,6 +221,21 @@ TEST_P(McapCorruptChunk, StrictModeRefusesTheFile) {
 INSTANTIATE_TEST_SUITE_P(Compression, McapCorruptChunk, ::testing::Values(Compression::Zstd, Compression::None),
                          [](const auto& info) { return info.param == Compression::Zstd ? "zstd" : "none"; });
 
+TEST(McapDamagedSummary, ASummaryThatFailsItsCrcIsNotUsedAndTheLinearScanStandsIn) {
+  RecordingSpec spec;
+  spec.messages = 120;
+  auto rec = make_recording(spec);
+  const auto summary_start = SummaryReader(rec.file).summary()->footer.summary_start;
+  rec.file[summary_start + 20] ^= 0x01;  // inside the first summary record
+  SummaryReader reader(rec.file);
+  EXPECT_FALSE(reader.has_summary());
+  EXPECT_EQ(reader.summary_problem(), "summary CRC mismatch");
+  EXPECT_FALSE(reader.indexed());
+  std::vector<Message> got;
+  reader.for_each_message([&](const Message& m, const Channel&) { got.push_back(m); });
+  expect_same(got, rec.messages, "linear fallback");
+}
+
 TEST(McapCorruptChunk, ALyingChunkLengthInTheIndexIsNotFollowed) {
   RecordingSpec spec;
   spec.messages = 100;
