@@ -106,6 +106,7 @@ inline double distance_to_polyline(const V2& p, const std::vector<V2>& line, boo
 // What the rules constrain on a trackdrive/autocross layout, measured from its cones.
 struct CourseFigures {
   double width_min = 0, width_max = 0;     // each cone to the other boundary's smooth curve
+  double cone_width_min = 0;               // each cone to the nearest cone of the other boundary
   double gap_max = 0;                      // neighbouring cones along a boundary
   double gap_mean_tight = 0, gap_mean_straight = 0;  // in turns tighter than 10 m / between cones in line
   double gap_over_turn = 0;                // largest gap over 1 m / the radius of the turn it is in (rad)
@@ -123,7 +124,9 @@ inline CourseFigures measure_course(const LayoutRows& l, bool closed) {
   const std::vector<V2>& L = l.blue;
   const std::vector<V2>& R = l.yellow;
   const auto sl = smooth_boundary(L, closed), sr = smooth_boundary(R, closed);
-  f.width_min = std::numeric_limits<double>::infinity();
+  f.width_min = f.cone_width_min = std::numeric_limits<double>::infinity();
+  for (const V2& p : L)
+    for (const V2& q : R) f.cone_width_min = std::min(f.cone_width_min, (p - q).norm());
   for (const V2& p : L) {
     const double d = distance_to_polyline(p, sr, closed);
     f.width_min = std::min(f.width_min, d), f.width_max = std::max(f.width_max, d);

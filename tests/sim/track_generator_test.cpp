@@ -78,11 +78,13 @@ void expect_course_rules(const TrackGeneratorOptions& o, bool closed, test::Cour
   ASSERT_GT(l.blue.size(), 20u);
   ASSERT_GT(l.yellow.size(), 20u);
   const auto f = test::measure_course(l, closed);
-  // Width: the rules' 3 m minimum, and within the sampled range, measured to the smooth curve through the other
-  // boundary's cones (a spline through cones 5 m apart at a turn's entry strays from the arc by up to ~5 cm).
-  EXPECT_GE(f.width_min, std::max(3.0, o.width_min) - 0.06);
-  EXPECT_LE(f.width_min, o.width_max + 0.06);
-  EXPECT_LE(f.width_max, o.width_max + 0.1);
+  // Width: the rules' 3 m minimum, and within the sampled range. Every cone is at least the width from every
+  // cone across (exact); along the track, to the smooth curve through the other boundary's cones (a spline
+  // through cones 5 m apart where a turn begins strays from the arc they stand on by up to ~10 cm).
+  EXPECT_GE(f.cone_width_min, std::max(3.0, o.width_min) - 1e-3);
+  EXPECT_GE(f.width_min, std::max(3.0, o.width_min) - 0.15);
+  EXPECT_LE(f.width_min, o.width_max + 0.15);
+  EXPECT_LE(f.width_max, o.width_max + 0.15);
   // Cones at most 5 m apart (and the option's maximum), denser in turns: no gap over 1 m spans more than 0.5 rad
   // of a turn's arc, and the mean gap in turns tighter than 10 m is below the straights'.
   EXPECT_LE(f.gap_max, std::min(5.0, o.spacing_max) + 1e-3);
@@ -114,7 +116,7 @@ TEST(TrackGenerator, TrackdriveLoopsKeepEveryRule) {
     if (2.0 * f.outer_radius_min < 9.2) ++hairpins_at_minimum;
     if (f.straight_max > 60.0) ++long_straights;
     if (f.slalom_lines > 0) ++slaloms;
-    widths.insert(std::round(f.width_min * 10.0) / 10.0);
+    widths.insert(std::round(f.cone_width_min * 10.0) / 10.0);
   }
   // The defaults reach the rules' edges: hairpins at the 9 m minimum, straights towards 80 m, slaloms, and a
   // spread of widths.
@@ -144,7 +146,7 @@ TEST(TrackGenerator, OptionsNarrowTheSampledRanges) {
     o.lap_min = 250, o.lap_max = 300;
     test::CourseFigures f;
     expect_course_rules(o, true, &f);
-    EXPECT_NEAR(f.width_min, 3.0, 0.06);
+    EXPECT_NEAR(f.cone_width_min, 3.0, 0.01);
     EXPECT_NEAR(f.gap_max, 3.5, 0.05);
   }
   // Only hairpins and straights into them (turns are needed to close): every layout has a rules-minimum hairpin.
