@@ -175,6 +175,7 @@ TEST(GeneratedTracksSweep, DISABLED_Full) {
   for (int s = 1; s <= loops; ++s) cases.push_back({"autocross", s});
   for (int s = 1; s <= events; ++s) cases.push_back({"acceleration", s});
   for (int s = 1; s <= events; ++s) cases.push_back({"skidpad", s});
+  fast_config();  // written once, before the workers read it
   std::vector<Outcome> out(cases.size());
   std::mutex print;
   std::size_t next = 0;
