@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -136,6 +137,41 @@ Track parse_track(const std::string& text, const std::string& origin, const Colo
   if (!have_start) throw TrackError(origin + ": no car_start row");
   if (track.cones.empty()) throw TrackError(origin + ": no cones");
   return track;
+}
+
+namespace {
+// Fixed decimals; a value that rounds to zero is written without a minus sign.
+void append_number(std::string& out, double v, int decimals = 4) {
+  char buf[40];
+  if (std::fabs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  out += buf;
+}
+}  // namespace
+
+std::string format_track(const Track& track) {
+  std::string out = "tag,x,y,direction,x_variance,y_variance,xy_covariance\n";
+  auto row = [&](const char* tag, const Vec2& p, double direction) {
+    out += tag;
+    out += ',';
+    append_number(out, p.x());
+    out += ',';
+    append_number(out, p.y());
+    out += ',';
+    append_number(out, direction, 6);
+    out += ",0,0,0\n";
+  };
+  row("car_start", track.start.position(), track.start.yaw);
+  for (const auto& c : track.cones) {
+    switch (c.role) {
+      case ConeRole::Left: row("blue", c.position, 0.0); break;
+      case ConeRole::Right: row("yellow", c.position, 0.0); break;
+      case ConeRole::Other: row("orange", c.position, 0.0); break;
+      case ConeRole::Timing: row("big_orange", c.position, 0.0); break;
+      default: throw std::invalid_argument("format_track: a cone without a role");
+    }
+  }
+  return out;
 }
 
 Track load_track(const std::filesystem::path& path, const ColourConvention& convention) {

@@ -50,6 +50,11 @@ class TrackError : public std::runtime_error {
 };
 
 Track load_track(const std::filesystem::path& path, const ColourConvention& convention = {});
+// The file's text for a track: the header, the car_start row, then one row per cone in order with its role's tag;
+// positions to 4 decimals (0.1 mm), the start
+// yaw to 6, no covariance. parse_track reads it back to the same track. Throws std::invalid_argument
+// for a cone without a role.
+std::string format_track(const Track& track);
 // Parses text already in memory; `origin` names it in error messages.
 Track parse_track(const std::string& text, const std::string& origin, const ColourConvention& convention = {});
 

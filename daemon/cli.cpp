@@ -21,6 +21,7 @@ int run_cli(int argc, char** argv) {
   add_lidar_dump_command(app, exit_code);
   add_calibrate_homography_command(app, exit_code);
   add_mcap_command(app, exit_code);
+  add_track_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,388 @@
+// The layout generator against the rules, for many seeds of each kind: every layout is written, read back by
+// the project's loader and measured by an independent checker from its cones alone (tests/sim/layout_rules.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <string>
+
+#include "common/track.hpp"
+#include "drivers/sim/track_generator.hpp"
+#include "tests/scratch_dir.hpp"
+#include "tests/sim/layout_rules.hpp"
+
+namespace fsd {
+namespace {
+
+using sim::LayoutKind;
+using sim::TrackGeneratorOptions;
+using test::V2;
+
+constexpr int kSeeds = 40;  // per kind; the sweep (tests/daemon/generated_tracks_test.cpp) drives more
+
+// The layout written to a file as `fsd track generate --out` writes it, reloaded by the project's loader (it
+// must accept it) and read by the checker's own CSV reader.
+test::LayoutRows generate_rows(const TrackGeneratorOptions& o, Track* loaded = nullptr) {
+  const std::string path = test::scratch_path("gen_" + std::string(sim::to_string(o.kind)) + "_" +
+                                              std::to_string(o.seed) + (o.open ? "_open" : "") + ".csv");
+  std::ofstream(path, std::ios::binary) << format_track(sim::generate_track(o));
+  const Track t = load_track(path);
+  if (loaded) *loaded = t;
+  EXPECT_EQ(t.duplicates_dropped, 0);
+  return test::read_layout(path);
+}
+
+TrackGeneratorOptions opts(LayoutKind kind, std::uint64_t seed) {
+  TrackGeneratorOptions o;
+  o.kind = kind;
+  o.seed = seed;
+  return o;
+}
+
+V2 heading(double yaw) { return {std::cos(yaw), std::sin(yaw)}; }
+V2 left_of(double yaw) { return {-std::sin(yaw), std::cos(yaw)}; }
+
+// The start line: two big orange cones each side, 6 m ahead of car_start (the EPFL files), across the heading;
+// car_start midway between the boundaries.
+void expect_start_line(const test::LayoutRows& l, std::size_t timing_cones) {
+  ASSERT_EQ(l.big_orange.size(), timing_cones);
+  int left = 0, right = 0;
+  V2 mean = V2::Zero();
+  int near = 0;
+  for (const V2& p : l.big_orange) {
+    const double ahead = (p - l.start).dot(heading(l.yaw));
+    if (ahead < 0 || ahead > 10) continue;
+    ++near;
+    mean += p;
+    ((p - l.start).dot(left_of(l.yaw)) > 0 ? left : right)++;
+  }
+  ASSERT_EQ(near, 4);
+  EXPECT_EQ(left, 2);
+  EXPECT_EQ(right, 2);
+  mean /= 4.0;
+  EXPECT_NEAR((mean - l.start).dot(heading(l.yaw)), 6.0, 0.05);
+  EXPECT_NEAR((mean - l.start).dot(left_of(l.yaw)), 0.0, 0.05);
+  const double dl = test::distance_to_polyline(l.start, l.blue, false);
+  const double dr = test::distance_to_polyline(l.start, l.yellow, false);
+  EXPECT_NEAR(dl, dr, 0.05);
+}
+
+void expect_course_rules(const TrackGeneratorOptions& o, bool closed, test::CourseFigures* out = nullptr) {
+  SCOPED_TRACE(std::string(sim::to_string(o.kind)) + (closed ? "" : " open") + " seed " + std::to_string(o.seed));
+  const auto l = generate_rows(o);
+  EXPECT_EQ(l.car_starts, 1);
+  EXPECT_EQ(l.unknown, 0);
+  EXPECT_TRUE(l.orange.empty());
+  ASSERT_GT(l.blue.size(), 20u);
+  ASSERT_GT(l.yellow.size(), 20u);
+  const auto f = test::measure_course(l, closed);
+  // Width: the rules' 3 m minimum, and within the sampled range. Every cone is at least the width from every
+  // cone across (exact); along the track, to the smooth curve through the other boundary's cones (a spline
+  // through cones 5 m apart where a turn begins strays from the arc they stand on by up to ~10 cm).
+  EXPECT_GE(f.cone_width_min, std::max(3.0, o.width_min) - 1e-3);
+  EXPECT_GE(f.width_min, std::max(3.0, o.width_min) - 0.15);
+  EXPECT_LE(f.width_min, o.width_max + 0.15);
+  EXPECT_LE(f.width_max, o.width_max + 0.15);
+  // Cones at most 5 m apart (and the option's maximum), denser in turns: no gap over 1 m spans more than 0.5 rad
+  // of a turn's arc, and the mean gap in turns tighter than 10 m is below the straights'.
+  EXPECT_LE(f.gap_max, std::min(5.0, o.spacing_max) + 1e-3);
+  EXPECT_LE(f.gap_over_turn, 0.5 + 1e-3) << "a gap spans too much of a turn";
+  if (f.gap_mean_tight > 0 && f.gap_mean_straight > 0) {
+    EXPECT_LT(f.gap_mean_tight, f.gap_mean_straight);
+  }
+  // No turn tighter outside than the rules' 9 m hairpin.
+  EXPECT_GE(2.0 * f.outer_radius_min, 9.0 - 0.02);
+  // Straights up to 80 m: the longest line of cones, which can reach a cone into each bend.
+  EXPECT_LE(f.straight_max, 80.0 + 2.0);
+  // Lap 200–500 m.
+  EXPECT_GE(f.length, std::max(200.0, o.lap_min));
+  EXPECT_LE(f.length, std::min(500.0, o.lap_max));
+  // One simple course: no chord crosses another; different parts keep their separation.
+  EXPECT_FALSE(f.boundaries_cross);
+  EXPECT_GE(f.same_boundary_parts_min, o.separation - 0.05);
+  EXPECT_GE(f.left_right_min, std::min(3.0, o.separation) - 0.05);
+  expect_start_line(l, closed ? 4 : 8);
+  if (out) *out = f;
+}
+
+TEST(TrackGenerator, TrackdriveLoopsKeepEveryRule) {
+  int hairpins_at_minimum = 0, long_straights = 0, slaloms = 0;
+  std::set<double> widths;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    test::CourseFigures f;
+    expect_course_rules(opts(LayoutKind::Trackdrive, seed), true, &f);
+    if (2.0 * f.outer_radius_min < 9.2) ++hairpins_at_minimum;
+    if (f.straight_max > 60.0) ++long_straights;
+    if (f.slalom_lines > 0) ++slaloms;
+    widths.insert(std::round(f.cone_width_min * 10.0) / 10.0);
+  }
+  // The defaults reach the rules' edges: hairpins at the 9 m minimum, straights towards 80 m, slaloms, and a
+  // spread of widths.
+  EXPECT_GE(hairpins_at_minimum, kSeeds / 8);
+  EXPECT_GE(long_straights, kSeeds / 8);
+  EXPECT_GE(slaloms, kSeeds / 8);
+  EXPECT_GE(widths.size(), 5u);
+}
+
+TEST(TrackGenerator, AutocrossLoopsKeepEveryRule) {
+  for (int seed = 1; seed <= kSeeds; ++seed) expect_course_rules(opts(LayoutKind::Autocross, seed), true);
+}
+
+TEST(TrackGenerator, OpenCoursesKeepEveryRule) {
+  for (int seed = 1; seed <= kSeeds / 4; ++seed) {
+    auto o = opts(LayoutKind::Autocross, seed);
+    o.open = true;
+    expect_course_rules(o, false);
+  }
+}
+
+TEST(TrackGenerator, OptionsNarrowTheSampledRanges) {
+  for (int seed = 1; seed <= 6; ++seed) {
+    auto o = opts(LayoutKind::Trackdrive, seed);
+    o.width_min = o.width_max = 3.0;
+    o.spacing_min = o.spacing_max = 3.5;
+    o.lap_min = 250, o.lap_max = 300;
+    test::CourseFigures f;
+    expect_course_rules(o, true, &f);
+    EXPECT_NEAR(f.cone_width_min, 3.0, 0.01);
+    EXPECT_NEAR(f.gap_max, 3.5, 0.05);
+  }
+  // Only hairpins and straights into them (turns are needed to close): every layout has a rules-minimum hairpin.
+  auto o = opts(LayoutKind::Trackdrive, 3);
+  o.width_min = o.width_max = 3.0;
+  o.shares = {0, 0, 1, 0, 0, 0, 1};
+  test::CourseFigures f;
+  expect_course_rules(o, true, &f);
+  EXPECT_NEAR(2.0 * f.outer_radius_min, 9.0, 0.05);
+}
+
+// Acceleration: the 75 m straight, the braking zone in orange closed by a row, measured from the cones.
+TEST(TrackGenerator, AccelerationLanesKeepEveryRule) {
+  std::set<int> zones;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    SCOPED_TRACE("acceleration seed " + std::to_string(seed));
+    const auto o = opts(LayoutKind::Acceleration, seed);
+    const auto l = generate_rows(o);
+    const V2 fwd = heading(l.yaw), lat = left_of(l.yaw);
+    auto along = [&](const V2& p) { return (p - l.start).dot(fwd); };
+    auto side = [&](const V2& p) { return (p - l.start).dot(lat); };
+    // Both boundaries straight and parallel to the start heading, the car on the lane's centre line.
+    ASSERT_GE(l.blue.size(), 14u);
+    ASSERT_GE(l.yellow.size(), 14u);
+    const double yl = side(l.blue.front()), yr = side(l.yellow.front());
+    for (const V2& p : l.blue) EXPECT_NEAR(side(p), yl, 0.01);
+    for (const V2& p : l.yellow) EXPECT_NEAR(side(p), yr, 0.01);
+    const double width = yl - yr;
+    EXPECT_GE(width, 3.0 - 1e-3);
+    EXPECT_LE(width, 5.0 + 1e-3);
+    EXPECT_NEAR(yl + yr, 0.0, 0.01);
+    // Timing: four big orange cones at the start line and four at the finish line 75 m on, on the boundaries.
+    ASSERT_EQ(l.big_orange.size(), 8u);
+    std::vector<double> xs;
+    for (const V2& p : l.big_orange) {
+      xs.push_back(along(p));
+      EXPECT_NEAR(std::fabs(side(p)), 0.5 * width, 0.01);
+    }
+    std::sort(xs.begin(), xs.end());
+    const double start = 0.25 * (xs[0] + xs[1] + xs[2] + xs[3]), finish = 0.25 * (xs[4] + xs[5] + xs[6] + xs[7]);
+    EXPECT_NEAR(finish - start, 75.0, 0.01);
+    EXPECT_GT(start, 0.0);
+    EXPECT_LE(start, 10.0);
+    // The braking zone: orange past the finish, on both sides, to a row across the lane at its end.
+    double end = 0;
+    for (const V2& p : l.orange) {
+      EXPECT_GT(along(p), finish);
+      end = std::max(end, along(p));
+    }
+    const double zone = end - finish;
+    EXPECT_GE(zone, 30.0 - 0.01);
+    EXPECT_LE(zone, 100.0 + 0.01);
+    zones.insert(static_cast<int>(zone / 10));
+    std::vector<double> row;
+    for (const V2& p : l.orange)
+      if (std::fabs(along(p) - end) < 0.01) row.push_back(side(p));
+    std::sort(row.begin(), row.end());
+    ASSERT_GE(row.size(), 3u);
+    EXPECT_NEAR(row.front(), yr, 0.01);
+    EXPECT_NEAR(row.back(), yl, 0.01);
+    for (std::size_t i = 1; i < row.size(); ++i) EXPECT_LE(row[i] - row[i - 1], 1.25) << "the car gets through";
+    // Every cone of a side (blue or yellow, big orange, orange) at most 5 m from the next along the lane.
+    for (double y : {yl, yr}) {
+      std::vector<double> s;
+      for (const auto* set : {&l.blue, &l.yellow, &l.orange, &l.big_orange})
+        for (const V2& p : *set)
+          if (std::fabs(side(p) - y) < 0.01) s.push_back(along(p));
+      std::sort(s.begin(), s.end());
+      EXPECT_LE(s.front(), start + 0.01);
+      for (std::size_t i = 1; i < s.size(); ++i) EXPECT_LE(s[i] - s[i - 1], 5.0 + 1e-3);
+    }
+  }
+  EXPECT_GE(zones.size(), 5u) << "braking zones from 30 to 100 m";
+}
+
+// Skid pad: two concentric ring fits per side (Kasa least squares), then the rules' figures.
+struct Ring {
+  V2 centre = V2::Zero();
+  double radius = 0;
+};
+Ring fit_circle(const std::vector<V2>& pts) {
+  // x² + y² + D·x + E·y + F = 0 in least squares.
+  Eigen::MatrixXd a(static_cast<long>(pts.size()), 3);
+  Eigen::VectorXd b(static_cast<long>(pts.size()));
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    a.row(static_cast<long>(i)) << pts[i].x(), pts[i].y(), 1.0;
+    b(static_cast<long>(i)) = -pts[i].squaredNorm();
+  }
+  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(b);
+  Ring r;
+  r.centre = V2(-0.5 * s(0), -0.5 * s(1));
+  r.radius = std::sqrt(r.centre.squaredNorm() - s(2));
+  return r;
+}
+
+TEST(TrackGenerator, SkidpadsAreTheRulesFigureOfEight) {
+  for (int seed = 1; seed <= kSeeds / 2; ++seed) {
+    SCOPED_TRACE("skidpad seed " + std::to_string(seed));
+    const auto l = generate_rows(opts(LayoutKind::Skidpad, seed));
+    const V2 fwd = heading(l.yaw), lat = left_of(l.yaw);
+    struct Circle {
+      Ring inner, outer;
+      std::vector<V2> inner_pts, outer_pts;
+      int inner_colour = 0, outer_colour = 0;  // +1 blue, -1 yellow, 0 mixed
+    };
+    std::array<Circle, 2> circles;  // [0] right, [1] left of the entry
+    for (int k = 0; k < 2; ++k) {
+      std::vector<std::pair<V2, int>> pts;
+      for (const V2& p : l.blue)
+        if (((p - l.start).dot(lat) > 0) == (k == 1)) pts.push_back({p, 1});
+      for (const V2& p : l.yellow)
+        if (((p - l.start).dot(lat) > 0) == (k == 1)) pts.push_back({p, -1});
+      V2 mean = V2::Zero();
+      for (const auto& [p, c] : pts) mean += p;
+      mean /= static_cast<double>(pts.size());
+      std::vector<V2> all;
+      for (const auto& [p, c] : pts) all.push_back(p);
+      const Ring rough = fit_circle(all);
+      Circle& c = circles[static_cast<std::size_t>(k)];
+      std::set<int> ic, oc;
+      for (const auto& [p, col] : pts) {
+        const bool inner = (p - rough.centre).norm() < rough.radius;
+        (inner ? c.inner_pts : c.outer_pts).push_back(p);
+        (inner ? ic : oc).insert(col);
+      }
+      c.inner = fit_circle(c.inner_pts);
+      c.outer = fit_circle(c.outer_pts);
+      c.inner_colour = ic.size() == 1 ? *ic.begin() : 0;
+      c.outer_colour = oc.size() == 1 ? *oc.begin() : 0;
+      EXPECT_EQ(c.inner_pts.size(), 16u);
+      EXPECT_EQ(c.outer_pts.size(), 13u);
+      EXPECT_NEAR((c.inner.centre - c.outer.centre).norm(), 0.0, 0.01);
+      EXPECT_NEAR(2.0 * c.inner.radius, 15.25, 0.01);
+      EXPECT_NEAR(2.0 * c.outer.radius, 21.25, 0.01);
+      // Neighbouring cones of a ring at most 5 m apart.
+      for (const auto* ring : {&c.inner_pts, &c.outer_pts})
+        for (const V2& p : *ring) {
+          double nearest = 1e9;
+          for (const V2& q : *ring)
+            if (&p != &q) nearest = std::min(nearest, (p - q).norm());
+          EXPECT_LE(nearest, 5.0);
+        }
+    }
+    const V2 cr = circles[0].inner.centre, cl = circles[1].inner.centre;
+    EXPECT_NEAR((cl - cr).norm(), 18.25, 0.01);
+    EXPECT_NEAR((cl - cr).normalized().dot(fwd), 0.0, 0.01) << "the centres' line is across the entry";
+    // Colours as driven (DV marking: blue left, yellow right): the right circle clockwise has its inner ring on
+    // the car's right, the left circle counter-clockwise on its left.
+    EXPECT_EQ(circles[0].inner_colour, -1);
+    EXPECT_EQ(circles[0].outer_colour, 1);
+    EXPECT_EQ(circles[1].inner_colour, 1);
+    EXPECT_EQ(circles[1].outer_colour, -1);
+    // The timing line through the centres: four big orange cones around the crossing; car_start 15 m before it
+    // on the entry axis.
+    const V2 crossing = 0.5 * (cr + cl);
+    ASSERT_EQ(l.big_orange.size(), 4u);
+    V2 mean = V2::Zero();
+    for (const V2& p : l.big_orange) mean += 0.25 * p;
+    EXPECT_NEAR((mean - crossing).norm(), 0.0, 0.01);
+    EXPECT_NEAR((crossing - l.start).dot(fwd), 15.0, 0.01);
+    EXPECT_NEAR((crossing - l.start).dot(lat), 0.0, 0.01);
+    // Orange: the entry lane before the crossing and the exit lane after it, closed by a row.
+    int entry = 0;
+    double exit_end = 0;
+    for (const V2& p : l.orange) {
+      const double x = (p - crossing).dot(fwd);
+      EXPECT_LE(std::fabs((p - crossing).dot(lat)), 1.5 + 1e-3) << "lane cones within the 3 m lane";
+      if (x < 0) ++entry;
+      exit_end = std::max(exit_end, x);
+    }
+    EXPECT_GE(entry, 4);
+    EXPECT_GE(exit_end, 20.0 - 0.01);
+    EXPECT_LE(exit_end, 25.0 + 0.01);
+    std::vector<double> row;
+    for (const V2& p : l.orange)
+      if (std::fabs((p - crossing).dot(fwd) - exit_end) < 0.01) row.push_back((p - crossing).dot(lat));
+    std::sort(row.begin(), row.end());
+    ASSERT_GE(row.size(), 3u);
+    for (std::size_t i = 1; i < row.size(); ++i) EXPECT_LE(row[i] - row[i - 1], 1.25);
+  }
+}
+
+TEST(TrackGenerator, SameSeedAndOptionsGiveTheSameBytes) {
+  for (auto kind : {LayoutKind::Trackdrive, LayoutKind::Autocross, LayoutKind::Acceleration, LayoutKind::Skidpad}) {
+    const auto a = format_track(sim::generate_track(opts(kind, 17)));
+    const auto b = format_track(sim::generate_track(opts(kind, 17)));
+    const auto c = format_track(sim::generate_track(opts(kind, 18)));
+    EXPECT_EQ(a, b) << sim::to_string(kind);
+    EXPECT_NE(a, c) << sim::to_string(kind);
+  }
+  // Trackdrive and autocross of one seed are different layouts.
+  EXPECT_NE(format_track(sim::generate_track(opts(LayoutKind::Trackdrive, 5))),
+            format_track(sim::generate_track(opts(LayoutKind::Autocross, 5))));
+}
+
+TEST(TrackGenerator, BadOptionsAreRejectedNamingTheOption) {
+  auto expect_rejected = [](TrackGeneratorOptions o, const std::string& word) {
+    try {
+      sim::generate_track(o);
+      ADD_FAILURE() << "accepted; expected a message with '" << word << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  auto o = opts(LayoutKind::Trackdrive, 1);
+  o.width_min = 2.5;
+  expect_rejected(o, "3 m minimum");
+  o = opts(LayoutKind::Trackdrive, 1);
+  o.spacing_max = 6;
+  expect_rejected(o, "5 m maximum");
+  o = opts(LayoutKind::Trackdrive, 1);
+  o.lap_max = 600;
+  expect_rejected(o, "500 m");
+  o = opts(LayoutKind::Acceleration, 1);
+  o.braking_max = 150;
+  expect_rejected(o, "100 m");
+  o = opts(LayoutKind::Trackdrive, 1);
+  o.shares = {1, 0, 0, 1, 1, 0, 0};
+  expect_rejected(o, "turning feature");
+  o = opts(LayoutKind::Trackdrive, 1);
+  o.width_min = std::nan("");
+  expect_rejected(o, "finite");
+  EXPECT_FALSE(sim::layout_kind_from_string("endurance"));
+  EXPECT_EQ(sim::layout_kind_from_string("skidpad"), LayoutKind::Skidpad);
+}
+
+TEST(TrackGenerator, FormattedTrackReadsBackToTheSameCones) {
+  const Track t = sim::generate_track(opts(LayoutKind::Acceleration, 2));
+  const Track back = parse_track(format_track(t), "round_trip.csv");
+  ASSERT_EQ(back.cones.size(), t.cones.size());
+  for (std::size_t i = 0; i < t.cones.size(); ++i) {
+    EXPECT_EQ(back.cones[i].role, t.cones[i].role);
+    EXPECT_NEAR((back.cones[i].position - t.cones[i].position).norm(), 0.0, 1e-4);
+  }
+  EXPECT_NEAR(back.start.yaw, t.start.yaw, 1e-6);
+}
+
+}  // namespace
+}  // namespace fsd
