@@ -7,7 +7,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/rotation.hpp"
 
 namespace fsd {
 
@@ -57,10 +56,10 @@ class Reader {
       out.push_back(number_in(v[i], field + "[" + std::to_string(i) + "]", -HUGE_VAL, HUGE_VAL));
     return out;
   }
-  cv::Matx33d matrix3(const std::string& field) const {
+  Eigen::Matrix3d matrix3(const std::string& field) const {
     const json& v = at(field);
     if (!v.is_array() || v.size() != 3) fail(field, "expected a 3×3 array of numbers (3 rows of 3)");
-    cv::Matx33d m;
+    Eigen::Matrix3d m;
     for (int r = 0; r < 3; ++r) {
       const auto row = numbers(field + "[" + std::to_string(r) + "]", v[static_cast<std::size_t>(r)]);
       if (row.size() != 3) fail(field, "row " + std::to_string(r) + " has " + std::to_string(row.size()) + " numbers, expected 3");
@@ -75,7 +74,7 @@ class Reader {
     for (std::size_t i = 0; i < 4; ++i) {
       const auto p = numbers(field + "[" + std::to_string(i) + "]", v[i]);
       if (p.size() != 2) fail(field, "point " + std::to_string(i + 1) + " must have 2 numbers");
-      q[i] = cv::Point2d(p[0], p[1]);
+      q[i] = Vec2(p[0], p[1]);
     }
     return q;
   }
@@ -101,7 +100,7 @@ CameraIntrinsics read_intrinsics(const Reader& r) {
   in.width = r.integer("width", 1, kMaxImageSide);
   in.height = r.integer("height", 1, kMaxImageSide);
   in.K = r.matrix3("K");
-  const cv::Matx33d& K = in.K;
+  const Eigen::Matrix3d& K = in.K;
   if (!(K(0, 0) > 0) || !(K(1, 1) > 0)) r.fail("K", "focal lengths K[0][0] and K[1][1] must be positive");
   if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1)
     r.fail("K", "must be upper triangular with K[2][2] = 1: [[fx, s, cx], [0, fy, cy], [0, 0, 1]]");
@@ -144,15 +143,15 @@ HomographyCalibration read_homography(const Reader& r) {
   h.ground_points = r.quad("ground_points");
   for (std::size_t i = 0; i < 4; ++i) {
     const auto g = image_to_ground(h.homography, (*h.image_points)[i]);
-    const cv::Point2d want = (*h.ground_points)[i];
-    if (!g || cv::norm(*g - want) > 0.01 + 1e-3 * cv::norm(want))
+    const Vec2 want = (*h.ground_points)[i];
+    if (!g || (*g - want).norm() > 0.01 + 1e-3 * want.norm())
       r.fail("image_to_ground", "does not map image point " + std::to_string(i + 1) + " onto ground point " +
                                     std::to_string(i + 1) + " (recompute it with fsd calibrate-homography)");
   }
   return h;
 }
 
-json matrix_json(const cv::Matx33d& m) {
+json matrix_json(const Eigen::Matrix3d& m) {
   json rows = json::array();
   for (int r = 0; r < 3; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2)});
   return rows;
@@ -160,16 +159,10 @@ json matrix_json(const cv::Matx33d& m) {
 
 json quad_json(const PointQuad& q) {
   json a = json::array();
-  for (const auto& p : q) a.push_back({p.x, p.y});
+  for (const auto& p : q) a.push_back({p.x(), p.y()});
   return a;
 }
 }  // namespace
-
-Pose3 CameraMount::body_from_optical() const {
-  Pose3 T = pose_zyx(Vec3(x, y, z), yaw, pitch, roll);
-  T.linear() = T.linear() * mount_from_optical();
-  return T;
-}
 
 CameraCalibration parse_camera_calibration(const json& j, const std::string& origin) {
   const Reader r(j, origin, "");
