@@ -64,7 +64,7 @@ inline cv::Mat draw_cone(const DrawnCone& d) {
   // The cone: a trapezoid from the base to a narrow tip, bands of stripe paint, shaded across (sun from the left).
   const double H = d.fill * h, base_y = d.base >= 0 ? d.base * h : h - (h - H) / 2.0, cx = d.centre * w;
   const double r0 = d.aspect * H / 2, r1 = 0.08 * H;
-  const int rows = std::max(1, static_cast<int>(std::ceil(H)));
+  const int rows = d.fill > 0 ? std::max(1, static_cast<int>(std::ceil(H))) : 0;  // fill 0: background only
   for (int k = 0; k < rows; ++k) {
     const double z0 = static_cast<double>(k) / rows, z1 = static_cast<double>(k + 1) / rows;
     const double zm = (z0 + z1) / 2;
