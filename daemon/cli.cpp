@@ -20,6 +20,8 @@ int run_cli(int argc, char** argv) {
   add_sim_command(app, exit_code);
   add_lidar_dump_command(app, exit_code);
   add_calibrate_homography_command(app, exit_code);
+  add_classify_command(app, exit_code);
+  add_train_classifier_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

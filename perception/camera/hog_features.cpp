@@ -10,6 +10,7 @@ namespace fsd {
 namespace {
 constexpr int kMaxWindow = 256;
 constexpr int kMaxBins = 36;
+constexpr std::size_t kMaxFeatures = 100000;  // far above any useful cone window; bounds a model file's size
 }  // namespace
 
 std::string HogParameters::check() const {
@@ -23,6 +24,8 @@ std::string HogParameters::check() const {
   if ((window_width - block) % stride != 0 || (window_height - block) % stride != 0)
     return "window minus block must be a multiple of the stride";
   if (!in(bins, 2, kMaxBins)) return "bins must be 2..36";
+  if (descriptor_size() > kMaxFeatures)
+    return "the geometry gives " + std::to_string(descriptor_size()) + " features, more than " + std::to_string(kMaxFeatures);
   return {};
 }
 
