@@ -32,9 +32,10 @@ struct Frames {
     cfg.frames_per_track = 40;
     cfg.vary_camera = false;  // the default camera: 640 x 480, 70°
     cfg.seed = 7;
+    cfg.max_range = 25.0;
     std::size_t n = 0;
     render_camera_scenes(cfg, [&](const RenderedFrame& f) {
-      // About 20 candidates: the nearest ones, as a LiDAR within 20 m gives them.
+      // About 20 candidates: the nearest ones within 25 m.
       RenderedFrame g = f;
       std::sort(g.candidates.begin(), g.candidates.end(),
                 [](const auto& a, const auto& b) { return a.range < b.range; });

@@ -75,25 +75,7 @@ std::vector<CleanCandidate> clean_candidates(const RenderedFrame& frame, const C
 
 TrainingSet build_training_set(const TrainingSetConfig& cfg) {
   TrainingSet set;
-  sim::Rng rng(sim::hash64(cfg.scenes.seed, 0x7E57));
-  render_camera_scenes(cfg.scenes, [&](const RenderedFrame& f) {
-    const bool held_back = (f.frame + 1) % cfg.held_back_every == 0;
-    const ConeProjector projector(f.calibration);
-    for (const auto& [c, roi] : clean_candidates(f, projector)) {
-      const cv::Mat pixels = cut_roi(f.bgr, roi);
-      if (held_back) {
-        set.held_back.add(pixels, c->is_cone);
-        continue;
-      }
-      add(set.train, pixels, c->is_cone, true);
-      set.kinds[c->kind] += 2;
-      if (const cv::Mat tight = tight_crop(f, *c, rng); !tight.empty()) {
-        add(set.train, tight, c->is_cone, false);
-        ++set.kinds[c->kind];
-      }
-    }
-  });
-
+  // Real crops first: a bad folder or file is reported before minutes of rendering.
   if (!cfg.real_dir.empty()) {
     for (const bool cone : {true, false}) {
       const std::filesystem::path dir = cfg.real_dir / (cone ? "cone" : "not_cone");
@@ -113,6 +95,25 @@ TrainingSet build_training_set(const TrainingSetConfig& cfg) {
       }
     }
   }
+  sim::Rng rng(sim::hash64(cfg.scenes.seed, 0x7E57));
+  render_camera_scenes(cfg.scenes, [&](const RenderedFrame& f) {
+    const bool held_back = (f.frame + 1) % cfg.held_back_every == 0;
+    const ConeProjector projector(f.calibration);
+    for (const auto& [c, roi] : clean_candidates(f, projector)) {
+      const cv::Mat pixels = cut_roi(f.bgr, roi);
+      if (held_back) {
+        set.held_back.add(pixels, c->is_cone);
+        continue;
+      }
+      add(set.train, pixels, c->is_cone, true);
+      set.kinds[c->kind] += 2;
+      if (const cv::Mat tight = tight_crop(f, *c, rng); !tight.empty()) {
+        add(set.train, tight, c->is_cone, false);
+        ++set.kinds[c->kind];
+      }
+    }
+  });
+
   return set;
 }
 

@@ -27,8 +27,8 @@ ImageHeader png_header(std::span<const std::uint8_t> b, const std::string& origi
     fail(origin, "corrupt PNG: the first chunk is not a 13-byte IHDR");
   const std::uint32_t w = be32(b, 16), h = be32(b, 20);
   if (w > static_cast<std::uint32_t>(kMaxImageSide) || h > static_cast<std::uint32_t>(kMaxImageSide))
-    fail(origin, "image of " + std::to_string(w) + " x " + std::to_string(h) + " px is larger than " +
-                     std::to_string(kMaxImageSide) + " px on a side");
+    fail(origin, "image of " + std::to_string(w) + " x " + std::to_string(h) + " px is too large (at most " +
+                     std::to_string(kMaxImageSide) + " px on a side)");
   return {ImageFormat::Png, static_cast<int>(w), static_cast<int>(h)};
 }
 
