@@ -157,7 +157,7 @@ CameraCalibration load_camera_calibration(const std::filesystem::path& file) {
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e999
     throw CalibrationError(file.string() + ": not valid JSON: " + e.what());
   }
   return parse_camera_calibration(j, file.string());

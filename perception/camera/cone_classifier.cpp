@@ -49,7 +49,7 @@ ConeClassifierModel parse_cone_classifier_model(const std::string& text, const s
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e999
     throw ClassifierModelError(origin + ": not valid JSON: " + e.what());
   }
   const Fields f(j, origin, "");

@@ -160,6 +160,10 @@ TEST_F(CameraCalibrationFile, UnreadableFilesAreReported) {
   } catch (const CalibrationError& e) {
     EXPECT_NE(std::string(e.what()).find("not valid JSON"), std::string::npos) << e.what();
   }
+  // A number beyond a double is nlohmann's out_of_range, not a parse_error (found by cone_model_fuzz).
+  const fs::path overflow = dir_ / "overflow.json";
+  std::ofstream(overflow) << "{ \"extrinsics\": { \"x\": 1e999 } }";
+  EXPECT_THROW(load_camera_calibration(overflow), CalibrationError);
   EXPECT_THROW(save_camera_calibration(full_calibration(), dir_ / "no_such_dir" / "c.json"), CalibrationError);
 }
 
