@@ -9,7 +9,9 @@ namespace fsd {
 
 namespace {
 constexpr int kMaxWindow = 256;
-constexpr int kMaxBins = 36;
+// OpenCV's HOG is built for blocks of 2 x 2 cells and about 9 bins: a block of one cell with 2 bins crashed in
+// HOGDescriptor::compute (found by cone_model_fuzz), so the geometry is held to what it is made for.
+constexpr int kMinBins = 6, kMaxBins = 18;
 constexpr std::size_t kMaxFeatures = 100000;  // far above any useful cone window; bounds a model file's size
 }  // namespace
 
@@ -17,13 +19,12 @@ std::string HogParameters::check() const {
   const auto in = [](int v, int lo, int hi) { return v >= lo && v <= hi; };
   if (!in(window_width, 8, kMaxWindow) || !in(window_height, 8, kMaxWindow))
     return "window must be 8..256 px on each side";
-  if (!in(cell, 2, 64) || !in(block, cell, std::min(window_width, window_height)))
-    return "cell must be 2..64 px and block between the cell and the window";
-  if (block % cell != 0 || stride % cell != 0 || !in(stride, cell, block))
-    return "block and stride must be multiples of the cell, the stride at most the block";
+  if (!in(cell, 4, 64) || block != 2 * cell || block > std::min(window_width, window_height))
+    return "cell must be 4..64 px and a block 2 x 2 cells, no larger than the window";
+  if (stride != cell && stride != block) return "stride must be one cell or one block";
   if ((window_width - block) % stride != 0 || (window_height - block) % stride != 0)
     return "window minus block must be a multiple of the stride";
-  if (!in(bins, 2, kMaxBins)) return "bins must be 2..36";
+  if (!in(bins, kMinBins, kMaxBins)) return "bins must be 6..18";
   if (descriptor_size() > kMaxFeatures)
     return "the geometry gives " + std::to_string(descriptor_size()) + " features, more than " + std::to_string(kMaxFeatures);
   return {};

@@ -20,7 +20,7 @@ struct HogParameters {
 
   bool operator==(const HogParameters&) const = default;
   // Empty when the geometry is one HOGDescriptor accepts, else what is wrong.
-  std::string check() const;
+  std::string check() const;  // blocks of 2 x 2 cells, stride a cell or a block, 6..18 bins
   std::size_t descriptor_size() const;
 };
 

@@ -139,6 +139,10 @@ TEST(CameraClassifierModel, EachErrorNamesTheField) {
       {"window of one number", [](json& j) { j["hog"]["window"] = {32}; }, "field 'hog.window': expected [width, height]"},
       {"window not a multiple", [](json& j) { j["hog"]["window"] = {33, 48}; }, "multiple of the stride"},
       {"cell too big", [](json& j) { j["hog"]["cell"] = 32; }, "field 'hog'"},
+      // One-cell blocks with 2 bins crashed OpenCV's HOGDescriptor::compute (found by cone_model_fuzz).
+      {"one-cell blocks", [](json& j) { j["hog"] = {{"window", {16, 24}}, {"block", 8}, {"stride", 8}, {"cell", 8}, {"bins", 9}}; },
+       "a block 2 x 2 cells"},
+      {"two bins", [](json& j) { j["hog"]["bins"] = 2; }, "bins must be 6..18"},
       {"fractional bins", [](json& j) { j["hog"]["bins"] = 9.5; }, "field 'hog.bins': expected an integer"},
       {"no weights", [](json& j) { j["svm"].erase("weights"); }, "field 'svm.weights': missing"},
       {"too few weights", [](json& j) { j["svm"]["weights"].erase(0); }, "field 'svm.weights': has 539 values"},
