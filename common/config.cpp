@@ -122,7 +122,7 @@ Config Config::load(std::shared_ptr<const ConfigSchema> schema, const std::files
   json j;
   try {
     j = json::parse(f, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e999
     throw ConfigError(file.string() + ": not valid JSON: " + e.what());
   }
   Config c(std::move(schema));

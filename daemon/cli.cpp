@@ -22,6 +22,8 @@ int run_cli(int argc, char** argv) {
   add_calibrate_homography_command(app, exit_code);
   add_mcap_command(app, exit_code);
   add_track_command(app, exit_code);
+  add_classify_command(app, exit_code);
+  add_train_classifier_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -26,7 +26,7 @@ int calibrate_homography(const CalibrateHomographyArgs& a) {
     calib.homography = h;
     save_camera_calibration(calib, a.out);
 
-    const cv::Matx33d& m = h.homography.image_to_ground;
+    const Eigen::Matrix3d& m = h.homography.image_to_ground;
     std::printf("image -> ground homography written to %s\n", a.out.c_str());
     for (int r = 0; r < 3; ++r) std::printf("  [% .9g % .9g % .9g]\n", m(r, 0), m(r, 1), m(r, 2));
     return kExitOk;

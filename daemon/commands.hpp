@@ -14,5 +14,7 @@ void add_lidar_dump_command(CLI::App& app, int& exit_code);
 void add_calibrate_homography_command(CLI::App& app, int& exit_code);
 void add_mcap_command(CLI::App& app, int& exit_code);
 void add_track_command(CLI::App& app, int& exit_code);
+void add_classify_command(CLI::App& app, int& exit_code);
+void add_train_classifier_command(CLI::App& app, int& exit_code);
 
 }  // namespace fsd

@@ -9,6 +9,7 @@
 #include "drivers/vcu/vcu_config.hpp"
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
+#include "perception/camera/camera_stage.hpp"
 
 namespace fsd {
 
@@ -48,6 +49,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   run_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
+  describe_camera_stage(*schema);
   sim::describe_virtual_car_config(*schema);
   describe_control(*schema);
   web::web_section().describe(*schema);

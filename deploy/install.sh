@@ -8,11 +8,14 @@ if [[ -d web/dashboard/dist ]]; then
   mkdir -p /usr/local/share/fsd && rm -rf /usr/local/share/fsd/dashboard
   cp -r web/dashboard/dist /usr/local/share/fsd/dashboard
 fi
+# The camera's cone classifier (fsd train-classifier writes it; perception.camera.classifier.model reads it).
+install -D -m 0644 perception/models/cone_hog_svm.json /usr/local/share/fsd/models/cone_hog_svm.json
 install -d /etc/fsd
-# The service runs from /: its dashboard is the installed copy, not the checkout's.
+# The service runs from /: its dashboard and model are the installed copies, not the checkout's.
 if [[ ! -f /etc/fsd/config.json ]]; then
-  sed 's#"web_root": "web/dashboard/dist"#"web_root": "/usr/local/share/fsd/dashboard"#' deploy/config/default.json \
-    > /etc/fsd/config.json
+  sed -e 's#"web_root": "web/dashboard/dist"#"web_root": "/usr/local/share/fsd/dashboard"#' \
+      -e 's#"model": "perception/models/cone_hog_svm.json"#"model": "/usr/local/share/fsd/models/cone_hog_svm.json"#' \
+      deploy/config/default.json > /etc/fsd/config.json
   chmod 0644 /etc/fsd/config.json
 fi
 fsd config check /etc/fsd/config.json

@@ -3,11 +3,10 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
-#include "common/rotation.hpp"
+#include "common/json_fields.hpp"
 
 namespace fsd {
 
@@ -19,89 +18,40 @@ constexpr int kVersion = 1;
 constexpr double kMaxMountOffset = 10.0;    // m: anything farther is not on the car
 constexpr int kMaxImageSide = 16384;
 
-// Reads fields of one JSON object and reports problems with the file and the dotted field name.
-class Reader {
- public:
-  Reader(const json& j, std::string origin, std::string path) : j_(j), origin_(std::move(origin)), path_(std::move(path)) {
-    if (!j_.is_object()) fail("", "expected an object, got " + std::string(j_.type_name()));
-  }
+using Reader = JsonFields<CalibrationError>;
 
-  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-    const std::string name = field.empty() ? path_ : (path_.empty() ? field : path_ + "." + field);
-    throw CalibrationError(origin_ + ": " + (name.empty() ? "" : "field '" + name + "': ") + problem);
+Eigen::Matrix3d matrix3(const Reader& r, const std::string& field) {
+  const json& v = r.at(field);
+  if (!v.is_array() || v.size() != 3) r.fail(field, "expected a 3×3 array of numbers (3 rows of 3)");
+  Eigen::Matrix3d m;
+  for (int row = 0; row < 3; ++row) {
+    const auto values = r.numbers(field + "[" + std::to_string(row) + "]", v[static_cast<std::size_t>(row)]);
+    if (values.size() != 3)
+      r.fail(field, "row " + std::to_string(row) + " has " + std::to_string(values.size()) + " numbers, expected 3");
+    for (int c = 0; c < 3; ++c) m(row, c) = values[static_cast<std::size_t>(c)];
   }
+  return m;
+}
 
-  bool has(const std::string& field) const { return j_.contains(field); }
-  const json& at(const std::string& field) const {
-    if (!j_.contains(field)) fail(field, "missing");
-    return j_.at(field);
+PointQuad quad(const Reader& r, const std::string& field) {
+  const json& v = r.at(field);
+  if (!v.is_array() || v.size() != 4) r.fail(field, "expected 4 points [a, b]");
+  PointQuad q;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto p = r.numbers(field + "[" + std::to_string(i) + "]", v[i]);
+    if (p.size() != 2) r.fail(field, "point " + std::to_string(i + 1) + " must have 2 numbers");
+    q[i] = Vec2(p[0], p[1]);
   }
-  Reader object(const std::string& field) const { return {at(field), origin_, name(field)}; }
-  void only(const std::set<std::string>& known) const {
-    for (const auto& [key, value] : j_.items())
-      if (!known.contains(key)) fail(key, "unknown field");
-  }
-
-  double number(const std::string& field, double lo, double hi) const { return number_in(at(field), field, lo, hi); }
-  int integer(const std::string& field, int lo, int hi) const {
-    const json& v = at(field);
-    if (!v.is_number_integer()) fail(field, "expected an integer, got " + v.dump());
-    const auto i = v.get<long long>();
-    if (i < lo || i > hi) fail(field, std::to_string(i) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(i);
-  }
-  std::vector<double> numbers(const std::string& field, const json& v) const {
-    if (!v.is_array()) fail(field, "expected an array of numbers, got " + v.dump());
-    std::vector<double> out;
-    for (std::size_t i = 0; i < v.size(); ++i)
-      out.push_back(number_in(v[i], field + "[" + std::to_string(i) + "]", -HUGE_VAL, HUGE_VAL));
-    return out;
-  }
-  cv::Matx33d matrix3(const std::string& field) const {
-    const json& v = at(field);
-    if (!v.is_array() || v.size() != 3) fail(field, "expected a 3×3 array of numbers (3 rows of 3)");
-    cv::Matx33d m;
-    for (int r = 0; r < 3; ++r) {
-      const auto row = numbers(field + "[" + std::to_string(r) + "]", v[static_cast<std::size_t>(r)]);
-      if (row.size() != 3) fail(field, "row " + std::to_string(r) + " has " + std::to_string(row.size()) + " numbers, expected 3");
-      for (int c = 0; c < 3; ++c) m(r, c) = row[static_cast<std::size_t>(c)];
-    }
-    return m;
-  }
-  PointQuad quad(const std::string& field) const {
-    const json& v = at(field);
-    if (!v.is_array() || v.size() != 4) fail(field, "expected 4 points [a, b]");
-    PointQuad q;
-    for (std::size_t i = 0; i < 4; ++i) {
-      const auto p = numbers(field + "[" + std::to_string(i) + "]", v[i]);
-      if (p.size() != 2) fail(field, "point " + std::to_string(i + 1) + " must have 2 numbers");
-      q[i] = cv::Point2d(p[0], p[1]);
-    }
-    return q;
-  }
-  std::string name(const std::string& field) const { return path_.empty() ? field : path_ + "." + field; }
-
- private:
-  double number_in(const json& v, const std::string& field, double lo, double hi) const {
-    if (!v.is_number()) fail(field, "expected a number, got " + v.dump());
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(field, "not a finite number");
-    if (d < lo || d > hi) fail(field, std::to_string(d) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return d;
-  }
-
-  const json& j_;
-  std::string origin_;
-  std::string path_;
-};
+  return q;
+}
 
 CameraIntrinsics read_intrinsics(const Reader& r) {
   r.only({"width", "height", "K", "distortion"});
   CameraIntrinsics in;
   in.width = r.integer("width", 1, kMaxImageSide);
   in.height = r.integer("height", 1, kMaxImageSide);
-  in.K = r.matrix3("K");
-  const cv::Matx33d& K = in.K;
+  in.K = matrix3(r, "K");
+  const Eigen::Matrix3d& K = in.K;
   if (!(K(0, 0) > 0) || !(K(1, 1) > 0)) r.fail("K", "focal lengths K[0][0] and K[1][1] must be positive");
   if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1)
     r.fail("K", "must be upper triangular with K[2][2] = 1: [[fx, s, cx], [0, fy, cy], [0, 0, 1]]");
@@ -133,26 +83,26 @@ HomographyCalibration read_homography(const Reader& r) {
   r.only({"image_to_ground", "image_points", "ground_points"});
   HomographyCalibration h;
   try {
-    h.homography = make_ground_homography(r.matrix3("image_to_ground"));
+    h.homography = make_ground_homography(matrix3(r, "image_to_ground"));
   } catch (const HomographyError& e) {
     r.fail("image_to_ground", e.what());
   }
   if (r.has("image_points") != r.has("ground_points"))
     r.fail(r.has("image_points") ? "ground_points" : "image_points", "missing (give both point lists or neither)");
   if (!r.has("image_points")) return h;
-  h.image_points = r.quad("image_points");
-  h.ground_points = r.quad("ground_points");
+  h.image_points = quad(r, "image_points");
+  h.ground_points = quad(r, "ground_points");
   for (std::size_t i = 0; i < 4; ++i) {
     const auto g = image_to_ground(h.homography, (*h.image_points)[i]);
-    const cv::Point2d want = (*h.ground_points)[i];
-    if (!g || cv::norm(*g - want) > 0.01 + 1e-3 * cv::norm(want))
+    const Vec2 want = (*h.ground_points)[i];
+    if (!g || (*g - want).norm() > 0.01 + 1e-3 * want.norm())
       r.fail("image_to_ground", "does not map image point " + std::to_string(i + 1) + " onto ground point " +
                                     std::to_string(i + 1) + " (recompute it with fsd calibrate-homography)");
   }
   return h;
 }
 
-json matrix_json(const cv::Matx33d& m) {
+json matrix_json(const Eigen::Matrix3d& m) {
   json rows = json::array();
   for (int r = 0; r < 3; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2)});
   return rows;
@@ -160,16 +110,10 @@ json matrix_json(const cv::Matx33d& m) {
 
 json quad_json(const PointQuad& q) {
   json a = json::array();
-  for (const auto& p : q) a.push_back({p.x, p.y});
+  for (const auto& p : q) a.push_back({p.x(), p.y()});
   return a;
 }
 }  // namespace
-
-Pose3 CameraMount::body_from_optical() const {
-  Pose3 T = pose_zyx(Vec3(x, y, z), yaw, pitch, roll);
-  T.linear() = T.linear() * mount_from_optical();
-  return T;
-}
 
 CameraCalibration parse_camera_calibration(const json& j, const std::string& origin) {
   const Reader r(j, origin, "");
@@ -213,7 +157,7 @@ CameraCalibration load_camera_calibration(const std::filesystem::path& file) {
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e999
     throw CalibrationError(file.string() + ": not valid JSON: " + e.what());
   }
   return parse_camera_calibration(j, file.string());

@@ -9,20 +9,15 @@
 //     "homography": { "image_to_ground": [[..],[..],[..]],
 //                     "image_points": [[u,v] ×4], "ground_points": [[x,y] ×4] } }
 //
-// Extrinsics place the camera body frame (x forward, y left, z up; pitch positive looks down; Z-Y-X angles, rad) on
-// the vehicle body frame (rear-axle centre on the ground, metres), like the LiDAR mount in the configuration.
-#include <array>
+// The structs (CameraCalibration, CameraIntrinsics, CameraMount, HomographyCalibration) are pure geometry in
+// common/camera_geometry.hpp, so perception uses them without the file I/O.
 #include <filesystem>
-#include <optional>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
-#include <opencv2/core/matx.hpp>
 
-#include "common/geometry.hpp"
-#include "drivers/camera/ground_homography.hpp"
+#include "common/camera_geometry.hpp"
 
 namespace fsd {
 
@@ -30,30 +25,6 @@ namespace fsd {
 class CalibrationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-struct CameraIntrinsics {
-  int width = 0, height = 0;        // image size the calibration belongs to
-  cv::Matx33d K = cv::Matx33d::eye();
-  std::vector<double> distortion;   // OpenCV order (k1, k2, p1, p2[, k3[, k4, k5, k6[, s1..s4[, τx, τy]]]]), or empty
-};
-
-struct CameraMount {
-  double x = 0, y = 0, z = 0;
-  double roll = 0, pitch = 0, yaw = 0;
-  // Body ← optical frame (x right, y down, z forward).
-  Pose3 body_from_optical() const;
-};
-
-struct HomographyCalibration {
-  GroundHomography homography;
-  std::optional<PointQuad> image_points, ground_points;  // the pairs it was computed from, if known
-};
-
-struct CameraCalibration {
-  std::optional<CameraIntrinsics> intrinsics;
-  std::optional<CameraMount> extrinsics;
-  std::optional<HomographyCalibration> homography;
 };
 
 // `origin` names the source (file) in error messages.

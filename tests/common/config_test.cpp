@@ -82,6 +82,8 @@ TEST(Config, RejectsEachKindOfBadInputNamingKeyAndFile) {
   EXPECT_EQ(load_error(R"({"ctl": {"speed": {"x": 1}}})"), "FILE: key 'ctl.speed': expected a number, got object");
   EXPECT_EQ(load_error(R"([1, 2])"), "FILE: the configuration must be a JSON object");
   EXPECT_EQ(load_error(R"({"ctl": )").substr(0, 23), "FILE: not valid JSON: [");
+  // A number beyond a double is nlohmann's out_of_range, not a parse_error (found by cone_model_fuzz).
+  EXPECT_EQ(load_error(R"({"ctl": {"speed": 1e999}})").substr(0, 23), "FILE: not valid JSON: [");
   EXPECT_THROW(Config::load(schema(), "/nonexistent/fsd.json"), ConfigError);
 }
 

@@ -53,17 +53,19 @@ TEST_F(CalibrateHomographyCommand, WritesAHomographyThatMapsOtherPoints) {
   // Ground (20, −2.5): u = 320 + 50 = 370, v = 240 + 20 = 260.
   const auto px = ground_to_image(c.homography->homography, {20.0, -2.5});
   ASSERT_TRUE(px);
-  EXPECT_NEAR(px->x, 370.0, 1e-3);
-  EXPECT_NEAR(px->y, 260.0, 1e-3);
+  EXPECT_NEAR(px->x(), 370.0, 1e-3);
+  EXPECT_NEAR(px->y(), 260.0, 1e-3);
   const auto g = image_to_ground(c.homography->homography, {320.0, 250.0});  // v = 250 → x = 40, y = 0
   ASSERT_TRUE(g);
-  EXPECT_NEAR(g->x, 40.0, 1e-3);
-  EXPECT_NEAR(g->y, 0.0, 1e-3);
+  EXPECT_NEAR(g->x(), 40.0, 1e-3);
+  EXPECT_NEAR(g->y(), 0.0, 1e-3);
 }
 
 TEST_F(CalibrateHomographyCommand, KeepsTheOtherSectionsOfAnExistingFile) {
   CameraCalibration existing;
-  existing.intrinsics = CameraIntrinsics{640, 480, cv::Matx33d(400, 0, 320, 0, 400, 240, 0, 0, 1), {}};
+  CameraIntrinsics intrinsics{640, 480, Eigen::Matrix3d::Identity(), {}};
+  intrinsics.K << 400, 0, 320, 0, 400, 240, 0, 0, 1;
+  existing.intrinsics = intrinsics;
   existing.extrinsics = CameraMount{0.5, 0, 1.0, 0, 0, 0};
   const fs::path in = dir_ / "in.json", out = dir_ / "out.json";
   save_camera_calibration(existing, in);

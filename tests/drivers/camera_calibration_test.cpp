@@ -33,13 +33,13 @@ CameraCalibration full_calibration() {
   CameraIntrinsics in;
   in.width = 640;
   in.height = 480;
-  in.K = cv::Matx33d(500, 0, 320, 0, 505, 240, 0, 0, 1);
+  in.K << 500, 0, 320, 0, 505, 240, 0, 0, 1;
   in.distortion = {-0.1, 0.02, 0.001, -0.002, 0.0};
   c.intrinsics = in;
   c.extrinsics = CameraMount{0.5, 0.0, 1.2, 0.01, 0.15, -0.02};
   HomographyCalibration h;
-  h.image_points = PointQuad{cv::Point2d(200, 400), cv::Point2d(440, 400), cv::Point2d(380, 300), cv::Point2d(260, 300)};
-  h.ground_points = PointQuad{cv::Point2d(5, 2), cv::Point2d(5, -2), cv::Point2d(10, -2), cv::Point2d(10, 2)};
+  h.image_points = PointQuad{Vec2(200, 400), Vec2(440, 400), Vec2(380, 300), Vec2(260, 300)};
+  h.ground_points = PointQuad{Vec2(5, 2), Vec2(5, -2), Vec2(10, -2), Vec2(10, 2)};
   h.homography = compute_ground_homography(*h.image_points, *h.ground_points);
   c.homography = h;
   return c;
@@ -53,21 +53,21 @@ TEST_F(CameraCalibrationFile, RoundTripKeepsEveryValue) {
   ASSERT_TRUE(back.intrinsics && back.extrinsics && back.homography);
   EXPECT_EQ(back.intrinsics->width, 640);
   EXPECT_EQ(back.intrinsics->height, 480);
-  for (int i = 0; i < 9; ++i) EXPECT_DOUBLE_EQ(back.intrinsics->K.val[i], c.intrinsics->K.val[i]);
+  for (int i = 0; i < 9; ++i) EXPECT_DOUBLE_EQ(back.intrinsics->K(i), c.intrinsics->K(i));
   EXPECT_EQ(back.intrinsics->distortion, c.intrinsics->distortion);
   EXPECT_DOUBLE_EQ(back.extrinsics->z, 1.2);
   EXPECT_DOUBLE_EQ(back.extrinsics->pitch, 0.15);
   EXPECT_DOUBLE_EQ(back.extrinsics->yaw, -0.02);
   for (int i = 0; i < 9; ++i)
-    EXPECT_DOUBLE_EQ(back.homography->homography.image_to_ground.val[i], c.homography->homography.image_to_ground.val[i]);
+    EXPECT_DOUBLE_EQ(back.homography->homography.image_to_ground(i), c.homography->homography.image_to_ground(i));
   EXPECT_EQ(*back.homography->image_points, *c.homography->image_points);
   EXPECT_EQ(*back.homography->ground_points, *c.homography->ground_points);
   // The loaded homography maps the calibration pixels onto their ground points.
   for (std::size_t i = 0; i < 4; ++i) {
     const auto g = image_to_ground(back.homography->homography, (*c.homography->image_points)[i]);
     ASSERT_TRUE(g);
-    EXPECT_NEAR(g->x, (*c.homography->ground_points)[i].x, 1e-4);
-    EXPECT_NEAR(g->y, (*c.homography->ground_points)[i].y, 1e-4);
+    EXPECT_NEAR(g->x(), (*c.homography->ground_points)[i].x(), 1e-4);
+    EXPECT_NEAR(g->y(), (*c.homography->ground_points)[i].y(), 1e-4);
   }
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
 }
@@ -160,6 +160,10 @@ TEST_F(CameraCalibrationFile, UnreadableFilesAreReported) {
   } catch (const CalibrationError& e) {
     EXPECT_NE(std::string(e.what()).find("not valid JSON"), std::string::npos) << e.what();
   }
+  // A number beyond a double is nlohmann's out_of_range, not a parse_error (found by cone_model_fuzz).
+  const fs::path overflow = dir_ / "overflow.json";
+  std::ofstream(overflow) << "{ \"extrinsics\": { \"x\": 1e999 } }";
+  EXPECT_THROW(load_camera_calibration(overflow), CalibrationError);
   EXPECT_THROW(save_camera_calibration(full_calibration(), dir_ / "no_such_dir" / "c.json"), CalibrationError);
 }
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "drivers/camera/ground_homography.hpp"
+#include "common/camera_geometry.hpp"
 
 namespace fsd {
 namespace {
@@ -15,34 +15,34 @@ namespace {
 // m = (c·dx − s·dz, dy, s·dx + c·dz); optical (x right, y down, z forward) = (−m.y, −m.z, m.x).
 constexpr double kFx = 500, kFy = 500, kCx = 320, kCy = 240, kMountX = 0.5, kHeight = 1.2, kPitch = 0.15;
 
-cv::Point2d project_by_hand(double X, double Y) {
+Vec2 project_by_hand(double X, double Y) {
   const double c = std::cos(kPitch), s = std::sin(kPitch);
   const double dx = X - kMountX, dy = Y, dz = -kHeight;
   const double mx = c * dx - s * dz, my = dy, mz = s * dx + c * dz;
   return {kCx + kFx * (-my) / mx, kCy + kFy * (-mz) / mx};
 }
 
-const PointQuad kGround{cv::Point2d(5, 1.5), cv::Point2d(5, -1.5), cv::Point2d(12, -1.5), cv::Point2d(12, 1.5)};
+const PointQuad kGround{Vec2(5, 1.5), Vec2(5, -1.5), Vec2(12, -1.5), Vec2(12, 1.5)};
 
 PointQuad image_of(const PointQuad& ground) {
   PointQuad q;
-  for (std::size_t i = 0; i < 4; ++i) q[i] = project_by_hand(ground[i].x, ground[i].y);
+  for (std::size_t i = 0; i < 4; ++i) q[i] = project_by_hand(ground[i].x(), ground[i].y());
   return q;
 }
 
 void expect_matches_camera(const GroundHomography& h) {
   for (double X = 3.0; X <= 30.0; X += 3.0)
     for (double Y = -5.0; Y <= 5.0; Y += 2.5) {
-      const cv::Point2d truth = project_by_hand(X, Y);
+      const Vec2 truth = project_by_hand(X, Y);
       const auto px = ground_to_image(h, {X, Y});
       ASSERT_TRUE(px) << X << "," << Y;
-      EXPECT_NEAR(px->x, truth.x, 0.5) << "ground " << X << "," << Y;
-      EXPECT_NEAR(px->y, truth.y, 0.5) << "ground " << X << "," << Y;
+      EXPECT_NEAR(px->x(), truth.x(), 0.5) << "ground " << X << "," << Y;
+      EXPECT_NEAR(px->y(), truth.y(), 0.5) << "ground " << X << "," << Y;
       // And back: the pixel's ground point, within a millimetre per metre of range.
       const auto g = image_to_ground(h, truth);
       ASSERT_TRUE(g);
-      EXPECT_NEAR(g->x, X, 1e-3 * X);
-      EXPECT_NEAR(g->y, Y, 1e-3 * X);
+      EXPECT_NEAR(g->x(), X, 1e-3 * X);
+      EXPECT_NEAR(g->y(), Y, 1e-3 * X);
     }
 }
 
@@ -56,7 +56,8 @@ TEST(GroundHomography, PointOrderDoesNotMatterIfBothListsAgree) {
 }
 
 TEST(GroundHomography, PinholeModelGivesTheSameMapping) {
-  const cv::Matx33d K(kFx, 0, kCx, 0, kFy, kCy, 0, 0, 1);
+  Eigen::Matrix3d K;
+  K << kFx, 0, kCx, 0, kFy, kCy, 0, 0, 1;
   // Body ← optical: camera body pitched down about y, optical axes (x right, y down, z forward).
   Eigen::Matrix3d optical_axes;
   optical_axes << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -85,11 +86,11 @@ TEST(GroundHomography, DegeneratePointsAreRejected) {
   repeated[3] = repeated[0];
   EXPECT_THROW(compute_ground_homography(image, repeated), HomographyError);
   PointQuad nearly = kGround;
-  nearly[2] = cv::Point2d(12, 1.5 + 1e-5);  // 12,1.5 and 12,−1.5 and 12,1.50001: three on x = 12
-  nearly[1] = cv::Point2d(12, -1.5);
+  nearly[2] = Vec2(12, 1.5 + 1e-5);  // 12,1.5 and 12,−1.5 and 12,1.50001: three on x = 12
+  nearly[1] = Vec2(12, -1.5);
   EXPECT_THROW(compute_ground_homography(image, nearly), HomographyError);
   PointQuad nan = image;
-  nan[1].x = std::numeric_limits<double>::quiet_NaN();
+  nan[1].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(compute_ground_homography(nan, kGround), HomographyError);
   // Ground points in another order than the pixels: no camera sees that.
   const PointQuad swapped{kGround[0], kGround[1], kGround[3], kGround[2]};
@@ -99,25 +100,10 @@ TEST(GroundHomography, DegeneratePointsAreRejected) {
   } catch (const HomographyError& e) {
     EXPECT_NE(std::string(e.what()).find("order"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(make_ground_homography(cv::Matx33d::zeros()), HomographyError);
-  EXPECT_THROW(make_ground_homography(cv::Matx33d(1, 2, 3, 2, 4, 6, 0, 0, 1)), HomographyError);
-}
-
-TEST(GroundHomography, PointListsAreParsedStrictly) {
-  const PointQuad q = parse_point_quad("1,2; 3.5,-4 ;5e1,6;  7 , 8", "pts");
-  EXPECT_EQ(q[0], cv::Point2d(1, 2));
-  EXPECT_EQ(q[1], cv::Point2d(3.5, -4));
-  EXPECT_EQ(q[2], cv::Point2d(50, 6));
-  EXPECT_EQ(q[3], cv::Point2d(7, 8));
-  for (const char* bad : {"", "1,2;3,4;5,6", "1,2;3,4;5,6;7,8;9,10", "1,2;3,4;5,6;7", "1,2;3,4;5,6;7,8,9",
-                          "1,2;3,4;5,x;7,8", "1,2;3,4;5,6;7,8;", "1,2;3,4;;7,8", "1,2;3,4;5,6;nan,8", "1,2;3,4;5,6;inf,8"}) {
-    try {
-      parse_point_quad(bad, "--image-points");
-      ADD_FAILURE() << "accepted '" << bad << "'";
-    } catch (const HomographyError& e) {
-      EXPECT_NE(std::string(e.what()).find("--image-points"), std::string::npos) << e.what();
-    }
-  }
+  EXPECT_THROW(make_ground_homography(Eigen::Matrix3d::Zero()), HomographyError);
+  Eigen::Matrix3d singular;
+  singular << 1, 2, 3, 2, 4, 6, 0, 0, 1;
+  EXPECT_THROW(make_ground_homography(singular), HomographyError);
 }
 
 }  // namespace
