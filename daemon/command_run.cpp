@@ -1,4 +1,6 @@
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 
@@ -46,7 +48,15 @@ int finish(int rc, const std::string& path, const nlohmann::json& report) {
   return rc;
 }
 
+// A report that could not be written would be found missing only after the run: checked before anything starts.
+void require_writable_report(const std::string& path) {
+  if (path.empty()) return;
+  std::ofstream f(path, std::ios::app);
+  if (!f) throw std::invalid_argument("--report " + path + ": cannot be written (" + std::strerror(errno) + ")");
+}
+
 int run_command(const RunOptions& o) {
+  require_writable_report(o.report);
   Config cfg = load_config(o);
   init_logging(daemon_section().read(cfg).log_level);
   if (!o.replay.empty() || !o.record.empty()) {

@@ -34,13 +34,15 @@ void PerceptionScore::add_frame(const ConeDetections& detections, const std::vec
 }
 
 nlohmann::json PerceptionScore::to_json() const {
-  auto share = [](std::uint64_t a, std::uint64_t b) { return b > 0 ? static_cast<double>(a) / b : 0.0; };
+  // Shares and the RMSE to 1e-4 (a tenth of a millimetre).
+  auto r4 = [](double v) { return std::round(v * 1e4) / 1e4; };
+  auto share = [&](std::uint64_t a, std::uint64_t b) { return r4(b > 0 ? static_cast<double>(a) / b : 0.0); };
   return {{"frames", frames_},
           {"detections", detections_},
           {"precision", share(true_positives_, detections_)},
           {"recall_15m", share(found_15_, truth_15_)},
           {"recall_20m", share(found_20_, truth_20_)},
-          {"position_rmse_m", true_positives_ > 0 ? std::sqrt(sq_error_ / true_positives_) : 0.0},
+          {"position_rmse_m", r4(true_positives_ > 0 ? std::sqrt(sq_error_ / true_positives_) : 0.0)},
           {"colour_accuracy_12m", share(right_colour_12_, pairs_12_)}};
 }
 

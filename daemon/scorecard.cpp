@@ -147,35 +147,55 @@ void Scorecard::set_section(const std::string& key, const nlohmann::json& value)
   sections_[key] = std::make_shared<const nlohmann::json>(value);
 }
 
-bool Scorecard::mission_succeeded() const {
+bool Scorecard::mission_succeeded() const { return failures().empty(); }
+
+namespace {
+// Figures rounded to what they mean: millimetres, milliseconds, mm/s (scorecard.md).
+double milli(double v) { return std::round(v * 1e3) / 1e3; }
+}  // namespace
+
+std::vector<std::string> Scorecard::failures() const {
+  std::vector<std::string> why;
+  if (cones_hit_ > 0) why.push_back(std::to_string(cones_hit_) + " cone(s) hit");
+  if (!finished_)
+    why.push_back("not finished: " + std::to_string(laps_.size()) + " of " + std::to_string(laps_to_finish_) +
+                  (mission_ == Mission::Skidpad ? " timed circle(s)" : " lap(s)"));
+  else if (!stopped_after_finish_)
+    why.push_back(left_stop_zone_ ? "no stop in the zone after the finish (left it)" : "no stop after the finish");
   const AsState end = mission_ == Mission::EbsTest ? AsState::Emergency : AsState::Finished;
-  return finished_ && stopped_after_finish_ && as_state_ == end && cones_hit_ == 0;
+  if (as_state_ != end)
+    why.push_back("AS ended " + std::string(to_string(as_state_)) + ", not " + std::string(to_string(end)));
+  for (const auto& r : extra_reasons_) why.push_back(r);
+  return why;
 }
 
 nlohmann::json Scorecard::to_json() const {
   using nlohmann::json;
   json j;
+  const auto why = failures();
+  j["verdict"] = why.empty() ? "pass" : "fail";
+  j["verdict_reasons"] = why;
   j["track"] = track_.name;
   j["mission"] = std::string(to_string(mission_));
   j["seed"] = seed_;
   j["finished"] = finished_;
   j["stopped_after_finish"] = stopped_after_finish_;
   j["as_state"] = std::string(to_string(as_state_));
-  j["sim_time_s"] = sim_time_;
-  j["wall_time_s"] = wall_time_s_;
+  j["sim_time_s"] = milli(sim_time_);
+  j["wall_time_s"] = milli(wall_time_s_);
   j["cones_hit"] = cones_hit_;
   if (mission_ == Mission::Trackdrive || mission_ == Mission::Autocross) j["layout"] = open_ ? "open" : "loop";
   if (mission_ == Mission::EbsTest)
     j["ebs"] = {{"triggered", ebs_trigger_at_.has_value()},
-                {"trigger_speed_m_s", ebs_trigger_speed_},
-                {"stop_distance_m", ebs_stop_distance_}};
+                {"trigger_speed_m_s", milli(ebs_trigger_speed_)},
+                {"stop_distance_m", milli(ebs_stop_distance_)}};
   j["laps"] = json::array();
   for (const auto& l : laps_)
     j["laps"].push_back({{"lap", l.lap},
-                         {"time_s", l.time_s},
-                         {"cte_rms_m", l.cte_rms_m},
-                         {"cte_max_m", l.cte_max_m},
-                         {"v_max_m_s", l.v_max_m_s}});
+                         {"time_s", milli(l.time_s)},
+                         {"cte_rms_m", milli(l.cte_rms_m)},
+                         {"cte_max_m", milli(l.cte_max_m)},
+                         {"v_max_m_s", milli(l.v_max_m_s)}});
   j["vehicle"] = {{"mu", limits_.mu},
                   {"a_accel_max", limits_.a_accel_max},
                   {"a_brake_max", limits_.a_brake_max},
@@ -189,8 +209,8 @@ nlohmann::json Scorecard::to_json() const {
 nlohmann::json latency_json(const std::map<std::string, LatencyStats>& stages) {
   nlohmann::json lat = nlohmann::json::object();
   for (const auto& [stage, s] : stages)
-    lat[stage] = {{"p50", s.quantile(0.5) * 1e3}, {"p99", s.quantile(0.99) * 1e3}, {"max", s.max() * 1e3},
-                  {"n", s.count()}};
+    lat[stage] = {{"p50", std::round(s.quantile(0.5) * 1e6) / 1e3}, {"p99", std::round(s.quantile(0.99) * 1e6) / 1e3},
+                  {"max", std::round(s.max() * 1e6) / 1e3}, {"n", s.count()}};
   return lat;
 }
 

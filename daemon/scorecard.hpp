@@ -63,6 +63,11 @@ class Scorecard {
   const std::vector<LapRecord>& laps() const { return laps_; }
   // Success of the run as `fsd run` reports it in its exit status.
   bool mission_succeeded() const;
+  // Why the run failed (empty: it passed): cones hit, not finished, no stop, the AS state; the report's "verdict".
+  std::vector<std::string> failures() const;
+  // A reason the stack gave that the figures do not show (e.g. "only one boundary found"); makes the verdict fail.
+  void add_failure(const std::string& why) { extra_reasons_.push_back(why); }
+  void clear_faults() { faults_.clear(); }
   nlohmann::json to_json() const;
 
  private:
@@ -95,6 +100,7 @@ class Scorecard {
   AsState as_state_ = AsState::Off;
   VehicleLimits limits_;
   std::vector<FaultRecord> faults_;
+  std::vector<std::string> extra_reasons_;
   std::shared_ptr<const nlohmann::json> latency_ms_;
   std::map<std::string, std::shared_ptr<const nlohmann::json>> sections_;
 };

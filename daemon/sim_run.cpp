@@ -8,6 +8,7 @@
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 #include "control/missions.hpp"
+#include "daemon/layout_check.hpp"
 #include "daemon/map_score.hpp"
 #include "daemon/perception_score.hpp"
 #include "daemon/settings.hpp"
@@ -100,6 +101,7 @@ struct SimRun::Impl {
     // asks for it, so that a run is the same every time.
     so.lap_build_worker = !headless;
     stack = std::make_unique<Stack>(stack_config(cfg, car_settings), so);
+    if (const auto why = layout_refusal(track, mission, stack->autopilot().config())) throw std::invalid_argument(*why);
 
     // The car's sensors hand their bytes straight to the Stack, as the devices' transports would.
     sim::SensorSinks sinks;
@@ -185,8 +187,14 @@ struct SimRun::Impl {
     card->set_latencies(stack->latencies());
     for (const auto& f : stack->faults()) card->add_fault(f);
     card->set_section("injected_faults", faults->report());
-    card->set_section("map", to_json(score_map(track.cones, stack->cone_map())));
-    card->set_section("perception", perception_score.to_json());
+    // Each section says where its figures came from (DESIGN.md §8): the sources the stack ran on.
+    auto map = to_json(score_map(track.cones, stack->cone_map()));
+    map["source"] = run.perception_source;
+    map["localization_source"] = run.localization_source;
+    card->set_section("map", map);
+    auto perception = perception_score.to_json();
+    perception["source"] = run.perception_source;
+    card->set_section("perception", perception);
     const auto vc = stack->counters().vcu;
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
               to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,
