@@ -1,0 +1,169 @@
+#include "perception/cone_size_filter.hpp"
+
+#include <algorithm>
+#include <bitset>
+#include <cmath>
+#include <limits>
+
+namespace fsd {
+
+const ConfigSection<ConeSizeConfig>& cone_size_section() {
+  static const auto s =
+      ConfigSection<ConeSizeConfig>("perception.lidar.size")
+          .number("small_width", &ConeSizeConfig::small_width, 0.05, 1.0, "m", "Small cone base width (FSG 0.228).")
+          .number("small_height", &ConeSizeConfig::small_height, 0.05, 1.5, "m", "Small cone height (FSG 0.325).")
+          .number("big_width", &ConeSizeConfig::big_width, 0.05, 1.0, "m", "Big cone base width (FSG 0.285).")
+          .number("big_height", &ConeSizeConfig::big_height, 0.05, 1.5, "m", "Big cone height (FSG 0.505).")
+          .number("small_top_width", &ConeSizeConfig::small_top_width, 0.0, 0.5, "m", "Small cone tip width.")
+          .number("big_top_width", &ConeSizeConfig::big_top_width, 0.0, 0.5, "m", "Big cone tip width.")
+          .number("width_margin", &ConeSizeConfig::width_margin, 0.0, 1.0, "m",
+                  "A cluster wider than a big cone's base plus this is rejected.")
+          .number("height_margin", &ConeSizeConfig::height_margin, 0.0, 1.0, "m",
+                  "A cluster taller than a big cone plus this is rejected.")
+          .number("profile_margin", &ConeSizeConfig::profile_margin, 0.0, 0.5, "m",
+                  "A point further than this outside a big cone's silhouette at its height is off the cone shape.")
+          .number("profile_outliers", &ConeSizeConfig::profile_outliers, 0.0, 1.0, "",
+                  "A cluster with a larger share of points off the cone shape is rejected.")
+          .number("big_min_height", &ConeSizeConfig::big_min_height, 0.05, 1.5, "m",
+                  "A cone whose cluster reaches this high above the ground is a big cone.")
+          .number("hit_margin", &ConeSizeConfig::hit_margin, 0.0, 0.5, "m",
+                  "Too flat / floating: how far inside a cone the next laser up / down must pass to count as a miss.")
+          .number("beam_spacing_deg", &ConeSizeConfig::beam_spacing_deg, 0.1, 10.0, "deg",
+                  "Vertical angle between adjacent lasers (VLP-16: 2).")
+          .number("azimuth_step_deg", &ConeSizeConfig::azimuth_step_deg, 0.01, 5.0, "deg",
+                  "Horizontal angle between firings (VLP-16: 0.2 at 10 Hz).")
+          .number("min_point_ratio", &ConeSizeConfig::min_point_ratio, 0.0, 1.0, "",
+                  "A cluster with fewer points than this share of a small cone's at that range is rejected.")
+          .integer("min_points", &ConeSizeConfig::min_points, 1, 10000, "", "A cone has at least this many points.");
+  return s;
+}
+
+const char* to_string(ConeRejection r) {
+  switch (r) {
+    case ConeRejection::None: return "cone";
+    case ConeRejection::TooSparse: return "too_sparse";
+    case ConeRejection::TooWide: return "too_wide";
+    case ConeRejection::TooTall: return "too_tall";
+    case ConeRejection::NotConeShaped: return "not_cone_shaped";
+    case ConeRejection::TooFlat: return "too_flat";
+    case ConeRejection::Floating: return "floating";
+  }
+  return "?";
+}
+
+double ConeSizeFilter::expected_points(double range, int frames, double ground_threshold) const {
+  const double r = std::max(range, 0.5);
+  const double gap = r * std::tan(deg2rad(cfg_.beam_spacing_deg));
+  const double visible = std::max(0.0, cfg_.small_height - ground_threshold);
+  const double rings = std::max(1.0, visible / gap);
+  const double mean_width = 0.5 * (cfg_.small_width + cfg_.small_top_width);
+  const double across = std::max(1.0, mean_width / (r * deg2rad(cfg_.azimuth_step_deg)));
+  return std::max(1, frames) * rings * across;
+}
+
+ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const Cluster& cluster,
+                                        const GroundPlane& ground, const Vec3& sensor, double ground_threshold,
+                                        int frames) const {
+  ConeMeasurement m;
+  ConeCandidate& c = m.candidate;
+  const auto n = cluster.indices.size();
+  c.points = static_cast<std::uint32_t>(n);
+  if (n == 0) {
+    m.rejection = ConeRejection::TooSparse;
+    return m;
+  }
+  // Envelope, centroid, heights above the ground.
+  Vec3 sum = Vec3::Zero();
+  c.min = Vec3::Constant(std::numeric_limits<double>::max());
+  c.max = -c.min;
+  double top = -std::numeric_limits<double>::max(), bottom = std::numeric_limits<double>::max();
+  double intensity = 0;
+  std::bitset<256> rings;
+  std::vector<double> height(n);
+  c.cloud.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Point& q = cloud[cluster.indices[k]];
+    const Vec3 p(q.x, q.y, q.z);
+    sum += p;
+    c.min = c.min.cwiseMin(p);
+    c.max = c.max.cwiseMax(p);
+    height[k] = ground.height_of(p.x(), p.y(), p.z());
+    top = std::max(top, height[k]);
+    bottom = std::min(bottom, height[k]);
+    intensity += q.intensity;
+    rings.set(q.ring & 0xFF);
+    c.cloud.push_back(q);
+  }
+  c.centroid = sum / static_cast<double>(n);
+  c.mean_intensity = static_cast<float>(intensity / static_cast<double>(n));
+  c.rings = static_cast<std::uint32_t>(rings.count());
+  c.height = top;
+  c.bottom = bottom;
+
+  // Line-of-sight axes from the sensor through the centroid, in the ground plane.
+  const Vec2 s = sensor.head<2>();
+  Vec2 los = c.centroid.head<2>() - s;
+  const double range = los.norm();
+  los = range > 1e-6 ? Vec2(los / range) : Vec2(1.0, 0.0);
+  const Vec2 across(-los.y(), los.x());
+  double r0 = std::numeric_limits<double>::max(), r1 = -r0, t0 = r0, t1 = -r0;
+  std::vector<double> radial(n), tangential(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Point& q = cloud[cluster.indices[k]];
+    const Vec2 d = Vec2(q.x, q.y) - s;
+    radial[k] = d.dot(los);
+    tangential[k] = d.dot(across);
+    r0 = std::min(r0, radial[k]), r1 = std::max(r1, radial[k]);
+    t0 = std::min(t0, tangential[k]), t1 = std::max(t1, tangential[k]);
+  }
+  c.width = std::max(r1 - r0, t1 - t0);
+  c.big = top >= cfg_.big_min_height;
+
+  // Position: the silhouette's middle across, each point's range plus the model's depth behind it along.
+  const double axis_t = 0.5 * (t0 + t1);
+  const double base_r = 0.5 * (c.big ? cfg_.big_width : cfg_.small_width);
+  const double top_r = 0.5 * (c.big ? cfg_.big_top_width : cfg_.small_top_width);
+  const double H = c.big ? cfg_.big_height : cfg_.small_height;
+  const auto radius_at = [](double h, double r_base, double r_top, double height_total) {
+    const double f = std::clamp(h / height_total, 0.0, 1.0);
+    return r_base - (r_base - r_top) * f;
+  };
+  double centre_r = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double rho = radius_at(height[k], base_r, top_r, H);
+    const double u = std::min(std::abs(tangential[k] - axis_t), rho);
+    centre_r += radial[k] + std::sqrt(rho * rho - u * u);
+  }
+  centre_r /= static_cast<double>(n);
+  const Vec2 xy = s + centre_r * los + axis_t * across;
+  c.position = Vec3(xy.x(), xy.y(), ground.z_at(xy.x(), xy.y()));
+  c.range = (xy - s).norm();
+  m.expected_points = expected_points(c.range, frames, ground_threshold);
+
+  // The tests, cheapest and most telling first.
+  const double gap = c.range * std::tan(deg2rad(cfg_.beam_spacing_deg));
+  if (c.width > cfg_.big_width + cfg_.width_margin) {
+    m.rejection = ConeRejection::TooWide;
+  } else if (top > cfg_.big_height + cfg_.height_margin) {
+    m.rejection = ConeRejection::TooTall;
+  } else if (static_cast<double>(n) < std::max<double>(cfg_.min_points, cfg_.min_point_ratio * m.expected_points)) {
+    m.rejection = ConeRejection::TooSparse;
+  } else if (top + gap < cfg_.small_height - cfg_.hit_margin) {
+    m.rejection = ConeRejection::TooFlat;
+  } else if (bottom - gap > ground_threshold + cfg_.hit_margin) {
+    m.rejection = ConeRejection::Floating;
+  } else {
+    // Silhouette: every point within a big cone's radius at its height (plus margin) of the axis.
+    std::size_t outside = 0;
+    const double big_base = 0.5 * cfg_.big_width, big_top = 0.5 * cfg_.big_top_width;
+    for (std::size_t k = 0; k < n; ++k)
+      if (std::abs(tangential[k] - axis_t) >
+          radius_at(height[k], big_base, big_top, cfg_.big_height) + cfg_.profile_margin)
+        ++outside;
+    if (static_cast<double>(outside) > cfg_.profile_outliers * static_cast<double>(n))
+      m.rejection = ConeRejection::NotConeShaped;
+  }
+  return m;
+}
+
+}  // namespace fsd
