@@ -34,7 +34,10 @@ const ConfigSection<ConeSizeConfig>& cone_size_section() {
                   "Horizontal angle between firings (VLP-16: 0.2 at 10 Hz).")
           .number("min_point_ratio", &ConeSizeConfig::min_point_ratio, 0.0, 1.0, "",
                   "A cluster with fewer points than this share of a small cone's at that range is rejected.")
-          .integer("min_points", &ConeSizeConfig::min_points, 1, 10000, "", "A cone has at least this many points.");
+          .integer("min_points", &ConeSizeConfig::min_points, 1, 10000, "", "A cone has at least this many points.")
+          .number("tall_clearance", &ConeSizeConfig::tall_clearance, 0.0, 5.0, "m",
+                  "A cone candidate with obstacle points higher than a big cone this close is part of something "
+                  "taller (a fence seen at a grazing angle, a post); 0 = off.");
   return s;
 }
 
@@ -47,6 +50,7 @@ const char* to_string(ConeRejection r) {
     case ConeRejection::NotConeShaped: return "not_cone_shaped";
     case ConeRejection::TooFlat: return "too_flat";
     case ConeRejection::Floating: return "floating";
+    case ConeRejection::BesideTaller: return "beside_taller";
   }
   return "?";
 }
@@ -59,6 +63,21 @@ double ConeSizeFilter::expected_points(double range, int frames, double ground_t
   const double mean_width = 0.5 * (cfg_.small_width + cfg_.small_top_width);
   const double across = std::max(1.0, mean_width / (r * deg2rad(cfg_.azimuth_step_deg)));
   return std::max(1, frames) * rings * across;
+}
+
+std::vector<Vec2> ConeSizeFilter::tall_points(const std::vector<Point>& cloud, const GroundPlane& ground) const {
+  std::vector<Vec2> out;
+  if (cfg_.tall_clearance <= 0) return out;
+  const double limit = cfg_.big_height + cfg_.height_margin;
+  for (const auto& q : cloud)
+    if (ground.height_of(q.x, q.y, q.z) > limit) out.emplace_back(q.x, q.y);
+  return out;
+}
+
+bool ConeSizeFilter::beside_taller(const Vec3& position, const std::vector<Vec2>& tall) const {
+  const double r2 = cfg_.tall_clearance * cfg_.tall_clearance;
+  const Vec2 p = position.head<2>();
+  return std::any_of(tall.begin(), tall.end(), [&](const Vec2& q) { return (q - p).squaredNorm() < r2; });
 }
 
 ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const Cluster& cluster,

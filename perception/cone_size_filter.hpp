@@ -10,7 +10,9 @@
 //  - too flat: the laser above its top would have hit a cone (its next beam passes below a small cone's top at
 //    that range), so the object is lower than a cone (a kerb, a lying tyre);
 //  - floating: the laser below its bottom would have hit it above the ground threshold had it stood on the ground;
-//  - too sparse: fewer points than a share of what a small cone returns at that range with this sensor.
+//  - too sparse: fewer points than a share of what a small cone returns at that range with this sensor;
+//  - beside something taller: obstacle points higher than any cone within `tall_clearance` of its position (the
+//    sparse low fragments of a fence seen at a grazing angle, the foot of a post or a person).
 // The laser spacing and azimuth step are the sensor's (VLP-16 defaults) and make the tests range-aware.
 //
 // Position: the tangential middle of the silhouette (the centre of a circle seen from afar) and, along the line
@@ -41,10 +43,13 @@ struct ConeSizeConfig {
   double azimuth_step_deg = 0.2;  // horizontal angle between firings (VLP-16 at 10 Hz: 0.2°)
   double min_point_ratio = 0.2;   // share of a small cone's expected points a cluster must have
   int min_points = 2;
+  double tall_clearance = 0.7;    // m around a cone free of points higher than a big cone; 0 = off
 };
 const ConfigSection<ConeSizeConfig>& cone_size_section();  // "perception.lidar.size"
 
-enum class ConeRejection : std::uint8_t { None = 0, TooSparse, TooWide, TooTall, NotConeShaped, TooFlat, Floating };
+enum class ConeRejection : std::uint8_t {
+  None = 0, TooSparse, TooWide, TooTall, NotConeShaped, TooFlat, Floating, BesideTaller
+};
 const char* to_string(ConeRejection r);
 
 struct ConeMeasurement {
@@ -62,6 +67,10 @@ class ConeSizeFilter {
                           const Vec3& sensor, double ground_threshold, int frames) const;
   // Points a small cone returns at horizontal range r over `frames` frames (sensor geometry, visible height above τ).
   double expected_points(double range, int frames, double ground_threshold) const;
+  // Whether any of `tall` (x/y of obstacle points higher than a big cone) lies within tall_clearance of `position`.
+  bool beside_taller(const Vec3& position, const std::vector<Vec2>& tall) const;
+  // Obstacle points of `cloud` higher above the ground than any cone may reach (for beside_taller).
+  std::vector<Vec2> tall_points(const std::vector<Point>& cloud, const GroundPlane& ground) const;
   const ConeSizeConfig& config() const { return cfg_; }
 
  private:

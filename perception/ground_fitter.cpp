@@ -31,7 +31,16 @@ const ConfigSection<GroundConfig>& ground_section() {
           .number("seed_cell", &GroundConfig::seed_cell, 0.1, 10.0, "m",
                   "grid_lsq: grid cell whose lowest point is a RANSAC seed.")
           .integer("min_inliers", &GroundConfig::min_inliers, 3, 1000000, "",
-                   "A plane with fewer inlier points is not accepted.");
+                   "A plane with fewer inlier points is not accepted.")
+          .number("grazing_band", &GroundConfig::grazing_band, 0.0, 100.0, "m",
+                  "Where the ground band (±τ) is longer than this along a laser, band points well short of their "
+                  "laser's neighbours are obstacles (far cones a low sensor hits just above the ground); 0 = off.")
+          .number("grazing_drop", &GroundConfig::grazing_drop, 0.001, 0.9, "",
+                  "Grazing beams: share of the neighbours' median range a band point must fall short by.")
+          .number("grazing_window_deg", &GroundConfig::grazing_window_deg, 0.2, 30.0, "deg",
+                  "Grazing beams: azimuth window on each side of a point holding its laser's neighbours.")
+          .number("grazing_margin", &GroundConfig::grazing_margin, 0.0, 50.0, "m",
+                  "Grazing beams: points this far beyond the region of interest serve as neighbours.");
   return s;
 }
 

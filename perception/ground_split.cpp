@@ -1,26 +1,67 @@
 #include "perception/ground_split.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 namespace fsd {
 
-GroundSplitCounts split_by_ground(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
-                                  double max_height, std::vector<Point>* ground, std::vector<Point>& obstacles) {
-  GroundSplitCounts c;
+void GroundSplitter::classify(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
+                              double max_height) {
   const double k = plane.inv_norm();
-  for (const auto& q : points) {
+  height_.resize(points.size());
+  kind_.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& q = points[i];
     const double d = (q.z - plane.z_at(q.x, q.y)) * k;
-    if (d < -threshold) {
-      ++c.below;
-    } else if (d < threshold) {
-      ++c.ground;
-      if (ground) ground->push_back(q);
-    } else if (d <= max_height) {
-      ++c.obstacles;
-      obstacles.push_back(q);
-    } else {
-      ++c.above;
+    height_[i] = static_cast<float>(d);
+    kind_[i] = d < -threshold ? Kind::Below : d < threshold ? Kind::Ground : d <= max_height ? Kind::Obstacle : Kind::Above;
+  }
+}
+
+std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
+                                         const GrazingBeams& g) {
+  const double sensor_h = plane.height_of(g.sensor.x(), g.sensor.y(), g.sensor.z());
+  if (g.band <= 0 || sensor_h <= threshold) return 0;
+  // The band is longer than g.band along the beam where sin(grazing angle) < threshold / band, i.e. beyond this
+  // horizontal range from the sensor (flat-ground approximation: sin β ≈ h / r).
+  const double min_range = sensor_h * g.band / threshold;
+  const float min_range2 = static_cast<float>(min_range * min_range);
+  by_ring_.resize(256);
+  for (auto& r : by_ring_) r.clear();
+  const float sx = static_cast<float>(g.sensor.x()), sy = static_cast<float>(g.sensor.y());
+  // Band points per laser, in firing (azimuth) order; the grazing ones are tested, all serve as neighbours.
+  for (std::uint32_t i = 0; i < points.size(); ++i)
+    if (kind_[i] == Kind::Ground) by_ring_[points[i].ring & 0xFF].push_back(i);
+  std::size_t found = 0;
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  for (const auto& ring : by_ring_) {
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const Point& p = points[ring[k]];
+      const float dx = p.x - sx, dy = p.y - sy;
+      if (dx * dx + dy * dy < min_range2) continue;  // steep enough: the height test holds
+      around_.clear();
+      const auto collect = [&](std::size_t j) {
+        double da = std::abs(points[ring[j]].azimuth - p.azimuth);
+        da = std::min(da, kTwoPi - da);
+        if (da > g.window) return false;
+        around_.push_back(points[ring[j]].distance);
+        return true;
+      };
+      for (std::size_t j = k; j-- > 0;)
+        if (!collect(j)) break;
+      for (std::size_t j = k + 1; j < ring.size(); ++j)
+        if (!collect(j)) break;
+      if (static_cast<int>(around_.size()) < g.min_neighbours) continue;
+      const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
+      std::nth_element(around_.begin(), mid, around_.end());
+      if (p.distance < *mid * (1.0 - g.drop)) {
+        kind_[ring[k]] = Kind::Obstacle;
+        ++found;
+      }
     }
   }
-  return c;
+  return found;
 }
 
 }  // namespace fsd

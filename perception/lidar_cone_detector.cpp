@@ -74,16 +74,26 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   const ScanMotion motion(body_from_sensor_, t0, t1, t1, pose_at, cfg_.accumulation.deskew_knots);
   cropped_.clear();
   cropped_.reserve(scan.points.size());
+  // The grazing-beam test needs the lasers: a cloud from a file may have none.
+  bool rings_known = false;
+  for (const auto& q : scan.points)
+    if (q.ring != scan.points.front().ring) {
+      rings_known = true;
+      break;
+    }
+  const bool use_grazing = cfg_.ground.grazing_band > 0 && rings_known;
+  const double margin = use_grazing ? cfg_.ground.grazing_margin : 0.0;  // neighbours of the grazing test
   for (const auto& q : scan.points) {
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.t)) {
       ++n.invalid;
       continue;
     }
     const Eigen::Vector3f p = motion.to_reference(Eigen::Vector3f(q.x, q.y, q.z), q.t);
-    if (!roi_.in_box(p.x(), p.y())) {
+    if (!roi_.in_box(p.x(), p.y(), margin)) {
       ++n.outside_roi;
       continue;
     }
+    if (margin > 0 && !roi_.in_box(p.x(), p.y())) ++n.outside_roi;  // a neighbour only
     if (roi_.in_body(p.x(), p.y())) {
       ++n.in_body;
       continue;
@@ -110,7 +120,15 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   out.ground = plane;
   obstacles_.clear();
   const double tau = cfg_.ground.distance_threshold;
-  const auto split = split_by_ground(cropped_, plane, tau, cfg_.roi.max_height, &out.ground_points, obstacles_);
+  GrazingBeams grazing;
+  grazing.sensor = body_from_sensor_.translation();
+  grazing.band = cfg_.ground.grazing_band;
+  grazing.drop = cfg_.ground.grazing_drop;
+  grazing.window = deg2rad(cfg_.ground.grazing_window_deg);
+  const auto split = splitter_.split(cropped_, plane, tau, cfg_.roi.max_height, &out.ground_points, obstacles_,
+                                     use_grazing ? &grazing : nullptr,
+                                     [this](const Point& q) { return roi_.in_box(q.x, q.y); });
+  n.grazing = split.grazing;
   n.ground = split.ground;
   n.below_ground = split.below;
   n.above_roi = split.above;
@@ -132,8 +150,15 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   n.clusters = clusters.size();
   n.clusters_too_large = too_large;
 
+  const std::vector<Vec2> tall = size_.tall_points(out.obstacle_points, plane);
   for (const auto& cl : clusters) {
     ConeMeasurement m = size_.measure(out.obstacle_points, cl, plane, sensor, tau, out.frames);
+    if (m.rejection == ConeRejection::None && size_.beside_taller(m.candidate.position, tall))
+      m.rejection = ConeRejection::BesideTaller;
+    if (m.rejection != ConeRejection::None) {
+      const auto& c = m.candidate;
+      out.rejected.push_back({c.position, c.width, c.height, c.bottom, c.points, m.rejection});
+    }
     switch (m.rejection) {
       case ConeRejection::None: break;
       case ConeRejection::TooSparse: ++n.too_sparse; continue;
@@ -142,6 +167,7 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
       case ConeRejection::NotConeShaped: ++n.not_cone_shaped; continue;
       case ConeRejection::TooFlat: ++n.too_flat; continue;
       case ConeRejection::Floating: ++n.floating; continue;
+      case ConeRejection::BesideTaller: ++n.beside_taller; continue;
     }
     const ConeCandidate& c = m.candidate;
     Cone cone;

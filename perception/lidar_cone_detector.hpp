@@ -20,6 +20,7 @@
 #include "perception/cone_size_filter.hpp"
 #include "perception/frame_accumulator.hpp"
 #include "perception/ground_fitter.hpp"
+#include "perception/ground_split.hpp"
 #include "perception/intensity_colour.hpp"
 #include "perception/roi_filter.hpp"
 #include "perception/scan_motion.hpp"
@@ -49,14 +50,24 @@ struct LidarStageCounters {
   std::uint64_t below_ground = 0;   // more than τ below the plane (dropped)
   std::uint64_t above_roi = 0;      // higher than the region above the ground (dropped)
   std::uint64_t obstacles = 0;      // this frame's points kept for clustering
+  std::uint64_t grazing = 0;        // of them, found along grazing beams within the ground band
   std::uint64_t accumulation_dropped = 0;  // over the per-frame bound
   std::uint64_t clustered = 0;      // points clustered (all accumulated frames)
   std::uint64_t clusters = 0;       // clusters within the point bounds
   std::uint64_t clusters_too_large = 0;
   std::uint64_t too_sparse = 0, too_wide = 0, too_tall = 0, not_cone_shaped = 0, too_flat = 0, floating = 0;
+  std::uint64_t beside_taller = 0;
   std::uint64_t cones = 0;
   std::uint64_t coloured = 0;       // cones with a colour from the reflectivity
   bool ground_fallback = false;     // no plane found: the previous (or nominal) plane was used
+};
+
+// A cluster the size filter rejected, for the dashboard and diagnostics.
+struct RejectedCluster {
+  Vec3 position = Vec3::Zero();  // where its base centre would be
+  double width = 0, height = 0, bottom = 0;
+  std::uint32_t points = 0;
+  ConeRejection reason = ConeRejection::None;
 };
 
 struct LidarDetection {
@@ -65,6 +76,7 @@ struct LidarDetection {
   GroundPlane ground;                    // in the vehicle frame at that time
   std::vector<Point> ground_points;      // this scan's ground points (vehicle frame, deskewed)
   std::vector<Point> obstacle_points;    // the clustered cloud: this scan's and the accumulated obstacle points
+  std::vector<RejectedCluster> rejected;  // clusters within the point bounds that are not cones
   int frames = 1;                        // frames in the clustered cloud
   LidarStageCounters counters;
 };
@@ -88,6 +100,7 @@ class LidarConeDetector {
   Pose3 body_from_sensor_;
   RoiFilter roi_;
   GroundFitter ground_;
+  GroundSplitter splitter_;
   FrameAccumulator accumulator_;
   Clusterer clusterer_;
   ConeSizeFilter size_;
