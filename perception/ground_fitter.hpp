@@ -33,9 +33,9 @@ struct GroundConfig {
   int min_inliers = 30;              // fewer inliers: no plane found
   // Grazing beams (ground_split.hpp): where the ±τ band is longer than grazing_band along a laser, a band point
   // grazing_drop (share of the range) short of its laser's neighbours within ±grazing_window_deg is an obstacle.
-  double grazing_band = 1.0;         // m; 0 = off
+  double grazing_band = 0.5;         // m; 0 = off
   double grazing_drop = 0.04;
-  double grazing_window_deg = 2.0;
+  double grazing_window_deg = 4.0;
   double grazing_margin = 3.0;       // m beyond the region of interest whose points serve as neighbours
 };
 const ConfigSection<GroundConfig>& ground_section();  // "perception.lidar.ground"

@@ -40,25 +40,27 @@ std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const
       const Point& p = points[ring[k]];
       const float dx = p.x - sx, dy = p.y - sy;
       if (dx * dx + dy * dy < min_range2) continue;  // steep enough: the height test holds
-      around_.clear();
-      const auto collect = [&](std::size_t j) {
-        double da = std::abs(points[ring[j]].azimuth - p.azimuth);
-        da = std::min(da, kTwoPi - da);
-        if (da > g.window) return false;
-        around_.push_back(points[ring[j]].distance);
-        return true;
+      // The farthest return of the laser within the window on each side: an object narrower than the window is
+      // short of the ground beyond it on both sides, however many of its own points the window holds; a ground
+      // ring whose range trends along the azimuth (a pitched sensor, a slope) is short of one side only.
+      const auto side_far = [&](bool left) {
+        float far = 0;
+        int count = 0;
+        for (std::size_t step = 1;; ++step) {
+          if (left ? step > k : k + step >= ring.size()) break;
+          const Point& q = points[ring[left ? k - step : k + step]];
+          double da = std::abs(q.azimuth - p.azimuth);
+          da = std::min(da, kTwoPi - da);
+          if (da > g.window) break;
+          far = std::max(far, q.distance);
+          ++count;
+        }
+        return count * 2 >= g.min_neighbours ? far : 0.0f;
       };
-      for (std::size_t j = k; j-- > 0;)
-        if (!collect(j)) break;
-      for (std::size_t j = k + 1; j < ring.size(); ++j)
-        if (!collect(j)) break;
-      if (static_cast<int>(around_.size()) < g.min_neighbours) continue;
-      const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
-      std::nth_element(around_.begin(), mid, around_.end());
-      if (p.distance < *mid * (1.0 - g.drop)) {
-        kind_[ring[k]] = Kind::Obstacle;
-        ++found;
-      }
+      const auto keep = static_cast<float>(1.0 - g.drop);
+      if (side_far(true) * keep <= p.distance || side_far(false) * keep <= p.distance) continue;
+      kind_[ring[k]] = Kind::Obstacle;
+      ++found;
     }
   }
   return found;

@@ -7,9 +7,10 @@
 // plane is metres long along the beam: a cone standing in it is hit a few centimetres above the ground and would
 // pass for ground (a VLP-16 0.35 m up sees the last 3 m before its lowest-but-one ring meets the ground that way).
 // Such a return is still metres short of where its laser meets the ground beside it. Where the band is longer than
-// `band` along the beam, a band point whose range is shorter by more than `drop` (a share) than the median range
-// of its laser's neighbours within ±`window` of azimuth is an obstacle point. Needs the scan's laser (ring) and
-// firing order, which the VLP-16 decoder gives; clouds without rings skip it.
+// `band` along the beam, a band point whose range is shorter by more than `drop` (a share) than the farthest band
+// return of its laser within `window` of azimuth on each side is an obstacle point (both sides: a ring whose range
+// merely trends along the azimuth is short of one side only). Needs the scan's laser (ring) and firing order,
+// which the VLP-16 decoder gives; clouds without rings skip it.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -28,8 +29,8 @@ struct GrazingBeams {
   Vec3 sensor = Vec3::Zero();  // sensor origin in the points' frame
   double band = 0.5;           // m along the beam; 0 = off
   double drop = 0.04;          // share of the neighbours' median range
-  double window = 0.035;       // rad of azimuth on each side
-  int min_neighbours = 6;
+  double window = 0.07;        // rad of azimuth on each side
+  int min_neighbours = 6;      // band returns within the windows, half on each side
 };
 
 // Keeps its buffers between frames.
@@ -56,7 +57,6 @@ class GroundSplitter {
   std::vector<float> height_;
   std::vector<Kind> kind_;
   std::vector<std::vector<std::uint32_t>> by_ring_;
-  std::vector<float> around_;
 };
 
 template <class Keep>
