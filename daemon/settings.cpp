@@ -9,6 +9,7 @@
 #include "drivers/vcu/vcu_config.hpp"
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
+#include "perception/lidar_cone_detector.hpp"
 
 namespace fsd {
 
@@ -47,6 +48,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   run_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
+  describe_lidar_detector_config(*schema);
   sim::describe_virtual_car_config(*schema);
   describe_control(*schema);
   web::web_section().describe(*schema);

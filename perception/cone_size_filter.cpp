@@ -21,9 +21,8 @@ const ConfigSection<ConeSizeConfig>& cone_size_section() {
           .number("height_margin", &ConeSizeConfig::height_margin, 0.0, 1.0, "m",
                   "A cluster taller than a big cone plus this is rejected.")
           .number("profile_margin", &ConeSizeConfig::profile_margin, 0.0, 0.5, "m",
-                  "A point further than this outside a big cone's silhouette at its height is off the cone shape.")
-          .number("profile_outliers", &ConeSizeConfig::profile_outliers, 0.0, 1.0, "",
-                  "A cluster with a larger share of points off the cone shape is rejected.")
+                  "A cluster whose silhouette at some height is wider than a big cone's there by more than this (on "
+                  "each side) is not cone-shaped.")
           .number("big_min_height", &ConeSizeConfig::big_min_height, 0.05, 1.5, "m",
                   "A cone whose cluster reaches this high above the ground is a big cone.")
           .number("hit_margin", &ConeSizeConfig::hit_margin, 0.0, 0.5, "m",
@@ -136,20 +135,52 @@ ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const C
     t0 = std::min(t0, tangential[k]), t1 = std::max(t1, tangential[k]);
   }
   c.width = std::max(r1 - r0, t1 - t0);
-  c.big = top >= cfg_.big_min_height;
 
-  // Position: the silhouette's middle across, each point's range plus the model's depth behind it along.
+  // Silhouette per height slice (the points one laser left across the cone): its half-width across the line of
+  // sight at each height, about the axis in the middle of the whole silhouette.
   const double axis_t = 0.5 * (t0 + t1);
-  const double base_r = 0.5 * (c.big ? cfg_.big_width : cfg_.small_width);
-  const double top_r = 0.5 * (c.big ? cfg_.big_top_width : cfg_.small_top_width);
-  const double H = c.big ? cfg_.big_height : cfg_.small_height;
+  struct Slice {
+    double lo = std::numeric_limits<double>::max(), hi = -std::numeric_limits<double>::max();
+    int n = 0;
+  };
+  constexpr double kSlice = 0.03;  // m: under the 2° laser spacing at 1 m
+  const int slices = std::max(1, static_cast<int>(std::ceil((top - bottom) / kSlice)) + 1);
+  std::vector<Slice> slice(static_cast<std::size_t>(slices));
+  const auto slice_of = [&](double h) {
+    return std::clamp(static_cast<int>((h - bottom) / kSlice), 0, slices - 1);
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    Slice& sl = slice[static_cast<std::size_t>(slice_of(height[k]))];
+    sl.lo = std::min(sl.lo, tangential[k]), sl.hi = std::max(sl.hi, tangential[k]);
+    ++sl.n;
+  }
+  const auto half_width = [&](const Slice& sl) { return std::max(sl.hi - axis_t, axis_t - sl.lo); };
   const auto radius_at = [](double h, double r_base, double r_top, double height_total) {
     const double f = std::clamp(h / height_total, 0.0, 1.0);
     return r_base - (r_base - r_top) * f;
   };
+  const double small_base = 0.5 * cfg_.small_width, small_top = 0.5 * cfg_.small_top_width;
+  const double big_base = 0.5 * cfg_.big_width, big_top = 0.5 * cfg_.big_top_width;
+  c.big = top >= cfg_.big_min_height;
+  // The cone's radius where each point hit it: the small cone's, unless the slice is wider than that by more than
+  // half a firing step; then its measured half-width (plus half a step, which it misses on average) up to the big
+  // cone's radius there; the big cone's once the cluster is known to be one. A big cone seen only low (one far
+  // laser) is thus not placed as a small one.
+  const double step = std::max(0.0, range) * deg2rad(cfg_.azimuth_step_deg);
+  const auto radius_of_point = [&](std::size_t k) {
+    const double h = height[k];
+    const double big_r = radius_at(h, big_base, big_top, cfg_.big_height);
+    if (c.big) return big_r;
+    const double small_r = radius_at(h, small_base, small_top, cfg_.small_height);
+    const double half = half_width(slice[static_cast<std::size_t>(slice_of(h))]);
+    if (half <= small_r + 0.5 * step) return small_r;  // as wide as a small cone there, within half a firing step
+    return std::clamp(half + 0.5 * step, std::min(small_r, big_r), big_r);
+  };
+
+  // Position: the silhouette's middle across; along, each point's range plus the cone's depth behind it there.
   double centre_r = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double rho = radius_at(height[k], base_r, top_r, H);
+    const double rho = radius_of_point(k);
     const double u = std::min(std::abs(tangential[k] - axis_t), rho);
     centre_r += radial[k] + std::sqrt(rho * rho - u * u);
   }
@@ -172,15 +203,15 @@ ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const C
   } else if (bottom - gap > ground_threshold + cfg_.hit_margin) {
     m.rejection = ConeRejection::Floating;
   } else {
-    // Silhouette: every point within a big cone's radius at its height (plus margin) of the axis.
-    std::size_t outside = 0;
-    const double big_base = 0.5 * cfg_.big_width, big_top = 0.5 * cfg_.big_top_width;
-    for (std::size_t k = 0; k < n; ++k)
-      if (std::abs(tangential[k] - axis_t) >
-          radius_at(height[k], big_base, big_top, cfg_.big_height) + cfg_.profile_margin)
-        ++outside;
-    if (static_cast<double>(outside) > cfg_.profile_outliers * static_cast<double>(n))
-      m.rejection = ConeRejection::NotConeShaped;
+    // Silhouette: no slice wider than a big cone at its height (a standing tyre's tread, a box, a post's top).
+    for (const auto& sl : slice) {
+      if (sl.n < 2) continue;
+      const double mid = bottom + (static_cast<double>(&sl - slice.data()) + 0.5) * kSlice;
+      if (half_width(sl) > radius_at(mid, big_base, big_top, cfg_.big_height) + cfg_.profile_margin) {
+        m.rejection = ConeRejection::NotConeShaped;
+        break;
+      }
+    }
   }
   return m;
 }

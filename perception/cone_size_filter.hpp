@@ -6,7 +6,8 @@
 // with each point's height above the ground plane, and rejected when it is
 //  - too wide: larger across or along the line of sight than a big cone's base plus a margin;
 //  - too tall: its top is higher than a big cone's;
-//  - not cone-shaped: points lie outside a big cone's silhouette at their height (a standing tyre, a post, a box);
+//  - not cone-shaped: at some height its silhouette across the line of sight is wider than a big cone's there
+//    (a standing tyre's tread, a box);
 //  - too flat: the laser above its top would have hit a cone (its next beam passes below a small cone's top at
 //    that range), so the object is lower than a cone (a kerb, a lying tyre);
 //  - floating: the laser below its bottom would have hit it above the ground threshold had it stood on the ground;
@@ -16,8 +17,9 @@
 // The laser spacing and azimuth step are the sensor's (VLP-16 defaults) and make the tests range-aware.
 //
 // Position: the tangential middle of the silhouette (the centre of a circle seen from afar) and, along the line
-// of sight, each point's range plus the cone model's depth behind it at its height, averaged; so the visible
-// front half of the cone does not pull the position towards the sensor (by π/4 of the radius, ~7 cm on average).
+// of sight, each point's range plus the cone's depth behind it at its height, averaged; so the visible front half
+// of the cone does not pull the position towards the sensor (by π/4 of the radius, ~7 cm on average). The radius
+// at a height is the silhouette's measured half-width there, held between the small and the big cone model.
 #include <cstdint>
 #include <vector>
 
@@ -35,8 +37,7 @@ struct ConeSizeConfig {
   double small_top_width = 0.05, big_top_width = 0.06;  // m, the narrow tips
   double width_margin = 0.08;     // m a cluster may exceed a big cone's base (range noise along the line of sight)
   double height_margin = 0.06;    // m a cluster's top may exceed a big cone's
-  double profile_margin = 0.04;   // m a point may lie outside a big cone's silhouette at its height
-  double profile_outliers = 0.15; // share of points allowed outside the silhouette
+  double profile_margin = 0.04;   // m a slice's half-width may exceed a big cone's radius at its height
   double big_min_height = 0.40;   // m: a cluster reaching this high is a big cone
   double hit_margin = 0.025;      // m inside a cone's top (too flat) or above the ground threshold (floating)
   double beam_spacing_deg = 2.0;  // vertical angle between adjacent lasers (VLP-16: 2°)

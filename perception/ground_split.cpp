@@ -46,9 +46,11 @@ std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const
       const auto side_far = [&](bool left) {
         float far = 0;
         int count = 0;
-        for (std::size_t step = 1;; ++step) {
-          if (left ? step > k : k + step >= ring.size()) break;
-          const Point& q = points[ring[left ? k - step : k + step]];
+        // The ring is circular: a revolution's first and last firings are neighbours (the frame cut is often
+        // straight ahead); the azimuth window stops the walk on a partial scan.
+        const std::size_t n = ring.size();
+        for (std::size_t step = 1; step < n; ++step) {
+          const Point& q = points[ring[left ? (k + n - step) % n : (k + step) % n]];
           double da = std::abs(q.azimuth - p.azimuth);
           da = std::min(da, kTwoPi - da);
           if (da > g.window) break;
