@@ -29,6 +29,10 @@ const ConfigSection<ConeSizeConfig>& cone_size_section() {
                   "Too flat / floating: how far inside a cone the next laser up / down must pass to count as a miss.")
           .number("beam_spacing_deg", &ConeSizeConfig::beam_spacing_deg, 0.1, 10.0, "deg",
                   "Vertical angle between adjacent lasers (VLP-16: 2).")
+          .number("lowest_beam_deg", &ConeSizeConfig::lowest_beam_deg, -90.0, 0.0, "deg",
+                  "Elevation of the sensor's lowest laser (VLP-16: -15): no laser below it can see a cone's foot.")
+          .number("highest_beam_deg", &ConeSizeConfig::highest_beam_deg, 0.0, 90.0, "deg",
+                  "Elevation of the sensor's highest laser (VLP-16: 15).")
           .number("azimuth_step_deg", &ConeSizeConfig::azimuth_step_deg, 0.01, 5.0, "deg",
                   "Horizontal angle between firings (VLP-16: 0.2 at 10 Hz).")
           .number("min_point_ratio", &ConeSizeConfig::min_point_ratio, 0.0, 1.0, "",
@@ -54,10 +58,10 @@ const char* to_string(ConeRejection r) {
   return "?";
 }
 
-double ConeSizeFilter::expected_points(double range, int frames, double ground_threshold) const {
+double ConeSizeFilter::expected_points(double range, int frames, double low, double high) const {
   const double r = std::max(range, 0.5);
   const double gap = r * std::tan(deg2rad(cfg_.beam_spacing_deg));
-  const double visible = std::max(0.0, cfg_.small_height - ground_threshold);
+  const double visible = std::max(0.0, std::min(high, cfg_.small_height) - low);
   const double rings = std::max(1.0, visible / gap);
   const double mean_width = 0.5 * (cfg_.small_width + cfg_.small_top_width);
   const double across = std::max(1.0, mean_width / (r * deg2rad(cfg_.azimuth_step_deg)));
@@ -80,8 +84,9 @@ bool ConeSizeFilter::beside_taller(const Vec3& position, const std::vector<Vec2>
 }
 
 ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const Cluster& cluster,
-                                        const GroundPlane& ground, const Vec3& sensor, double ground_threshold,
+                                        const GroundPlane& ground, const Pose3& mount, double ground_threshold,
                                         int frames) const {
+  const Vec3 sensor = mount.translation();
   ConeMeasurement m;
   ConeCandidate& c = m.candidate;
   const auto n = cluster.indices.size();
@@ -188,19 +193,35 @@ ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const C
   const Vec2 xy = s + centre_r * los + axis_t * across;
   c.position = Vec3(xy.x(), xy.y(), ground.z_at(xy.x(), xy.y()));
   c.range = (xy - s).norm();
-  m.expected_points = expected_points(c.range, frames, ground_threshold);
+
+  // The sensor's laser fan towards the cone, as elevations above the ground plane, and the heights its lowest and
+  // highest lasers pass there.
+  const Vec3 normal = ground.normal();
+  const Vec3 in_sensor = mount.inverse() * c.position;
+  const double az = -std::atan2(in_sensor.y(), in_sensor.x());
+  const auto elevation_of = [&](double laser_deg) {
+    const double e = deg2rad(laser_deg);
+    const Vec3 d = mount.linear() * Vec3(std::cos(e) * std::cos(az), -std::cos(e) * std::sin(az), std::sin(e));
+    return std::asin(std::clamp(d.dot(normal), -1.0, 1.0));
+  };
+  const double sensor_h = ground.height_of(sensor.x(), sensor.y(), sensor.z());
+  const double r = std::max(c.range, 0.1);
+  const double lowest = sensor_h + r * std::tan(elevation_of(cfg_.lowest_beam_deg));
+  const double highest = sensor_h + r * std::tan(elevation_of(cfg_.highest_beam_deg));
+  m.expected_points = expected_points(c.range, frames, std::max(ground_threshold, lowest), highest);
 
   // The tests, cheapest and most telling first.
   const double gap = c.range * std::tan(deg2rad(cfg_.beam_spacing_deg));
+  const double slack = 0.25 * gap;  // a laser a quarter spacing beyond the fan's end is not there
   if (c.width > cfg_.big_width + cfg_.width_margin) {
     m.rejection = ConeRejection::TooWide;
   } else if (top > cfg_.big_height + cfg_.height_margin) {
     m.rejection = ConeRejection::TooTall;
   } else if (static_cast<double>(n) < std::max<double>(cfg_.min_points, cfg_.min_point_ratio * m.expected_points)) {
     m.rejection = ConeRejection::TooSparse;
-  } else if (top + gap < cfg_.small_height - cfg_.hit_margin) {
+  } else if (top + gap < cfg_.small_height - cfg_.hit_margin && top + gap <= highest + slack) {
     m.rejection = ConeRejection::TooFlat;
-  } else if (bottom - gap > ground_threshold + cfg_.hit_margin) {
+  } else if (bottom - gap > ground_threshold + cfg_.hit_margin && bottom - gap >= lowest - slack) {
     m.rejection = ConeRejection::Floating;
   } else {
     // Silhouette: no slice wider than a big cone at its height (a standing tyre's tread, a box, a post's top).

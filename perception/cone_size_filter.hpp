@@ -10,7 +10,9 @@
 //    (a standing tyre's tread, a box);
 //  - too flat: the laser above its top would have hit a cone (its next beam passes below a small cone's top at
 //    that range), so the object is lower than a cone (a kerb, a lying tyre);
-//  - floating: the laser below its bottom would have hit it above the ground threshold had it stood on the ground;
+//  - floating: the laser below its bottom would have hit it above the ground threshold had it stood on the ground
+//    (both only where the sensor has a laser above / below: its fan ends at lowest/highest_beam_deg, tilted with
+//    the mount);
 //  - too sparse: fewer points than a share of what a small cone returns at that range with this sensor;
 //  - beside something taller: obstacle points higher than any cone within `tall_clearance` of its position (the
 //    sparse low fragments of a fence seen at a grazing angle, the foot of a post or a person).
@@ -41,6 +43,7 @@ struct ConeSizeConfig {
   double big_min_height = 0.40;   // m: a cluster reaching this high is a big cone
   double hit_margin = 0.025;      // m inside a cone's top (too flat) or above the ground threshold (floating)
   double beam_spacing_deg = 2.0;  // vertical angle between adjacent lasers (VLP-16: 2°)
+  double lowest_beam_deg = -15.0, highest_beam_deg = 15.0;  // the sensor's laser fan (VLP-16: ±15°)
   double azimuth_step_deg = 0.2;  // horizontal angle between firings (VLP-16 at 10 Hz: 0.2°)
   double min_point_ratio = 0.2;   // share of a small cone's expected points a cluster must have
   int min_points = 2;
@@ -62,12 +65,16 @@ struct ConeMeasurement {
 class ConeSizeFilter {
  public:
   explicit ConeSizeFilter(const ConeSizeConfig& cfg = {}) : cfg_(cfg) {}
-  // Measures one cluster of `cloud` (the detector's frame) against the ground plane; `sensor` is the sensor's
-  // position in that frame, `ground_threshold` the ground stage's τ, `frames` the frames accumulated in `cloud`.
+  // Measures one cluster of `cloud` (the detector's frame) against the ground plane; `mount` is the sensor's pose
+  // in that frame (frame ← sensor), `ground_threshold` the ground stage's τ, `frames` the frames accumulated.
   ConeMeasurement measure(const std::vector<Point>& cloud, const Cluster& cluster, const GroundPlane& ground,
-                          const Vec3& sensor, double ground_threshold, int frames) const;
-  // Points a small cone returns at horizontal range r over `frames` frames (sensor geometry, visible height above τ).
-  double expected_points(double range, int frames, double ground_threshold) const;
+                          const Pose3& mount, double ground_threshold, int frames) const;
+  // Points a small cone returns at horizontal range r over `frames` frames, where the lasers can cross it between
+  // the heights `low` and `high` above the ground (sensor geometry); without limits from τ to its top.
+  double expected_points(double range, int frames, double low, double high) const;
+  double expected_points(double range, int frames, double ground_threshold) const {
+    return expected_points(range, frames, ground_threshold, cfg_.small_height);
+  }
   // Whether any of `tall` (x/y of obstacle points higher than a big cone) lies within tall_clearance of `position`.
   bool beside_taller(const Vec3& position, const std::vector<Vec2>& tall) const;
   // Obstacle points of `cloud` higher above the ground than any cone may reach (for beside_taller).

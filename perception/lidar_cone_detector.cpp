@@ -152,7 +152,7 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
 
   const std::vector<Vec2> tall = size_.tall_points(out.obstacle_points, plane);
   for (const auto& cl : clusters) {
-    ConeMeasurement m = size_.measure(out.obstacle_points, cl, plane, sensor, tau, out.frames);
+    ConeMeasurement m = size_.measure(out.obstacle_points, cl, plane, body_from_sensor_, tau, out.frames);
     if (m.rejection == ConeRejection::None && size_.beside_taller(m.candidate.position, tall))
       m.rejection = ConeRejection::BesideTaller;
     if (m.rejection != ConeRejection::None) {
