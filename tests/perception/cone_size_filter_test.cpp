@@ -44,7 +44,7 @@ Measured measure(const SceneObject& object, double noise = 0.0) {
   splitter.split(scan.points, g, 0.05, 1.0, nullptr, m.cloud);
   const auto clusters = Clusterer(ClusterConfig{}).cluster(m.cloud, kMount.translation().head<2>());
   ConeSizeFilter f;
-  for (const auto& c : clusters) m.all.push_back(f.measure(m.cloud, c, g, kMount.translation(), 0.05, 1));
+  for (const auto& c : clusters) m.all.push_back(f.measure(m.cloud, c, g, kMount, 0.05, 1));
   return m;
 }
 
@@ -147,10 +147,10 @@ TEST(ConeSizeFilter, RejectsASparseSpeckForItsRange) {
   c.indices = {0, 1};
   // A small cone 4 m from the sensor returns dozens of points per frame; two are a speck.
   EXPECT_GT(f.expected_points(4.0, 1, 0.05), 10.0);
-  EXPECT_EQ(f.measure(cloud, c, g, kMount.translation(), 0.05, 1).rejection, ConeRejection::TooSparse);
+  EXPECT_EQ(f.measure(cloud, c, g, kMount, 0.05, 1).rejection, ConeRejection::TooSparse);
   // Far away two points are what a cone gives.
   for (auto& p : cloud) p.x += 14.0f, p.z = 0.1f;
-  EXPECT_EQ(f.measure(cloud, c, g, kMount.translation(), 0.05, 1).rejection, ConeRejection::None);
+  EXPECT_EQ(f.measure(cloud, c, g, kMount, 0.05, 1).rejection, ConeRejection::None);
 }
 
 TEST(ConeSizeFilter, BesideSomethingTaller) {
