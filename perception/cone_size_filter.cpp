@@ -68,7 +68,7 @@ double ConeSizeFilter::expected_points(double range, int frames, double low, dou
   return std::max(1, frames) * rings * across;
 }
 
-std::vector<Vec2> ConeSizeFilter::tall_points(const std::vector<Point>& cloud, const GroundPlane& ground) const {
+std::vector<Vec2> ConeSizeFilter::tall_points(const std::vector<Point>& cloud, const GroundSurface& ground) const {
   std::vector<Vec2> out;
   if (cfg_.tall_clearance <= 0) return out;
   const double limit = cfg_.big_height + cfg_.height_margin;
@@ -84,7 +84,7 @@ bool ConeSizeFilter::beside_taller(const Vec3& position, const std::vector<Vec2>
 }
 
 ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const Cluster& cluster,
-                                        const GroundPlane& ground, const Pose3& mount, double ground_threshold,
+                                        const GroundSurface& ground, const Pose3& mount, double ground_threshold,
                                         int frames) const {
   const Vec3 sensor = mount.translation();
   ConeMeasurement m;

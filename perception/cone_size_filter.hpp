@@ -29,7 +29,7 @@
 #include "common/types.hpp"
 #include "perception/candidate.hpp"
 #include "perception/clusterer.hpp"
-#include "perception/ground_plane.hpp"
+#include "perception/ground_surface.hpp"
 
 namespace fsd {
 
@@ -67,7 +67,7 @@ class ConeSizeFilter {
   explicit ConeSizeFilter(const ConeSizeConfig& cfg = {}) : cfg_(cfg) {}
   // Measures one cluster of `cloud` (the detector's frame) against the ground plane; `mount` is the sensor's pose
   // in that frame (frame ← sensor), `ground_threshold` the ground stage's τ, `frames` the frames accumulated.
-  ConeMeasurement measure(const std::vector<Point>& cloud, const Cluster& cluster, const GroundPlane& ground,
+  ConeMeasurement measure(const std::vector<Point>& cloud, const Cluster& cluster, const GroundSurface& ground,
                           const Pose3& mount, double ground_threshold, int frames) const;
   // Points a small cone returns at horizontal range r over `frames` frames, where the lasers can cross it between
   // the heights `low` and `high` above the ground (sensor geometry); without limits from τ to its top.
@@ -78,7 +78,7 @@ class ConeSizeFilter {
   // Whether any of `tall` (x/y of obstacle points higher than a big cone) lies within tall_clearance of `position`.
   bool beside_taller(const Vec3& position, const std::vector<Vec2>& tall) const;
   // Obstacle points of `cloud` higher above the ground than any cone may reach (for beside_taller).
-  std::vector<Vec2> tall_points(const std::vector<Point>& cloud, const GroundPlane& ground) const;
+  std::vector<Vec2> tall_points(const std::vector<Point>& cloud, const GroundSurface& ground) const;
   const ConeSizeConfig& config() const { return cfg_; }
 
  private:

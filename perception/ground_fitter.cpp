@@ -40,7 +40,17 @@ const ConfigSection<GroundConfig>& ground_section() {
           .number("grazing_window_deg", &GroundConfig::grazing_window_deg, 0.2, 30.0, "deg",
                   "Grazing beams: azimuth window on each side of a point holding its laser's neighbours.")
           .number("grazing_margin", &GroundConfig::grazing_margin, 0.0, 50.0, "m",
-                  "Grazing beams: points this far beyond the region of interest serve as neighbours.");
+                  "Grazing beams: points this far beyond the region of interest serve as neighbours.")
+          .number("fit_radius", &GroundConfig::fit_radius, 2.0, 200.0, "m",
+                  "The plane is fitted to the points within this horizontal distance of the frame origin.")
+          .number("local_cell", &GroundConfig::local_cell, 0.0, 50.0, "m",
+                  "Grid cell of the local ground corrections where the ground bends away from the plane; 0 = off.")
+          .number("local_band", &GroundConfig::local_band, 0.01, 1.0, "m",
+                  "Local ground: the band around the plane searched for the ground layer (largest correction).")
+          .integer("local_min_points", &GroundConfig::local_min_points, 3, 100000, "",
+                   "Local ground: points a cell's flat layer needs to correct it.")
+          .number("local_min_extent", &GroundConfig::local_min_extent, 0.1, 50.0, "m",
+                  "Local ground: horizontal spread a cell's flat layer needs (more than an object's foot).");
   return s;
 }
 
@@ -52,8 +62,13 @@ bool GroundFitter::admissible(double a, double b, double h) const {
          h >= cfg_.height_min && h <= cfg_.height_max;
 }
 
-GroundPlane GroundFitter::fit(const std::vector<Point>& points) {
+GroundPlane GroundFitter::fit(const std::vector<Point>& all) {
   rng_.seed(0x5eed);  // the same cloud gives the same plane, whatever came before
+  near_.clear();
+  const float r2 = static_cast<float>(cfg_.fit_radius * cfg_.fit_radius);
+  for (const auto& q : all)
+    if (q.x * q.x + q.y * q.y <= r2) near_.push_back(q);
+  const std::vector<Point>& points = near_;
   GroundPlane p = cfg_.method == "pcl_sac" ? fit_pcl_sac(points) : fit_grid_lsq(points);
   if (p.valid && (p.inliers < static_cast<std::size_t>(cfg_.min_inliers) || !admissible(p.a, p.b, p.h)))
     p.valid = false;

@@ -37,6 +37,13 @@ struct GroundConfig {
   double grazing_drop = 0.04;
   double grazing_window_deg = 4.0;
   double grazing_margin = 3.0;       // m beyond the region of interest whose points serve as neighbours
+  // The plane is fitted to the points within fit_radius of the frame origin (the ground nearest the car, where a
+  // plane holds best); beyond, the local corrections (ground_surface.hpp) follow the ground.
+  double fit_radius = 15.0;          // m
+  double local_cell = 4.0;           // m; 0 = the plane alone
+  double local_band = 0.25;          // m
+  int local_min_points = 10;
+  double local_min_extent = 1.0;     // m
 };
 const ConfigSection<GroundConfig>& ground_section();  // "perception.lidar.ground"
 
@@ -56,6 +63,7 @@ class GroundFitter {
   std::mt19937 rng_;
   std::vector<int> cell_lowest_;  // per grid cell: index of its lowest point, -1 when empty
   std::vector<Eigen::Vector3f> seeds_;
+  std::vector<Point> near_;  // the points within fit_radius
 };
 
 // Least-squares plane z = a·x + b·y + h through the points within `threshold` (signed distance) of `plane`,

@@ -6,22 +6,21 @@
 
 namespace fsd {
 
-void GroundSplitter::classify(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
+void GroundSplitter::classify(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
                               double max_height) {
-  const double k = plane.inv_norm();
   height_.resize(points.size());
   kind_.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& q = points[i];
-    const double d = (q.z - plane.z_at(q.x, q.y)) * k;
+    const double d = ground.height_of(q.x, q.y, q.z);
     height_[i] = static_cast<float>(d);
     kind_[i] = d < -threshold ? Kind::Below : d < threshold ? Kind::Ground : d <= max_height ? Kind::Obstacle : Kind::Above;
   }
 }
 
-std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
+std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
                                          const GrazingBeams& g) {
-  const double sensor_h = plane.height_of(g.sensor.x(), g.sensor.y(), g.sensor.z());
+  const double sensor_h = ground.height_of(g.sensor.x(), g.sensor.y(), g.sensor.z());
   if (g.band <= 0 || sensor_h <= threshold) return 0;
   // The band is longer than g.band along the beam where sin(grazing angle) < threshold / band, i.e. beyond this
   // horizontal range from the sensor (flat-ground approximation: sin β ≈ h / r).

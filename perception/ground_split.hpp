@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "perception/ground_plane.hpp"
+#include "perception/ground_surface.hpp"
 
 namespace fsd {
 
@@ -40,19 +40,19 @@ class GroundSplitter {
   // for which `keep(point)` holds are output and counted (the others, e.g. a margin around the region of interest,
   // serve as the grazing test's neighbours). `points` in firing order per laser when `grazing` is given.
   template <class Keep>
-  GroundSplitCounts split(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
-                          double max_height, std::vector<Point>* ground, std::vector<Point>& obstacles,
+  GroundSplitCounts split(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
+                          double max_height, std::vector<Point>* ground_out, std::vector<Point>& obstacles,
                           const GrazingBeams* grazing, Keep&& keep);
-  GroundSplitCounts split(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
-                          double max_height, std::vector<Point>* ground, std::vector<Point>& obstacles,
+  GroundSplitCounts split(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
+                          double max_height, std::vector<Point>* ground_out, std::vector<Point>& obstacles,
                           const GrazingBeams* grazing = nullptr) {
-    return split(points, plane, threshold, max_height, ground, obstacles, grazing, [](const Point&) { return true; });
+    return split(points, ground, threshold, max_height, ground_out, obstacles, grazing, [](const Point&) { return true; });
   }
 
  private:
   enum class Kind : std::uint8_t { Ground, Obstacle, Below, Above };
-  void classify(const std::vector<Point>& points, const GroundPlane& plane, double threshold, double max_height);
-  std::size_t mark_grazing(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
+  void classify(const std::vector<Point>& points, const GroundSurface& ground, double threshold, double max_height);
+  std::size_t mark_grazing(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
                            const GrazingBeams& g);
   std::vector<float> height_;
   std::vector<Kind> kind_;
@@ -60,12 +60,12 @@ class GroundSplitter {
 };
 
 template <class Keep>
-GroundSplitCounts GroundSplitter::split(const std::vector<Point>& points, const GroundPlane& plane, double threshold,
-                                        double max_height, std::vector<Point>* ground, std::vector<Point>& obstacles,
+GroundSplitCounts GroundSplitter::split(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
+                                        double max_height, std::vector<Point>* ground_out, std::vector<Point>& obstacles,
                                         const GrazingBeams* grazing, Keep&& keep) {
   GroundSplitCounts c;
-  classify(points, plane, threshold, max_height);
-  if (grazing) mark_grazing(points, plane, threshold, *grazing);
+  classify(points, ground, threshold, max_height);
+  if (grazing) mark_grazing(points, ground, threshold, *grazing);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!keep(points[i])) continue;
     switch (kind_[i]) {
@@ -73,7 +73,7 @@ GroundSplitCounts GroundSplitter::split(const std::vector<Point>& points, const 
       case Kind::Above: ++c.above; break;
       case Kind::Ground:
         ++c.ground;
-        if (ground) ground->push_back(points[i]);
+        if (ground_out) ground_out->push_back(points[i]);
         break;
       case Kind::Obstacle:
         ++c.obstacles;

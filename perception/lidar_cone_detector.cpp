@@ -52,7 +52,7 @@ LidarConeDetector::LidarConeDetector(const LidarDetectorConfig& cfg, const Pose3
       accumulator_(cfg.accumulation),
       clusterer_(cfg.cluster),
       size_(cfg.size),
-      colour_(cfg.colour, cfg.size.small_height) {
+      colour_(cfg.colour, cfg.size.small_height, cfg.size.big_height) {
   check_config(cfg);
 }
 
@@ -118,6 +118,15 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
     last_ground_ = plane;
   }
   out.ground = plane;
+  GroundSurface surface(plane);
+  LocalGroundConfig local;
+  local.cell = cfg_.ground.local_cell;
+  local.band = cfg_.ground.local_band;
+  local.flat = cfg_.ground.distance_threshold;
+  local.min_points = cfg_.ground.local_min_points;
+  local.min_extent = cfg_.ground.local_min_extent;
+  surface.fit_local(cropped_, local);
+  n.local_ground_cells = surface.corrected_cells();
   obstacles_.clear();
   const double tau = cfg_.ground.distance_threshold;
   GrazingBeams grazing;
@@ -125,7 +134,7 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   grazing.band = cfg_.ground.grazing_band;
   grazing.drop = cfg_.ground.grazing_drop;
   grazing.window = deg2rad(cfg_.ground.grazing_window_deg);
-  const auto split = splitter_.split(cropped_, plane, tau, cfg_.roi.max_height, &out.ground_points, obstacles_,
+  const auto split = splitter_.split(cropped_, surface, tau, cfg_.roi.max_height, &out.ground_points, obstacles_,
                                      use_grazing ? &grazing : nullptr,
                                      [this](const Point& q) { return roi_.in_box(q.x, q.y); });
   n.grazing = split.grazing;
@@ -150,9 +159,9 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   n.clusters = clusters.size();
   n.clusters_too_large = too_large;
 
-  const std::vector<Vec2> tall = size_.tall_points(out.obstacle_points, plane);
+  const std::vector<Vec2> tall = size_.tall_points(out.obstacle_points, surface);
   for (const auto& cl : clusters) {
-    ConeMeasurement m = size_.measure(out.obstacle_points, cl, plane, body_from_sensor_, tau, out.frames);
+    ConeMeasurement m = size_.measure(out.obstacle_points, cl, surface, body_from_sensor_, tau, out.frames);
     if (m.rejection == ConeRejection::None && size_.beside_taller(m.candidate.position, tall))
       m.rejection = ConeRejection::BesideTaller;
     if (m.rejection != ConeRejection::None) {
@@ -176,7 +185,7 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
     cone.confidence = cone_confidence(cfg_.quality, c.range, c.points, m.expected_points);
     cone.stage = DetectionStage::Lidar;
     cone.points = c.points;
-    const IntensityColour colour = colour_.classify(c, plane);
+    const IntensityColour colour = colour_.classify(c, surface);
     cone.colour = colour.colour;
     cone.colour_confidence = colour.confidence;
     cone.colour_source = colour.colour == ConeColour::Unknown ? ColourSource::None : ColourSource::LidarIntensity;

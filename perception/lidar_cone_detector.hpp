@@ -59,6 +59,7 @@ struct LidarStageCounters {
   std::uint64_t beside_taller = 0;
   std::uint64_t cones = 0;
   std::uint64_t coloured = 0;       // cones with a colour from the reflectivity
+  std::uint64_t local_ground_cells = 0;  // grid cells whose ground was corrected from the plane
   bool ground_fallback = false;     // no plane found: the previous (or nominal) plane was used
 };
 
@@ -73,7 +74,7 @@ struct RejectedCluster {
 struct LidarDetection {
   ConeDetections detections;             // vehicle frame at detections.stamp, the scan's last firing
   std::vector<ConeCandidate> candidates;  // candidates[i] is detections.cones[i]
-  GroundPlane ground;                    // in the vehicle frame at that time
+  GroundPlane ground;                    // in the vehicle frame at that time (local corrections not included)
   std::vector<Point> ground_points;      // this scan's ground points (vehicle frame, deskewed)
   std::vector<Point> obstacle_points;    // the clustered cloud: this scan's and the accumulated obstacle points
   std::vector<RejectedCluster> rejected;  // clusters within the point bounds that are not cones

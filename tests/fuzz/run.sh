@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the four libFuzzer targets with clang (ASan + UBSan) in their own build dir and runs each for a bounded
+# Builds the five libFuzzer targets with clang (ASan + UBSan) in their own build dir and runs each for a bounded
 # time on a scratch copy of its seed corpus. Exits non-zero on any finding (crash, sanitizer report, leak, timeout,
 # out-of-memory); the reproducer and the log stay in test-artifacts/fuzz/.
 #
@@ -17,7 +17,7 @@ runs="${FUZZ_RUNS:-}"
 jobs="${FUZZ_JOBS:-2}"            # build jobs and targets fuzzed at once (the machine has 2 cores)
 out="test-artifacts/fuzz"
 targets=("$@")
-((${#targets[@]})) || targets=(vlp16_packet vlp16_pcap nmea vcu)
+((${#targets[@]})) || targets=(vlp16_packet vlp16_pcap nmea vcu csv_cloud)
 
 # Per-target libFuzzer options. NMEA lines are at most 82 characters: 2 KiB holds ~25 sentences (several receiver
 # epochs) and keeps the executions fast; the 16 KB seeds are truncated to it, which still covers every sentence type.
