@@ -35,31 +35,33 @@ std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const
   std::size_t found = 0;
   constexpr double kTwoPi = 2 * std::numbers::pi;
   for (const auto& ring : by_ring_) {
-    for (std::size_t k = 0; k < ring.size(); ++k) {
+    // The ring is circular: a revolution's first and last firings are neighbours (the frame cut is often straight
+    // ahead); the azimuth window stops the walk on a partial scan.
+    const std::size_t n = ring.size();
+    for (std::size_t k = 0; k < n; ++k) {
       const Point& p = points[ring[k]];
       const float dx = p.x - sx, dy = p.y - sy;
       if (dx * dx + dy * dy < min_range2) continue;  // steep enough: the height test holds
-      // The farthest return of the laser within the window on each side: an object narrower than the window is
-      // short of the ground beyond it on both sides, however many of its own points the window holds; a ground
-      // ring whose range trends along the azimuth (a pitched sensor, a slope) is short of one side only.
-      const auto side_far = [&](bool left) {
-        float far = 0;
+      // A return of the laser farther by the drop within the window on each side: an object narrower than the
+      // window is short of the ground beyond it on both sides, however many of its own points the window holds;
+      // a ground ring whose range trends along the azimuth (a pitched sensor, a slope) is short of one side only.
+      const auto keep = static_cast<float>(1.0 - g.drop);
+      const float beyond = p.distance / keep;  // a ground return this far on the side shows p stands short of it
+      const auto side_has_far = [&](bool left) {
         int count = 0;
-        // The ring is circular: a revolution's first and last firings are neighbours (the frame cut is often
-        // straight ahead); the azimuth window stops the walk on a partial scan.
-        const std::size_t n = ring.size();
+        bool far = false;
         for (std::size_t step = 1; step < n; ++step) {
           const Point& q = points[ring[left ? (k + n - step) % n : (k + step) % n]];
           double da = std::abs(q.azimuth - p.azimuth);
           da = std::min(da, kTwoPi - da);
           if (da > g.window) break;
-          far = std::max(far, q.distance);
           ++count;
+          far = far || q.distance > beyond;
+          if (far && count * 2 >= g.min_neighbours) return true;
         }
-        return count * 2 >= g.min_neighbours ? far : 0.0f;
+        return false;
       };
-      const auto keep = static_cast<float>(1.0 - g.drop);
-      if (side_far(true) * keep <= p.distance || side_far(false) * keep <= p.distance) continue;
+      if (!side_has_far(true) || !side_has_far(false)) continue;
       kind_[ring[k]] = Kind::Obstacle;
       ++found;
     }

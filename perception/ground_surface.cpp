@@ -22,8 +22,11 @@ void GroundSurface::fit_local(const std::vector<Point>& points, const LocalGroun
   struct Sample {
     float r, x, y;
   };
-  std::vector<std::uint32_t> start(cells + 1, 0);
-  std::vector<std::uint32_t> cell_of(points.size(), std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t>& start = start_;
+  std::vector<std::uint32_t>& cell_of = cell_of_;
+  start.assign(cells + 1, 0);
+  cell_of.assign(points.size(), std::numeric_limits<std::uint32_t>::max());
+  residual_.resize(points.size());
   const auto index = [&](float x, float y) {
     const int cx = std::clamp(static_cast<int>((x - x0_) / cell_), 0, nx_ - 1);
     const int cy = std::clamp(static_cast<int>((y - y0_) / cell_), 0, ny_ - 1);
@@ -31,7 +34,8 @@ void GroundSurface::fit_local(const std::vector<Point>& points, const LocalGroun
   };
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& q = points[i];
-    if (std::abs(plane_.height_of(q.x, q.y, q.z)) >= cfg.band) continue;
+    residual_[i] = static_cast<float>((q.z - plane_.z_at(q.x, q.y)) * k_);
+    if (std::abs(residual_[i]) >= cfg.band) continue;
     cell_of[i] = index(q.x, q.y);
     ++start[cell_of[i] + 1];
   }
@@ -41,8 +45,8 @@ void GroundSurface::fit_local(const std::vector<Point>& points, const LocalGroun
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (std::size_t i = 0; i < points.size(); ++i)
       if (cell_of[i] != std::numeric_limits<std::uint32_t>::max()) {
-        const auto& q = points[i];
-        samples[fill[cell_of[i]]++] = {static_cast<float>(plane_.height_of(q.x, q.y, q.z)), q.x, q.y};
+        const auto& q = points[i];  // NOLINT
+        samples[fill[cell_of[i]]++] = {residual_[i], q.x, q.y};
       }
   }
   // Per cell: the layer at the median of the residuals (ground returns outnumber what stands on it) and the

@@ -23,7 +23,8 @@ struct LocalGroundConfig {
 class GroundSurface {
  public:
   GroundSurface() = default;
-  GroundSurface(const GroundPlane& plane) : plane_(plane) {}  // NOLINT: a plane is a surface without corrections
+  GroundSurface(const GroundPlane& plane) : plane_(plane), k_(plane.inv_norm()) {}  // NOLINT: a plane is a surface
+                                                                                   // without corrections
 
   // Local corrections from `points` (the detector's frame) around the plane.
   void fit_local(const std::vector<Point>& points, const LocalGroundConfig& cfg);
@@ -31,18 +32,20 @@ class GroundSurface {
   double offset_at(double x, double y) const;  // the correction above the plane, m
   double z_at(double x, double y) const { return plane_.z_at(x, y) + offset_at(x, y); }
   // Signed distance above the ground (the plane's normal direction; corrections are small and smooth).
-  double height_of(double x, double y, double z) const {
-    return plane_.height_of(x, y, z) - offset_at(x, y) * plane_.inv_norm();
-  }
+  double height_of(double x, double y, double z) const { return (z - plane_.z_at(x, y) - offset_at(x, y)) * k_; }
   Vec3 normal() const { return plane_.normal(); }
   const GroundPlane& plane() const { return plane_; }
   std::size_t corrected_cells() const { return corrected_; }
 
  private:
   GroundPlane plane_;
+  double k_ = 1.0;  // 1 / |(−a, −b, 1)|, for the distance along the normal
   double x0_ = 0, y0_ = 0, cell_ = 0;
   int nx_ = 0, ny_ = 0;
   std::vector<float> offset_;  // per cell centre
+  // Reused between fits.
+  std::vector<std::uint32_t> start_, cell_of_;
+  std::vector<float> residual_;
   std::size_t corrected_ = 0;
 };
 
