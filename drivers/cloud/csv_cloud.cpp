@@ -118,8 +118,9 @@ CsvCloud parse_csv_cloud(std::string_view text, const std::string& origin, const
     if (col.laser >= 0 && !(laser >= 0 && laser <= 255 && laser == std::floor(laser)))
       throw CloudError(where(origin, line_no) + "laser must be an integer 0..255");
     const double m = limits.max_coordinate;
-    if (!(std::abs(x) <= m && std::abs(y) <= m && std::abs(z) <= m) || !std::isfinite(intensity) ||
-        !std::isfinite(t_us)) {
+    // Intensities beyond a float's range (or any sensor's) and times beyond a year of µs are not data either.
+    if (!(std::abs(x) <= m && std::abs(y) <= m && std::abs(z) <= m) || !(std::abs(intensity) <= 1e6) ||
+        !(std::abs(t_us) <= 1e15)) {
       ++out.invalid;
       continue;
     }

@@ -30,7 +30,8 @@ struct CsvCloudLimits {
 struct CsvCloud {
   Scan scan;                  // points with distance and azimuth from the frame origin; ring and t when given
   std::size_t rows = 0;       // data rows
-  std::size_t invalid = 0;    // rows dropped: a coordinate or the intensity not finite, or beyond max_coordinate
+  std::size_t invalid = 0;    // rows dropped: a coordinate beyond max_coordinate (NaN, inf), an intensity beyond
+                              // ±1e6 or a time beyond ±1e15 µs
   bool header = false;
   bool has_intensity = false, has_lasers = false, has_times = false;
 };
