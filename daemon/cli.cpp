@@ -19,6 +19,7 @@ int run_cli(int argc, char** argv) {
   add_run_command(app, exit_code);
   add_sim_command(app, exit_code);
   add_lidar_dump_command(app, exit_code);
+  add_detect_command(app, exit_code);
   add_calibrate_homography_command(app, exit_code);
   add_mcap_command(app, exit_code);
   add_track_command(app, exit_code);

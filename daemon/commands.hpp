@@ -11,6 +11,7 @@ void add_config_command(CLI::App& app, int& exit_code);
 void add_run_command(CLI::App& app, int& exit_code);
 void add_sim_command(CLI::App& app, int& exit_code);
 void add_lidar_dump_command(CLI::App& app, int& exit_code);
+void add_detect_command(CLI::App& app, int& exit_code);
 void add_calibrate_homography_command(CLI::App& app, int& exit_code);
 void add_mcap_command(CLI::App& app, int& exit_code);
 void add_track_command(CLI::App& app, int& exit_code);

@@ -10,6 +10,7 @@
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
 #include "perception/camera/camera_stage.hpp"
+#include "perception/lidar_cone_detector.hpp"
 
 namespace fsd {
 
@@ -50,6 +51,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
   describe_camera_stage(*schema);
+  describe_lidar_detector_config(*schema);
   sim::describe_virtual_car_config(*schema);
   describe_control(*schema);
   web::web_section().describe(*schema);

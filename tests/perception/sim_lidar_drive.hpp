@@ -1,0 +1,123 @@
+#pragma once
+// Scans as the virtual car's VLP-16 renders them while the car drives a track's true centre line at constant speed,
+// decoded by the real Vlp16ScanBuilder, with the true body pose at any time and the world's true cones: the
+// independent truth of the LiDAR perception tests.
+#include <cmath>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/track.hpp"
+#include "common/types.hpp"
+#include "drivers/sim/lidar_model.hpp"
+#include "drivers/sim/reference_line.hpp"
+#include "drivers/sim/world.hpp"
+#include "drivers/vlp16/config.hpp"
+#include "drivers/vlp16/scan_builder.hpp"
+
+namespace fsd::test {
+
+// Body pose (map ← body, rear axle on the ground) driving a closed polyline at constant speed from arc length s0;
+// the heading looks 1 m ahead and behind so the 0.25 m samples of the line do not make it jitter.
+class LineDrive {
+ public:
+  LineDrive(std::vector<Vec2> line, double speed, double s0) : line_(std::move(line)), speed_(speed), s0_(s0) {
+    s_.push_back(0);
+    for (std::size_t i = 0; i < line_.size(); ++i)
+      s_.push_back(s_.back() + (line_[(i + 1) % line_.size()] - line_[i]).norm());
+  }
+  Vec2 at(double s) const {
+    s = std::fmod(std::fmod(s, s_.back()) + s_.back(), s_.back());
+    std::size_t i = 0;
+    while (s_[i + 1] < s) ++i;
+    const Vec2 a = line_[i], b = line_[(i + 1) % line_.size()];
+    const double f = (s - s_[i]) / std::max(1e-9, s_[i + 1] - s_[i]);
+    return a + f * (b - a);
+  }
+  Pose3 operator()(Stamp t) const {
+    const double s = s0_ + speed_ * t;
+    const Vec2 p = at(s), d = at(s + 1.0) - at(s - 1.0);
+    return Pose2{p.x(), p.y(), std::atan2(d.y(), d.x())}.to_pose3();
+  }
+  double length() const { return s_.back(); }
+
+ private:
+  std::vector<Vec2> line_;
+  std::vector<double> s_;
+  double speed_, s0_;
+};
+
+struct SimLidarSetup {
+  std::string track = "../shared/tracks/epfl_track_1.csv";
+  sim::WorldConfig world;            // distractors on by default
+  sim::LidarConfig lidar;            // the virtual car's mount by default
+  double speed = 8.0;                // m/s
+  double start_fraction = 0.0;       // where on the lap the drive starts
+  std::uint64_t seed = 1;
+};
+
+// Renders scan after scan; the first (partial) revolution is skipped.
+class SimLidarDrive {
+ public:
+  explicit SimLidarDrive(const SimLidarSetup& setup)
+      : setup_(setup),
+        track_(load_track(setup.track)),
+        world_(track_, setup.world, setup.seed),
+        drive_(sim::ReferenceLine(track_).points(), setup.speed,
+               setup.start_fraction * sim::ReferenceLine(track_).length()),
+        lidar_(setup.lidar, world_, setup.seed) {
+    Vlp16Config vc;
+    vc.mount_x = setup.lidar.x, vc.mount_y = setup.lidar.y, vc.mount_z = setup.lidar.z;
+    vc.mount_roll = setup.lidar.roll, vc.mount_pitch = setup.lidar.pitch, vc.mount_yaw = setup.lidar.yaw;
+    mount_ = vc.body_from_sensor();
+    builder_ = std::make_unique<Vlp16ScanBuilder>(vc, [this](Scan&& s) {
+      if (++emitted_ > 1) scans_.push_back(std::move(s));
+    });
+  }
+
+  Scan next() {
+    while (scans_.empty()) {
+      t_ += 0.01;
+      lidar_.advance_to(t_, std::cref(drive_), [this](Stamp t, std::span<const std::uint8_t> p) {
+        builder_->on_data_packet(t, p);
+      });
+    }
+    Scan s = std::move(scans_.front());
+    scans_.pop_front();
+    return s;
+  }
+
+  Pose3 body_pose(Stamp t) const { return drive_(t); }
+  const Pose3& mount() const { return mount_; }  // body ← sensor
+  const sim::World& world() const { return world_; }
+  const Track& track() const { return track_; }
+  const LineDrive& drive() const { return drive_; }
+  // The standing cones in the map frame with their true colours.
+  std::vector<Cone> true_cones() const {
+    std::vector<Cone> out;
+    for (const auto& c : world_.cones()) {
+      if (c.knocked) continue;
+      Cone k;
+      k.position = c.base;
+      k.colour = c.colour;
+      out.push_back(k);
+    }
+    return out;
+  }
+
+ private:
+  SimLidarSetup setup_;
+  Track track_;
+  sim::World world_;
+  LineDrive drive_;
+  sim::LidarModel lidar_;
+  Pose3 mount_;
+  std::unique_ptr<Vlp16ScanBuilder> builder_;
+  std::deque<Scan> scans_;
+  int emitted_ = 0;
+  Stamp t_ = 0;
+};
+
+}  // namespace fsd::test
