@@ -128,6 +128,25 @@ void Autopilot::finish(Stamp now) {
   (void)now;
 }
 
+std::optional<double> Autopilot::cone_across_straight() const {
+  if (!straight_ || !state_) return std::nullopt;
+  const auto car = project(*straight_, state_->pose.position());
+  if (!car) return std::nullopt;
+  const double front = config_.planner.tight_turn.body_front;
+  const double half_width = config_.planner.tight_turn.body_half_width + 0.3;
+  std::optional<double> nearest;
+  for (const auto& c : cones_) {
+    const Vec2 p = c.position.head<2>();
+    const double along = (p - state_->pose.position()).dot(Vec2(std::cos(state_->pose.yaw), std::sin(state_->pose.yaw)));
+    if (along < front || along > 60.0) continue;  // behind the nose, or too far to matter
+    const auto proj = project(*straight_, p, car->s, 0.0, 70.0);
+    if (!proj || proj->distance() > half_width) continue;
+    const double d = proj->s - car->s - front;
+    if (d > 0 && (!nearest || d < *nearest)) nearest = d;
+  }
+  return nearest;
+}
+
 void Autopilot::detect_open_end(Stamp now) {
   // Only the first time round on real-time plans: a loop's recorded lap never ends.
   if (run_out_ || finished_ || !plan_ || !state_ || plan_->points.size() < 2 || !lap_counter_ ||
@@ -424,8 +443,19 @@ ControlOutput Autopilot::step(Stamp now) {
 
   // Mission speed limits on top of the path's own profile.
   double cap = config_.speed.v_max;
-  if (finished_) cap = std::min(cap, stop_speed(finish_speed_, odometer_ - finish_odometer_,
-                                                config_.mission.stop_decel, stop_distance_));
+  const bool straight_mission = mission_ == Mission::Acceleration || mission_ == Mission::EbsTest;
+  if (finished_)
+    cap = std::min(cap, stop_speed(finish_speed_, odometer_ - finish_odometer_,
+                                   straight_mission ? config_.mission.acceleration_stop_decel : config_.mission.stop_decel,
+                                   stop_distance_));
+  // Never faster than the car can stop before a cone across its straight (a short braking zone's closing row):
+  // braking zones differ from event to event and the row is only seen from 20 m or so.
+  if (straight_mission && started_) {
+    if (const auto d = cone_across_straight()) {
+      const double room = *d - config_.mission.lane_end_margin;
+      cap = std::min(cap, room > 0 ? std::sqrt(2.0 * 0.8 * config_.speed.a_brake_max * room) : 0.0);
+    }
+  }
   ControlCommand cmd = follow.command;
   cmd.stamp = now;
   cmd.target_speed = std::min(cmd.target_speed, cap);

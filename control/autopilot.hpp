@@ -120,6 +120,9 @@ class Autopilot {
   void update_mission(Stamp now, const FollowResult* last_follow, ControlOutput& out);
   void finish(Stamp now);
   void detect_open_end(Stamp now);
+  // Metres from the nose to the nearest cone across the acceleration straight ahead (within the car's width and a
+  // margin of the line): the braking zone's closing row, once seen.
+  std::optional<double> cone_across_straight() const;
   const Path* select_path(Stamp now, PathSource& source);
   SpeedLimits lap2_limits() const;
   // Lap 2's path from lap 1's poses in [t0, t1] (and the plan `ahead` of an early build): built now, or handed to

@@ -123,6 +123,8 @@ const ConfigSection<MissionConfig>& mission_section() {
           .number("stop_distance", &C::stop_distance, 2, 200, "m", "Stop within this after the finish line.")
           .number("acceleration_length", &C::acceleration_length, 10, 500, "m", "Acceleration: start line to finish line.")
           .number("acceleration_stop_distance", &C::acceleration_stop_distance, 5, 500, "m", "Acceleration: stop within this after the finish.")
+          .number("acceleration_stop_decel", &C::acceleration_stop_decel, 0.5, 15, "m/s²", "Acceleration: braking to standstill after the finish (hard: a braking zone may be short).", true)
+          .number("lane_end_margin", &C::lane_end_margin, 0.2, 10, "m", "Acceleration and EBS test: room left between the nose and a cone across the straight ahead (the braking zone's closing row).", true)
           .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m", "Start pose to start line when no timing cones are seen.")
           .number("open_end_sight", &C::open_end_sight, 0, 50, "m", "Open layout: a plan ending this near with no cone beyond ends the track (0: off).")
           .number("open_end_min_travel", &C::open_end_min_travel, 0, 1000, "m", "Open layout: driven this far before an end of the track is believed.")

@@ -36,6 +36,8 @@ struct MissionConfig {
   double stop_distance = 25.0;           // m: stop within this after the finish line (trackdrive, skid pad)
   double acceleration_length = 75.0;     // m: start line to finish line
   double acceleration_stop_distance = 70.0;  // m: stop within this after the finish (the braking zone is 100 m)
+  double acceleration_stop_decel = 7.0;      // m/s²: braking after the acceleration finish (zones can be short)
+  double lane_end_margin = 1.5;              // m left between the nose and a cone across the straight ahead
   double acceleration_start_offset = 0.0;    // m from the start pose to the start line when no timing cones are seen
   double open_end_sight = 12.0;          // m: a plan ending this near with no cone beyond is an open layout's end
   double open_end_min_travel = 20.0;     // m driven before an end of the track is believed

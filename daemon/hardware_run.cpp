@@ -18,6 +18,7 @@
 #include "daemon/scorecard.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/stack.hpp"
+#include "drivers/camera/camera_calibration.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/gnss/gnss_config.hpp"
 #include "drivers/serial/serial_port.hpp"
@@ -149,6 +150,10 @@ struct HardwareRun::Impl {
     so.laps = run.laps;
     so.lap_build_worker = true;  // the lap-2 build must not hold up the 100 Hz control thread
     so.start = clock.now();
+    // The camera stage sees through the calibrated camera; its frames are stamped at capture already.
+    if (!cam_cfg.calibration.empty()) so.camera = StackOptions::Camera{load_camera_calibration(cam_cfg.calibration), 0.0};
+    if (run.perception_source == "lidar_camera" && !cam_cfg.enabled)
+      log->warn("run.perception_source = lidar_camera with drivers.camera.enabled = false: LiDAR-only detections");
     stack = std::make_unique<Stack>(cfg, so);
 
     auto to_stack = [this](RawChannel c) {

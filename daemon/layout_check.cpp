@@ -1,9 +1,17 @@
 #include "daemon/layout_check.hpp"
 
+#include <algorithm>
+
 #include "control/missions.hpp"
+#include "control/path.hpp"
 #include "control/skidpad.hpp"
 
 namespace fsd {
+
+namespace {
+constexpr double kLaneReach = 3.0;   // m from the lane's centre line: its boundary cones (lanes are 3-5 m wide)
+constexpr double kLaneShare = 0.8;   // of control.mission.acceleration_length the lane's cones must span
+}  // namespace
 
 std::optional<std::string> layout_refusal(const Track& track, Mission mission, const AutopilotConfig& control) {
   std::vector<Cone> cones;
@@ -32,8 +40,21 @@ std::optional<std::string> layout_refusal(const Track& track, Mission mission, c
     case Mission::Acceleration:
     case Mission::EbsTest: {
       const double length = 2.0 * control.mission.acceleration_length + control.mission.acceleration_stop_distance;
-      if (!straight_from_cones(cones, track.start, length, control.planner.ds))
-        return what + "no straight lane of cones ahead of the start";
+      const auto line = straight_from_cones(cones, track.start, length, control.planner.ds);
+      if (!line) return what + "no straight lane of cones ahead of the start";
+      // A lane of cones, but is it the acceleration lane? A skid pad's entry lane is straight too, for 15 m.
+      double first = 1e9, last = -1e9;
+      for (const auto& c : cones) {
+        const auto p = project(*line, c.position.head<2>());
+        if (!p || p->distance() > kLaneReach) continue;
+        first = std::min(first, p->s);
+        last = std::max(last, p->s);
+      }
+      const double span = last > first ? last - first : 0.0;
+      if (span < kLaneShare * control.mission.acceleration_length)
+        return what + "no straight lane of cones ahead of the start: the cones along it span " +
+               std::to_string(static_cast<int>(span)) + " m of the " +
+               std::to_string(static_cast<int>(control.mission.acceleration_length)) + " m the mission drives";
       return std::nullopt;
     }
     case Mission::Inspection:

@@ -26,9 +26,23 @@ void PerceptionScore::add_frame(const ConeDetections& detections, const std::vec
     const double r = (tru[p.truth] - car).norm();
     found_15_ += r <= 15.0;
     found_20_ += r <= 20.0;
+    const Cone& d = detections.cones[p.estimate];
+    const bool right = d.colour == truth[p.truth].colour;
     if (r <= 12.0) {
       ++pairs_12_;
-      right_colour_12_ += detections.cones[p.estimate].colour == truth[p.truth].colour;
+      right_colour_12_ += right;
+      if (d.stage == DetectionStage::Camera) {
+        ++verified_12_;
+        verified_right_12_ += right;
+      }
+      if (d.colour != ConeColour::Unknown) {
+        ++named_12_;
+        named_right_12_ += right;
+      }
+    }
+    if (r <= 6.0) {
+      ++pairs_6_;
+      right_colour_6_ += right;
     }
   }
 }
@@ -43,7 +57,11 @@ nlohmann::json PerceptionScore::to_json() const {
           {"recall_15m", share(found_15_, truth_15_)},
           {"recall_20m", share(found_20_, truth_20_)},
           {"position_rmse_m", r4(true_positives_ > 0 ? std::sqrt(sq_error_ / true_positives_) : 0.0)},
-          {"colour_accuracy_12m", share(right_colour_12_, pairs_12_)}};
+          {"colour_accuracy_12m", share(right_colour_12_, pairs_12_)},
+          {"verified_share_12m", share(verified_12_, pairs_12_)},
+          {"verified_colour_accuracy_12m", share(verified_right_12_, verified_12_)},
+          {"named_colour_accuracy_12m", share(named_right_12_, named_12_)},
+          {"colour_accuracy_6m", share(right_colour_6_, pairs_6_)}};
 }
 
 }  // namespace fsd

@@ -3,7 +3,8 @@
 // simulated world's standing cones at that instant, placed by the car's true pose. Detections and true cones are
 // paired one to one within a gate (daemon/cone_pairing). Precision over all detections; recall over the true
 // cones within 15 m and 20 m of the car; position RMSE over the pairs; colour accuracy over the pairs within
-// 12 m (where the camera is expected to tell the colour).
+// 12 m (where the camera is expected to tell the colour), and of those the camera verified or that name a colour;
+// colour accuracy within 6 m (where the LiDAR's reflectivity tells it without the camera).
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,9 @@ class PerceptionScore {
   std::uint64_t detections_ = 0, true_positives_ = 0;
   std::uint64_t truth_15_ = 0, found_15_ = 0, truth_20_ = 0, found_20_ = 0;
   std::uint64_t pairs_12_ = 0, right_colour_12_ = 0;
+  std::uint64_t verified_12_ = 0, verified_right_12_ = 0;  // pairs the camera verified
+  std::uint64_t named_12_ = 0, named_right_12_ = 0;        // pairs with a colour named (not unknown)
+  std::uint64_t pairs_6_ = 0, right_colour_6_ = 0;
   double sq_error_ = 0;
 };
 

@@ -76,18 +76,6 @@ sim::WorldConfig world_config() {
   return w;
 }
 
-CameraCalibration calibration_of(const sim::CameraConfig& cfg) {
-  const sim::PinholeIntrinsics k = sim::camera_intrinsics(cfg);
-  CameraIntrinsics in;
-  in.width = cfg.width;
-  in.height = cfg.height;
-  in.K << k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1;
-  CameraCalibration c;
-  c.intrinsics = in;
-  c.extrinsics = CameraMount{cfg.x, cfg.y, cfg.z, cfg.roll, cfg.pitch, cfg.yaw};
-  return c;
-}
-
 cv::Mat through_jpeg(const cv::Mat& img, int quality) {
   std::vector<std::uint8_t> bytes;
   cv::imencode(".jpg", img, bytes, {cv::IMWRITE_JPEG_QUALITY, quality});
@@ -102,7 +90,7 @@ class SceneMaker {
         camera_cfg_(camera_for(rng_, cfg.vary_camera)),
         world_(world),
         camera_(camera_cfg_, world_, rng_.next()),
-        calibration_(calibration_of(camera_cfg_)),
+        calibration_(sim::calibration_of(camera_cfg_)),
         projector_(calibration_),
         poses_(centre_line(track)) {}
 

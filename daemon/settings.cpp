@@ -32,8 +32,11 @@ const ConfigSection<RunSettings>& run_section() {
           .integer("seed", &RunSettings::seed, 0, 1000000000, "", "Seed of every random process of the virtual car.")
           .string("colours", &RunSettings::colours, {"fsg", "fsac"},
                   "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
-          .string("perception_source", &RunSettings::perception_source, {"truth"},
-                  "Where cone detections come from: truth = the virtual car's cones within sensor range.")
+          .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera"},
+                  "Where cone detections come from: truth = the virtual car's cones within sensor range (simulator "
+                  "only); lidar = the LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
+                  "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
+                  "drivers.camera.calibration on the car).")
           .string("localization_source", &RunSettings::localization_source, {"truth", "gnss"},
                   "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
                   "gnss = the GNSS-INS pose as reported.")

@@ -17,8 +17,8 @@ struct RunSettings {
   int laps = 2;
   int seed = 1;
   std::string colours = "fsg";
-  // Until perception and localization land, the loop runs on the virtual car's ground truth; "truth" stays
-  // available afterwards for control work.
+  // "truth" runs on the virtual car's ground truth (control work, the reference); lidar / lidar_camera run the
+  // perception stages on the sensors' bytes.
   std::string perception_source = "truth";
   std::string localization_source = "truth";
   double max_sim_time = 600.0;

@@ -17,6 +17,7 @@
 #include "daemon/stack.hpp"
 #include "daemon/truth_frames.hpp"
 #include "drivers/sim/virtual_car.hpp"
+#include "localization/pose_history.hpp"
 
 namespace fsd {
 
@@ -77,6 +78,7 @@ struct SimRun::Impl {
   std::unique_ptr<Stack> stack;
   std::unique_ptr<Scorecard> card;
   PerceptionScore perception_score;
+  PoseHistory truth_poses{256};  // the car's true poses of the last 2.5 s, for the perception score
   std::vector<Cone> truth_cones;  // the standing cones as last sent to the Stack
   int truth_cones_hit = -1;
   std::shared_ptr<const std::vector<web::TruthCone>> dashboard_truth_cones;  // rebuilt when a cone falls
@@ -100,6 +102,13 @@ struct SimRun::Impl {
     // In real time the lap-2 build runs beside the control loop as on the car; in lockstep inside the step that
     // asks for it, so that a run is the same every time.
     so.lap_build_worker = !headless;
+    // The camera stage sees through the virtual camera, calibrated perfectly; its frames arrive after the latency.
+    so.camera = StackOptions::Camera{sim::calibration_of(car_settings.camera), car_settings.camera.latency};
+    if (run.perception_source != "truth" && !car_settings.run.lidar)
+      throw std::invalid_argument("run.perception_source = " + run.perception_source +
+                                  " needs the virtual car's LiDAR: sim.enable_lidar is false");
+    if (run.perception_source == "lidar_camera" && !car_settings.run.camera)
+      log->warn("run.perception_source = lidar_camera with sim.enable_camera = false: LiDAR-only detections");
     stack = std::make_unique<Stack>(stack_config(cfg, car_settings), so);
     if (const auto why = layout_refusal(track, mission, stack->autopilot().config())) throw std::invalid_argument(*why);
 
@@ -116,8 +125,9 @@ struct SimRun::Impl {
     // The limits the stack plans with (the scorecard's "vehicle" object).
     const SpeedConfig& sp = stack->autopilot().config().speed;
     card->set_vehicle_limits({sp.mu, sp.a_accel_max, sp.a_brake_max, sp.v_max});
-    stack->on_detections([this](const ConeDetections& det, const Pose2& pose) {
-      perception_score.add_frame(det, truth_cones, pose);
+    // Scored against the true pose at the detections' instant, not the one the stack placed them by.
+    stack->on_detections([this](const ConeDetections& det, const Pose2&) {
+      perception_score.add_frame(det, truth_cones, truth_poses.at(det.stamp).value_or(car->truth().pose));
     });
   }
 
@@ -159,6 +169,7 @@ struct SimRun::Impl {
       t = (++cycle) * kControlPeriod;
       if (!headless && !pace.sleep_until(t)) break;
       car->advance_to(t);
+      truth_poses.add(car->truth().t, car->truth().pose);
       faults->on_cycle(t);
       card->on_truth(car->truth());
       feed_truth(t);

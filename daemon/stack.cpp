@@ -1,14 +1,18 @@
 #include "daemon/stack.hpp"
 
 #include <chrono>
+#include <deque>
 #include <mutex>
 #include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include "common/bounded_queue.hpp"
 #include "common/logging.hpp"
 #include "common/params.hpp"
 #include "common/track.hpp"
 #include "control/control_config.hpp"
+#include "daemon/cone_classifier_file.hpp"
 #include "daemon/dashboard_view.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/lap_build_thread.hpp"
@@ -17,6 +21,8 @@
 #include "daemon/truth_frames.hpp"
 #include "drivers/vlp16/scan_builder.hpp"
 #include "localization/cone_map.hpp"
+#include "localization/pose_history.hpp"
+#include "perception/lidar_camera_detector.hpp"
 #include "perception/truth_perception.hpp"
 
 namespace fsd {
@@ -26,6 +32,8 @@ namespace {
 constexpr int kTelemetryEvery = 4;          // control cycles between dashboard snapshots (25 Hz at 100 Hz)
 constexpr std::size_t kMaxLinkFaults = 256;  // VCU link events kept for the report
 constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
+constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
+constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
 
 double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -53,7 +61,12 @@ struct Stack::Impl {
   std::vector<GnssSample> gnss_pending;
   std::unique_ptr<VcuSession> vcu;
   std::shared_ptr<const std::vector<std::uint8_t>> last_jpeg;
-  std::uint64_t camera_frames = 0;
+  struct CameraJpeg {
+    Stamp capture;
+    std::shared_ptr<const std::vector<std::uint8_t>> jpeg;
+  };
+  std::deque<CameraJpeg> camera_recent;  // bounded by kCameraFramesKept
+  std::uint64_t camera_frames = 0, camera_decode_failures = 0;
 
   // The simulator's truth (truth sources).
   std::optional<TruthStateFrame> truth;
@@ -63,6 +76,9 @@ struct Stack::Impl {
 
   // Perception and mapping.
   TruthPerception truth_perception;
+  std::unique_ptr<LidarCameraDetector> detector;  // the lidar and lidar_camera sources
+  PoseHistory poses{kPosesKept};                  // the localization's, for deskew, accumulation and the camera
+  std::uint64_t perception_frames = 0;
   ConeMap cone_map;
   std::shared_ptr<const ConeDetections> last_detections;
   std::function<void(const ConeDetections&, const Pose2&)> detections_hook;
@@ -113,6 +129,7 @@ struct Stack::Impl {
     }
     if (!opt.simulator && run.perception_source == "truth")
       log->info("no ground truth on the car: run.perception_source = truth gives no cone detections");
+    if (run.perception_source != "truth") detector = make_detector(cfg);
 
     lidar = std::make_unique<Vlp16ScanBuilder>(vlp_cfg, [this](Scan&& scan) {
       last_scan = std::make_shared<const Scan>(std::move(scan));
@@ -134,6 +151,23 @@ struct Stack::Impl {
       lap_worker = std::make_unique<LapBuildThread>();
       autopilot->set_lap_builder(lap_worker.get());
     }
+  }
+
+  std::unique_ptr<LidarCameraDetector> make_detector(const Config& cfg) {
+    std::unique_ptr<CameraStage> camera;
+    if (run.perception_source == "lidar_camera") {
+      if (!opt.camera)
+        throw std::invalid_argument(
+            "run.perception_source = lidar_camera needs the camera's calibration: set drivers.camera.calibration "
+            "(or run.perception_source = lidar)");
+      const CameraStageConfig cc = read_camera_stage_config(cfg);
+      camera = std::make_unique<CameraStage>(opt.camera->calibration, load_cone_classifier_model(cc.classifier.model),
+                                             cc);
+    }
+    log->info("perception: {} (LiDAR mount x {:.2f} y {:.2f} z {:.2f} m)", run.perception_source, vlp_cfg.mount_x,
+              vlp_cfg.mount_y, vlp_cfg.mount_z);
+    return std::make_unique<LidarCameraDetector>(read_lidar_detector_config(cfg), vlp_cfg.body_from_sensor(),
+                                                 std::move(camera));
   }
 
   void on_link_event(const VcuLinkEvent& e) {
@@ -159,6 +193,10 @@ struct Stack::Impl {
         // Kept as the camera sent it (JPEG) for the dashboard; the camera stages decode what they use.
         last_jpeg = std::make_shared<const std::vector<std::uint8_t>>(f.bytes.begin(), f.bytes.end());
         ++camera_frames;
+        if (detector && detector->has_camera()) {
+          if (camera_recent.size() == kCameraFramesKept) camera_recent.pop_front();
+          camera_recent.push_back({f.t - opt.camera->latency, last_jpeg});
+        }
         break;
       case RawChannel::VcuRx: vcu->on_bytes(f.t, f.bytes); break;
       case RawChannel::VcuTx: break;  // what the stack sent: recorded, nothing to decode
@@ -196,6 +234,7 @@ struct Stack::Impl {
 
   // The perception source's frame, when one is due: detections (vehicle frame) into the map, the map to control.
   bool perceive(Stamp now) {
+    if (detector) return perceive_sensors(now);
     const bool due = new_scan || truth_scan;
     new_scan = truth_scan = false;
     if (!due || !truth) return false;
@@ -209,7 +248,51 @@ struct Stack::Impl {
     cycle.figures.perception_s = dt;
     if (detections_hook) detections_hook(det, pose);  // the scorecard's, outside the stage's time
     last_detections = std::make_shared<const ConeDetections>(std::move(det));
+    ++perception_frames;
     return true;
+  }
+
+  // The lidar and lidar_camera sources: the newest scan through the stages, placed by the localization's poses.
+  // Without a pose yet there is nowhere to put the cones: the scan waits for the next.
+  bool perceive_sensors(Stamp now) {
+    if (!new_scan || !last_scan || poses.empty()) return false;
+    new_scan = false;
+    const double w0 = wall();
+    const BodyPoseAt pose_at = [this](Stamp t) { return poses.at(t)->to_pose3(); };
+    const Stamp scan_end = last_scan->points.empty() ? last_scan->stamp : last_scan->points.back().t;  // firing order
+    std::optional<CameraImage> image = camera_image_near(scan_end);
+    LidarDetection d = detector->detect(*last_scan, pose_at, image ? &*image : nullptr);
+    ConeDetections& det = d.detections;
+    const Pose2 pose = *poses.at(det.stamp);
+    cone_map.update(det, pose);
+    autopilot->on_cones(now, cone_map.cones());
+    const double dt = wall() - w0;
+    latency["perception"].add(dt);
+    cycle.figures.perception_s = dt;
+    if (detections_hook) detections_hook(det, pose);
+    last_detections = std::make_shared<const ConeDetections>(std::move(det));
+    ++perception_frames;
+    return true;
+  }
+
+  // The camera frame taken nearest `t`, decoded; empty without a camera stage, a frame, or a frame that decodes.
+  std::optional<CameraImage> camera_image_near(Stamp t) {
+    if (camera_recent.empty()) return std::nullopt;
+    const CameraJpeg* best = &camera_recent.front();
+    for (const auto& c : camera_recent)
+      if (std::abs(c.capture - t) < std::abs(best->capture - t)) best = &c;
+    CameraImage img;
+    img.capture = best->capture;
+    try {
+      img.bgr = cv::imdecode(*best->jpeg, cv::IMREAD_COLOR);
+    } catch (const cv::Exception&) {
+      img.bgr.release();
+    }
+    if (img.bgr.empty()) {
+      ++camera_decode_failures;
+      return std::nullopt;
+    }
+    return img;
   }
 
   void localize() {
@@ -219,12 +302,14 @@ struct Stack::Impl {
       if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value())) {
         state = state_from_gnss(s, steering);
         autopilot->on_state(*state);
+        poses.add(state->stamp, state->pose);
       }
     }
     gnss_pending.clear();
     if (localization_source == "truth" && truth) {
       state = truth->state;
       autopilot->on_state(*state);
+      poses.add(state->stamp, state->pose);
     }
   }
 
@@ -240,8 +325,8 @@ struct Stack::Impl {
     if (const auto st = vcu->status()) autopilot->on_vcu(*st);
     if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
     const double w_perception = wall();
+    localize();  // first: the sensor sources place this cycle's scan by the newest pose
     cycle.perceived = perceive(now);
-    localize();
     apply_param_changes();
 
     const double w0 = wall();
@@ -341,6 +426,12 @@ struct Stack::Impl {
     counters.gnss = gnss->counters();
     counters.vcu = vcu->counters();
     counters.camera_frames = camera_frames;
+    counters.camera_decode_failures = camera_decode_failures;
+    counters.perception_frames = perception_frames;
+    if (detector) {
+      counters.camera_verified = detector->counters().camera.verified;
+      counters.camera_rejected = detector->counters().camera.rejected;
+    }
     counters.truth_frames_rejected = truth_rejected;
     counters.cycles = cycles;
     counters.late_plans = late_plans;

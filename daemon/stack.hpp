@@ -16,6 +16,8 @@
 // Sources:
 //   perception    truth: the ideal detector on the simulator's standing cones (RawChannel::TruthCones), run on
 //                 each LiDAR scan or, without a simulated LiDAR, on each TruthScan tick.
+//                 lidar: the LiDAR stages on each VLP-16 scan, deskewed and accumulated by the localization's poses;
+//                 lidar_camera: and the camera stage on the camera frame nearest the scan (StackOptions::camera).
 //   localization  truth: the simulator's state (RawChannel::TruthState); gnss: the GNSS-INS pose as reported.
 #include <functional>
 #include <map>
@@ -24,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "common/camera_geometry.hpp"
 #include "common/config.hpp"
 #include "common/latency_stats.hpp"
 #include "common/types.hpp"
@@ -49,6 +52,13 @@ struct StackOptions {
   Stamp start = 0;                // the run clock when the VCU session starts waiting for its first status
   // The control settings when the caller has them typed already (the tests' harness); else the configuration's.
   std::optional<AutopilotConfig> control;
+  // The camera the camera stage sees through (perception_source = lidar_camera): its calibration and the time from
+  // capture to a frame's arrival (subtracted from the frame's receive time).
+  struct Camera {
+    CameraCalibration calibration;
+    double latency = 0.0;
+  };
+  std::optional<Camera> camera;
   // Wall-clock seconds for the compute-time figures (latencies, late plans); never used for a decision.
   // Empty: std::chrono::steady_clock.
   std::function<double()> wall_clock;
@@ -63,6 +73,9 @@ struct StackCounters {
   GnssCounters gnss;
   VcuSessionCounters vcu;
   std::uint64_t camera_frames = 0;
+  std::uint64_t camera_decode_failures = 0;  // frames the camera stage could not decode (skipped: LiDAR only)
+  std::uint64_t perception_frames = 0;       // perception frames run (scans, or truth ticks)
+  std::uint64_t camera_verified = 0, camera_rejected = 0;  // candidates the camera stage accepted / removed
   std::uint64_t truth_frames_rejected = 0;
   std::uint64_t cycles = 0;
   std::uint64_t late_plans = 0;  // plans slower than control.planner.time_budget (a warning, not a stop)
@@ -77,7 +90,8 @@ struct StackCycle {
 
 class Stack {
  public:
-  // Throws std::invalid_argument naming the key for a source the run cannot have (truth without the simulator).
+  // Throws std::invalid_argument naming the key for a source the run cannot have (lidar_camera without a camera),
+  // and ClassifierModelError / std::runtime_error for a camera model that cannot be read.
   Stack(const Config& config, StackOptions options);
   ~Stack();
   Stack(const Stack&) = delete;

@@ -60,4 +60,16 @@ Pose3 camera_mount(const CameraConfig& cfg) {
   return T;
 }
 
+CameraCalibration calibration_of(const CameraConfig& cfg) {
+  const PinholeIntrinsics k = camera_intrinsics(cfg);
+  CameraIntrinsics in;
+  in.width = cfg.width;
+  in.height = cfg.height;
+  in.K << k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1;
+  CameraCalibration c;
+  c.intrinsics = in;
+  c.extrinsics = CameraMount{cfg.x, cfg.y, cfg.z, cfg.roll, cfg.pitch, cfg.yaw};
+  return c;
+}
+
 }  // namespace fsd::sim

@@ -5,6 +5,7 @@
 // x forward, y left, z up on the vehicle body frame; pitch positive tilts the view down. The optical frame used
 // for projection is the OpenCV one: x right, y down, z along the optical axis. A point (X, Y, Z) in the optical
 // frame lands on pixel u = fx·X/Z + cx, v = fy·Y/Z + cy, with pixel centres at integer coordinates.
+#include "common/camera_geometry.hpp"
 #include "common/config.hpp"
 #include "common/geometry.hpp"
 
@@ -49,5 +50,9 @@ PinholeIntrinsics camera_intrinsics(const CameraConfig& cfg);
 
 // Body ← camera optical frame (x right, y down, z forward).
 Pose3 camera_mount(const CameraConfig& cfg);
+
+// The calibration a perfect calibration of this camera would give (what the camera stage is handed in a simulated
+// run: the model mismatch is in the rendering, not in the mount).
+CameraCalibration calibration_of(const CameraConfig& cfg);
 
 }  // namespace fsd::sim

@@ -17,7 +17,7 @@ namespace {
 const std::string kFast = R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
 
 std::string write(const std::string& name, const std::string& text) {
-  const auto p = test::scratch_path(name).string();
+  const auto p = test::scratch_path(name);
   std::ofstream(p) << text;
   return p;
 }
@@ -64,7 +64,7 @@ TEST(RunRefusals, TheVerdictNamesWhyARunFailed) {
   // Time runs out on lap 1: not finished, no stop, AS still Driving.
   const auto cfg = write("short.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
                                           "run": {"max_sim_time": 12}})");
-  const auto report = test::scratch_path("short_report.json").string();
+  const auto report = test::scratch_path("short_report.json");
   std::string out;
   EXPECT_EQ(test::run_fsd("run --sim --headless --until-finished --config " + cfg + " --report " + report, &out), 1)
       << out;
@@ -75,7 +75,7 @@ TEST(RunRefusals, TheVerdictNamesWhyARunFailed) {
   EXPECT_NE(reasons.find("AS ended Driving, not Finished"), std::string::npos) << reasons;
   // A clean run passes with no reason.
   const auto fast = write("fast.json", kFast);
-  const auto good = test::scratch_path("good_report.json").string();
+  const auto good = test::scratch_path("good_report.json");
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
                           "../shared/tracks/epfl_acceleration.csv --config " + fast + " --report " + good,
                           &out),
