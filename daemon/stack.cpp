@@ -264,7 +264,7 @@ struct Stack::Impl {
     LidarDetection d = detector->detect(*last_scan, pose_at, image ? &*image : nullptr);
     ConeDetections& det = d.detections;
     const Pose2 pose = *poses.at(det.stamp);
-    cone_map.update(det, pose);
+    cone_map.update(det, pose, d.camera_rejected);
     autopilot->on_cones(now, cone_map.cones());
     const double dt = wall() - w0;
     latency["perception"].add(dt);

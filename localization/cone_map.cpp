@@ -14,6 +14,9 @@ const ConfigSection<ConeMapConfig>& cone_map_section() {
                                     "A detection of another colour than the mapped cone's is that cone only this close.")
                             .integer("min_observations", &ConeMapConfig::min_observations, 1, 100, "",
                                      "Observations before a cone is reported (rejects one-off ghosts).")
+                            .integer("min_rejections", &ConeMapConfig::min_rejections, 1, 1000, "",
+                                     "Camera rejections before a mapped cone the camera rejected more often than it "
+                                     "verified is withheld (a distractor the LiDAR took for a cone).")
                             .number("max_range", &ConeMapConfig::max_range, 1.0, 100.0, "m",
                                     "Detections beyond this range are not mapped.");
   return s;
@@ -28,12 +31,27 @@ ConeColour voted_colour(const std::array<int, 6>& votes) {
 
 }  // namespace
 
-void ConeMap::update(const ConeDetections& detections, const Pose2& pose) {
+void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::span<const Cone> rejected) {
+  // Camera rejections: against the nearest mapped cone within the gate.
+  for (const auto& r : rejected) {
+    const Vec2 local = r.position.head<2>();
+    if (!local.allFinite() || local.norm() > cfg_.max_range) continue;
+    const Vec2 p = pose.transform(local);
+    Entry* nearest = nullptr;
+    double best = cfg_.association_gate;
+    for (auto& e : entries_) {
+      const double d = (e.mean - p).norm();
+      if (d < best) best = d, nearest = &e;
+    }
+    if (nearest) ++nearest->rejected;
+  }
+
   const Eigen::Matrix2d R = pose.rotation().toRotationMatrix();
   struct Seen {
     Vec2 p;
     Eigen::Matrix2d info;
     ConeColour colour;
+    bool verified;
   };
   std::vector<Seen> seen;
   seen.reserve(detections.cones.size());
@@ -43,7 +61,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose) {
     // Covariance rotated into the map frame; floor it so a zero covariance cannot make the information infinite.
     Eigen::Matrix2d cov = R * d.covariance * R.transpose();
     cov += Eigen::Matrix2d::Identity() * 1e-4;
-    seen.push_back({pose.transform(local), cov.inverse(), d.colour});
+    seen.push_back({pose.transform(local), cov.inverse(), d.colour, d.stage == DetectionStage::Camera});
   }
 
   // One frame's detections are distinct cones: each joins at most one mapped cone and each mapped cone takes at
@@ -80,6 +98,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose) {
     e.info_vec += seen[i].info * seen[i].p;
     e.mean = e.info.ldlt().solve(e.info_vec);
     ++e.observations;
+    e.verified += seen[i].verified;
     const auto c = static_cast<std::size_t>(seen[i].colour);
     if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size()) ++e.colour_votes[c];
   }
@@ -89,6 +108,7 @@ std::vector<Cone> ConeMap::cones() const {
   std::vector<Cone> out;
   for (const auto& e : entries_) {
     if (e.observations < cfg_.min_observations) continue;
+    if (e.rejected >= cfg_.min_rejections && e.rejected > e.verified) continue;  // the camera says: not a cone
     Cone c;
     c.position = Vec3(e.mean.x(), e.mean.y(), 0.0);
     c.covariance = e.info.inverse();

@@ -3,7 +3,12 @@
 // the vehicle pose. Each detection is associated with the nearest mapped cone inside a gate (else starts a new
 // cone); positions are fused in information form, colours by vote. A detection whose colour differs from the mapped
 // cone's has a tighter gate: a start line's doubled orange cones stand 0.5 m from the boundary cone between them.
+// What the camera rejected (a tyre, a post the LiDAR took for a cone) counts against the mapped cone there: one the
+// camera rejected more often than it verified, at least `min_rejections` times, is not reported (it stays mapped,
+// so a real cone the camera doubted once comes back with its next verifications). Without a camera nothing is
+// rejected and every LiDAR-only cone is reported.
 #include <array>
+#include <span>
 #include <vector>
 
 #include "common/config.hpp"
@@ -15,6 +20,7 @@ struct ConeMapConfig {
   double association_gate = 0.7;  // m: under the 1 m between a start line's cones, 7σ of 0.1 m detection noise
   double colour_conflict_gate = 0.4;  // m: a detection of another colour than the mapped cone's is that cone only this close
   int min_observations = 2;       // a cone is reported once seen this often
+  int min_rejections = 2;         // camera rejections before a mapped cone may be withheld
   double max_range = 20.0;        // detections farther than this are ignored (m)
 };
 const ConfigSection<ConeMapConfig>& cone_map_section();
@@ -23,7 +29,8 @@ class ConeMap {
  public:
   explicit ConeMap(const ConeMapConfig& cfg = {}) : cfg_(cfg) {}
   // Detections in the vehicle frame, taken at vehicle pose `pose` (map frame).
-  void update(const ConeDetections& detections, const Pose2& pose);
+  // `rejected`: candidates at the same instant the camera saw and judged not to be cones (vehicle frame).
+  void update(const ConeDetections& detections, const Pose2& pose, std::span<const Cone> rejected = {});
   // Confirmed cones in the map frame with fused position, covariance and voted colour.
   std::vector<Cone> cones() const;
   std::size_t size() const { return entries_.size(); }
@@ -35,6 +42,7 @@ class ConeMap {
     Vec2 info_vec = Vec2::Zero();                    // Σ⁻¹ μ
     Vec2 mean = Vec2::Zero();
     int observations = 0;
+    int verified = 0, rejected = 0;  // camera verdicts on it
     std::array<int, 6> colour_votes{};
     std::uint32_t id = 0;
   };

@@ -32,6 +32,8 @@ const ConfigSection<IntensityColourConfig>& intensity_colour_section() {
                   "Stripe/body reflectivity ratio below which the stripe is black (yellow cone).")
           .number("blue_body_max", &IntensityColourConfig::blue_body_max, 0.0, 255.0, "",
                   "Body reflectivity at most this is dark blue plastic.")
+          .number("blue_body_min", &IntensityColourConfig::blue_body_min, 0.0, 255.0, "",
+                  "With no stripe seen, a body darker than this is black (a tyre's rubber), not blue plastic.")
           .number("yellow_body_min", &IntensityColourConfig::yellow_body_min, 0.0, 255.0, "",
                   "Body reflectivity at least this, no stripe seen, is yellow plastic.")
           .number("dark_stripe_max", &IntensityColourConfig::dark_stripe_max, 0.0, 255.0, "",
@@ -92,7 +94,8 @@ IntensityColour IntensityColourClassifier::classify(const ConeCandidate& cone, c
   }
   if (body.size() >= 2 * need) {
     const double b = upper_quartile(body);
-    if (b <= cfg_.blue_body_max) return {ConeColour::Blue, 0.6};
+    // Dark, but not black: a tyre's rubber reflects less than blue plastic, and a body alone shows no stripe.
+    if (b <= cfg_.blue_body_max && b >= cfg_.blue_body_min) return {ConeColour::Blue, 0.6};
     if (b >= cfg_.yellow_body_min) return {ConeColour::Yellow, 0.6};
     return out;
   }

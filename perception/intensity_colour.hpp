@@ -27,6 +27,7 @@ struct IntensityColourConfig {
   double bright_contrast = 1.8;     // stripe/body reflectivity above this: a white stripe (blue or orange cone)
   double dark_contrast = 0.55;      // below this: a black stripe (yellow cone)
   double blue_body_max = 35.0;      // body reflectivity (upper quartile) at most this: dark blue plastic
+  double blue_body_min = 12.0;      // with no stripe seen, a body darker than this is black (a tyre), not blue
   double yellow_body_min = 62.0;    // at least this, with no stripe seen: yellow
   double dark_stripe_max = 20.0;    // a stripe this dark with no body seen: black (yellow cone)
   int min_band_points = 2;          // points needed in a band to use it (twice that for the body alone)

@@ -1,6 +1,7 @@
 #include "perception/lidar_camera_detector.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace fsd {
@@ -17,13 +18,15 @@ LidarDetection LidarCameraDetector::detect(const Scan& scan, const BodyPoseAt& p
     ++counters_.no_recent_frame;
     return det;
   }
-  verify_with_camera(*camera_, det, pose_at, *image);
+  verify_with_camera(*camera_, det, pose_at, *image, lidar_.config().size.beam_spacing_deg * std::numbers::pi / 180.0);
   ++counters_.camera_frames_used;
   counters_.camera = camera_->stats();
   return det;
 }
 
-void verify_with_camera(CameraStage& camera, LidarDetection& det, const BodyPoseAt& pose_at, const CameraImage& image) {
+void verify_with_camera(CameraStage& camera, LidarDetection& det, const BodyPoseAt& pose_at, const CameraImage& image,
+                        double beam_spacing_rad) {
+  const double big_height = camera.colour().config().big_cone_height;
   auto& cones = det.detections.cones;
   if (cones.empty()) return;
   // vehicle(capture) ← vehicle(scan): the car moved between the two instants.
@@ -40,13 +43,23 @@ void verify_with_camera(CameraStage& camera, LidarDetection& det, const BodyPose
     c.position = capture_from_scan * c.position;
     seen.push_back(c);
     const ConeCandidate* cand = i < det.candidates.size() ? &det.candidates[i] : nullptr;
-    sizes.push_back(cand ? CandidateSize{cand->height, cand->width} : CandidateSize{});
+    CandidateSize size;
+    if (cand) {
+      const double gap = cand->range * std::tan(beam_spacing_rad);
+      const bool decisive = cand->height >= big_height || cand->height + gap < big_height;
+      size = CandidateSize{decisive ? cand->height : 0.0, cand->width};
+    }
+    sizes.push_back(size);
   }
   camera.verify(seen, image.bgr, sizes);
 
   std::vector<Cone> kept;
   std::vector<ConeCandidate> kept_candidates;
   kept.reserve(seen.size());
+  std::vector<bool> survived(cones.size(), false);
+  for (const Cone& v : seen) survived[v.id - 1] = true;
+  for (std::size_t i = 0; i < cones.size(); ++i)
+    if (!survived[i]) det.camera_rejected.push_back(cones[i]);
   for (const Cone& v : seen) {
     const std::size_t i = v.id - 1;
     Cone c = cones[i];

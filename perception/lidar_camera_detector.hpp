@@ -37,8 +37,12 @@ struct LidarCameraCounters {
 
 // The camera stage on one LiDAR detection: each cone moved from the vehicle frame at det.detections.stamp to the
 // one at image.capture by `pose_at` (none: the car stood still), verified, its verdict carried back to the cone as
-// the LiDAR placed it; rejected cones leave the detections and their candidates.
-void verify_with_camera(CameraStage& camera, LidarDetection& det, const BodyPoseAt& pose_at, const CameraImage& image);
+// the LiDAR placed it; rejected cones leave the detections and their candidates for det.camera_rejected.
+// `beam_spacing_rad`: the LiDAR's angle between adjacent lasers. A cluster's top is where its highest laser hit, so
+// the cone's tip can stand up to one laser gap higher: its height tells a big orange cone from a small one only when
+// that gap cannot change the verdict; else the image decides (0: the height is taken as exact).
+void verify_with_camera(CameraStage& camera, LidarDetection& det, const BodyPoseAt& pose_at, const CameraImage& image,
+                        double beam_spacing_rad = 0.0);
 
 class LidarCameraDetector {
  public:

@@ -79,6 +79,7 @@ struct LidarDetection {
   std::vector<Point> obstacle_points;    // the clustered cloud: this scan's and the accumulated obstacle points
   std::vector<RejectedCluster> rejected;  // clusters within the point bounds that are not cones
   int frames = 1;                        // frames in the clustered cloud
+  std::vector<Cone> camera_rejected;     // candidates the camera stage judged not to be cones (lidar_camera_detector)
   LidarStageCounters counters;
 };
 

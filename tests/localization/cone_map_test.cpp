@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "localization/cone_map.hpp"
@@ -125,6 +126,61 @@ TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
   const auto cones = map.cones();
   ASSERT_EQ(cones.size(), 1u);
   EXPECT_EQ(cones[0].colour, ConeColour::Blue);
+}
+
+}  // namespace
+}  // namespace fsd
+
+namespace fsd {
+namespace {
+
+// A tyre beside the track that the LiDAR takes for a cone, seen from afar (LiDAR only), then in the camera's view
+// (rejected) and beside the car (LiDAR only again); a real cone next to it that the camera verifies once and doubts
+// once; a cone the camera never sees.
+TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
+  ConeMap map;
+  const Pose2 pose{};
+  auto seen = [](double x, double y, DetectionStage stage) {
+    Cone c;
+    c.position = Vec3(x, y, 0);
+    c.colour = ConeColour::Blue;
+    c.stage = stage;
+    return c;
+  };
+  const Vec2 tyre(10, 3), cone(14, -2), unseen(6, 5);
+  // Far: LiDAR only, all three.
+  for (int k = 0; k < 3; ++k) {
+    ConeDetections d;
+    for (const Vec2& p : {tyre, cone, unseen}) d.cones.push_back(seen(p.x(), p.y(), DetectionStage::Lidar));
+    map.update(d, pose);
+  }
+  EXPECT_EQ(map.cones().size(), 3u);
+  // In view: the tyre rejected twice; the cone verified once, rejected once.
+  {
+    ConeDetections d;
+    d.cones = {seen(cone.x(), cone.y(), DetectionStage::Camera)};
+    const std::vector<Cone> rejected = {seen(tyre.x() + 0.1, tyre.y(), DetectionStage::Lidar)};
+    map.update(d, pose, rejected);
+  }
+  {
+    ConeDetections d;
+    const std::vector<Cone> rejected = {seen(tyre.x(), tyre.y() - 0.1, DetectionStage::Lidar),
+                                        seen(cone.x(), cone.y(), DetectionStage::Lidar)};
+    map.update(d, pose, rejected);
+  }
+  // Beside: LiDAR only again.
+  ConeDetections d;
+  for (const Vec2& p : {tyre, cone}) d.cones.push_back(seen(p.x(), p.y(), DetectionStage::Lidar));
+  map.update(d, pose);
+
+  const auto cones = map.cones();
+  auto mapped = [&](const Vec2& p) {
+    return std::any_of(cones.begin(), cones.end(), [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
+  };
+  EXPECT_FALSE(mapped(tyre));   // rejected 2, verified 0
+  EXPECT_TRUE(mapped(cone));    // rejected 1 (< min_rejections), verified 1
+  EXPECT_TRUE(mapped(unseen));  // the camera never judged it
+  EXPECT_EQ(cones.size(), 2u);
 }
 
 }  // namespace

@@ -4,6 +4,9 @@
 // camera_painted_frame.hpp), the detections placed by the known motion.
 #include <gtest/gtest.h>
 
+#include <numbers>
+#include <utility>
+
 #include "perception/lidar_camera_detector.hpp"
 #include "perception/scan_motion.hpp"
 #include "tests/perception/camera_painted_frame.hpp"
@@ -100,6 +103,8 @@ TEST(LidarCamera, RejectedConesLeaveTheDetectionsAndTheirCandidates) {
   EXPECT_EQ(d.detections.cones[0].stage, DetectionStage::Lidar);
   EXPECT_NEAR(d.candidates[0].position.x(), -3.0, 1e-12);
   EXPECT_EQ(stage.stats().rejected, std::size(kCones));
+  ASSERT_EQ(d.camera_rejected.size(), std::size(kCones));  // as the LiDAR placed them, for the map
+  EXPECT_EQ(d.camera_rejected[0].position, detection_at_scan().detections.cones[0].position);
 }
 
 TEST(LidarCamera, AnUnknownCameraColourKeepsTheReflectivityColour) {
@@ -119,6 +124,39 @@ TEST(LidarCamera, AnUnknownCameraColourKeepsTheReflectivityColour) {
   EXPECT_EQ(d.detections.cones[0].stage, DetectionStage::Camera);
   EXPECT_EQ(d.detections.cones[0].colour, ConeColour::Yellow);
   EXPECT_EQ(d.detections.cones[0].colour_source, ColourSource::LidarIntensity);
+}
+
+TEST(LidarCamera, ALidarHeightWithinALaserGapOfTheBigConeHeightLeavesBigOrSmallToTheImage) {
+  // A big orange cone (0.505 m) whose highest laser hit it at 0.40 m, and a small one (0.325 m) seen to 0.30 m, at
+  // 6 m: at 2 deg between lasers the next laser up passes 0.21 m higher, so 0.40 m cannot tell big from small
+  // (the threshold is 0.415 m) while 0.30 m can still be big; the painted image can. Taken as exact (no laser gap),
+  // 0.40 m makes the big cone a small one.
+  CameraImage img;
+  img.capture = kCapture;
+  img.bgr = asphalt();
+  paint(img.bgr, 6, -1.0, ConeColour::Orange, true);
+  paint(img.bgr, 6, 1.0, ConeColour::Orange);
+  auto detection = [] {
+    LidarDetection d;
+    d.detections.stamp = kCapture;
+    for (const auto& [y, h] : {std::pair{-1.0, 0.40}, std::pair{1.0, 0.30}}) {
+      d.detections.cones.push_back(lidar_candidate(6, y));
+      ConeCandidate c;
+      c.position = Vec3(6, y, 0);
+      c.range = 4.0;  // from the LiDAR at the front wing (x = 2 m)
+      c.height = h;
+      c.width = 0.25;
+      d.candidates.push_back(c);
+    }
+    return d;
+  };
+  CameraStage stage(calibration(), constant_model(1.0));
+  LidarDetection gap = detection(), exact = detection();
+  verify_with_camera(stage, gap, {}, img, 2.0 * std::numbers::pi / 180.0);
+  verify_with_camera(stage, exact, {}, img, 0.0);
+  EXPECT_EQ(gap.detections.cones[0].colour, ConeColour::BigOrange);
+  EXPECT_EQ(gap.detections.cones[1].colour, ConeColour::Orange);
+  EXPECT_EQ(exact.detections.cones[0].colour, ConeColour::Orange);
 }
 
 TEST(LidarCamera, ACameraFrameTooFarFromTheScanIsNotUsed) {

@@ -1,0 +1,57 @@
+// The colour from the LiDAR's reflectivity on hand-made clusters: points of known height and reflectivity on a flat
+// ground (z = 0), as the lasers would return them from a blue cone, a yellow cone, and a black tyre of the same
+// size.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "perception/intensity_colour.hpp"
+
+namespace fsd {
+namespace {
+
+// A small cone's cluster 5 m ahead: `per_height` points at each height, with the reflectivity `paint(h)`.
+template <class Paint>
+ConeCandidate cluster(const std::vector<double>& heights, Paint paint, int per_height = 4) {
+  ConeCandidate c;
+  c.range = 5.0;
+  c.position = Vec3(5, 0, 0);
+  for (double h : heights)
+    for (int k = 0; k < per_height; ++k) {
+      Point p;
+      p.x = 5.0f;
+      p.y = 0.02f * static_cast<float>(k);
+      p.z = static_cast<float>(h);
+      p.intensity = static_cast<float>(paint(h));
+      c.cloud.push_back(p);
+    }
+  c.points = static_cast<std::uint32_t>(c.cloud.size());
+  return c;
+}
+
+// FSG small cone (0.325 m): stripe from 38 to 62 % of the height.
+bool in_stripe(double h) { return h >= 0.38 * 0.325 && h <= 0.62 * 0.325; }
+
+TEST(IntensityColour, TheStripeAgainstTheBodyTellsBlueFromYellow) {
+  const GroundSurface ground(GroundPlane{});
+  const IntensityColourClassifier classify;
+  const std::vector<double> rings{0.05, 0.16, 0.27};  // one laser through the stripe, two through the body
+  EXPECT_EQ(classify.classify(cluster(rings, [](double h) { return in_stripe(h) ? 95.0 : 22.0; }), ground).colour,
+            ConeColour::Blue);
+  EXPECT_EQ(classify.classify(cluster(rings, [](double h) { return in_stripe(h) ? 8.0 : 70.0; }), ground).colour,
+            ConeColour::Yellow);
+}
+
+TEST(IntensityColour, ABodyAloneIsBlueWhenDarkButNotWhenBlack) {
+  // The lasers cross below and above the stripe only.
+  const GroundSurface ground(GroundPlane{});
+  const IntensityColourClassifier classify;
+  const std::vector<double> rings{0.06, 0.25};
+  EXPECT_EQ(classify.classify(cluster(rings, [](double) { return 22.0; }), ground).colour, ConeColour::Blue);
+  EXPECT_EQ(classify.classify(cluster(rings, [](double) { return 70.0; }), ground).colour, ConeColour::Yellow);
+  // Black rubber (a tyre the size filter let through): no colour rather than blue.
+  EXPECT_EQ(classify.classify(cluster(rings, [](double) { return 6.0; }), ground).colour, ConeColour::Unknown);
+}
+
+}  // namespace
+}  // namespace fsd
