@@ -3,7 +3,7 @@
 BUILD ?= build
 JOBS ?= 2
 CMAKE_FLAGS ?=
-RUN_ARGS ?= run --sim
+RUN_ARGS ?= run --sim --config deploy/config/virtual-car.json
 
 # ccache, when installed (deploy/install-deps.sh adds it), makes rebuilds fast; paths are hashed relative to the
 # checkout, so another checkout of the tree reuses the same cache.
@@ -23,7 +23,8 @@ $(BUILD)/build.ninja:
 build: deps $(BUILD)/build.ninja
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# The virtual car on a shared track with the full stack and the dashboard.
+# The virtual car on a shared track with the full stack and the dashboard, driving on its own perception
+# (deploy/config/virtual-car.json: the LiDAR and camera stages instead of the simulator's cones).
 run: build
 	@$(BUILD)/daemon/fsd $(RUN_ARGS)
 

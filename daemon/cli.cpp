@@ -25,6 +25,16 @@ int run_cli(int argc, char** argv) {
   add_track_command(app, exit_code);
   add_classify_command(app, exit_code);
   add_train_classifier_command(app, exit_code);
+  // CLI11 says only "A subcommand is required" for a first word it does not know: name it.
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    bool known = false;
+    for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) known = known || sub->get_name() == word;
+    if (!known) {
+      std::cerr << "fsd: unknown subcommand '" << word << "' (fsd --help lists them)\n";
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

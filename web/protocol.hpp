@@ -18,6 +18,8 @@
 namespace fsd::web::foxglove {
 
 inline constexpr std::string_view kSubprotocol = "foxglove.websocket.v1";
+// The name newer Foxglove clients (the Foxglove SDK) offer for the same protocol.
+inline constexpr std::string_view kSdkSubprotocol = "foxglove.sdk.v1";
 
 enum class StatusLevel : int { Info = 0, Warning = 1, Error = 2 };
 

@@ -24,11 +24,15 @@ std::string endpoint_text(const tcp::socket& s) {
   return (addr.is_v6() ? "[" + addr.to_string() + "]" : addr.to_string()) + ":" + std::to_string(ep.port());
 }
 
-bool offers_foxglove(const HttpRequest& req) {
+// The Foxglove subprotocol the client offered, under either of its names (the classic one preferred), or empty.
+std::string_view offered_foxglove(const HttpRequest& req) {
   const auto h = req[http::field::sec_websocket_protocol];
-  for (const auto& p : split_list({h.data(), h.size()}))
-    if (p == foxglove::kSubprotocol) return true;
-  return false;
+  bool sdk = false;
+  for (const auto& p : split_list({h.data(), h.size()})) {
+    if (p == foxglove::kSubprotocol) return foxglove::kSubprotocol;
+    sdk = sdk || p == foxglove::kSdkSubprotocol;
+  }
+  return sdk ? foxglove::kSdkSubprotocol : std::string_view{};
 }
 
 bool quiet(const beast::error_code& ec) {
@@ -238,9 +242,10 @@ void HttpSession::upgrade(HttpRequest req) {
     refuse(req, http::status::forbidden, "origin not allowed (web.allowed_origins)");
     return;
   }
-  if (!offers_foxglove(req)) {
+  if (offered_foxglove(req).empty()) {
     refuse(req, http::status::bad_request,
-           "this server speaks the Foxglove WebSocket protocol: offer the subprotocol foxglove.websocket.v1");
+           "this server speaks the Foxglove WebSocket protocol: offer the subprotocol foxglove.websocket.v1 (or "
+           "foxglove.sdk.v1)");
     return;
   }
   const auto target = split_target({req.target().data(), req.target().size()});
@@ -289,8 +294,8 @@ void WsSession::run(HttpRequest req) {
   timeouts.idle_timeout = std::chrono::seconds(ctx_->config.idle_timeout_s);
   timeouts.keep_alive_pings = true;  // a live client answers the pings, a dead one times out
   ws_.set_option(timeouts);
-  ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& res) {
-    res.set(http::field::sec_websocket_protocol, std::string(foxglove::kSubprotocol));
+  ws_.set_option(websocket::stream_base::decorator([protocol = std::string(offered_foxglove(req_))](websocket::response_type& res) {
+    res.set(http::field::sec_websocket_protocol, protocol);
     res.set(http::field::server, "fsd");
   }));
   // Beyond this Beast itself fails the connection (close code 1009); up to it we read and drop oversize

@@ -37,7 +37,9 @@ TEST(Cli, HelpAndVersion) {
 
 TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(run("").status, 2);
-  EXPECT_EQ(run("no-such-command").status, 2);
+  const auto unknown = run("no-such-command");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.out.find("unknown subcommand 'no-such-command'"), std::string::npos) << unknown.out;
   EXPECT_EQ(run("version --bogus").status, 2);
 }
 

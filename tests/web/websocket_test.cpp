@@ -75,6 +75,23 @@ TEST(WebSocket, RefusesClientsWithoutTheSubprotocol) {
   EXPECT_TRUE(c.handshake_ok());
 }
 
+TEST(WebSocket, TheSdkNameOfTheSubprotocolIsAcceptedAndEchoed) {
+  TestServer s;
+  s.server->add_channel("/vehicle/state", "fsd.VehicleState", R"({"type":"object"})");
+  WsClient::Options sdk;
+  sdk.subprotocols = {"foxglove.sdk.v1"};
+  WsClient a(s.port(), sdk);
+  ASSERT_TRUE(a.handshake_ok());
+  EXPECT_EQ(a.accepted_subprotocol(), "foxglove.sdk.v1");  // a client checks the server took what it offered
+  EXPECT_TRUE(a.next_op("advertise"));                     // and it is the same protocol
+
+  WsClient::Options both;  // offered both: the classic name
+  both.subprotocols = {"foxglove.sdk.v1", "foxglove.websocket.v1"};
+  WsClient b(s.port(), both);
+  ASSERT_TRUE(b.handshake_ok());
+  EXPECT_EQ(b.accepted_subprotocol(), "foxglove.websocket.v1");
+}
+
 TEST(WebSocket, ChannelsAddedLaterAreAdvertised) {
   TestServer s;
   WsClient c(s.port());
