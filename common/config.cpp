@@ -133,29 +133,46 @@ Config Config::load(std::shared_ptr<const ConfigSchema> schema, const std::files
 
 void Config::merge(const json& overrides, const std::string& origin) {
   if (!overrides.is_object()) throw ConfigError(origin + ": the configuration must be a JSON object");
-  // Validate everything first so that a bad file changes nothing.
+  // Validate everything first so that a bad file changes nothing; every error is listed, not the first alone.
   std::vector<std::pair<std::string, const json*>> leaves;
+  std::vector<std::string> errors;
   std::function<void(const json&, const std::string&)> walk = [&](const json& node, const std::string& prefix) {
     for (auto it = node.begin(); it != node.end(); ++it) {
       const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
       if (it.value().is_object()) {
-        if (schema_->find(key))
-          throw ConfigError(origin + ": key '" + key + "': expected a " + to_string(schema_->find(key)->type) +
-                            ", got object");
+        if (schema_->find(key)) {
+          errors.push_back(origin + ": key '" + key + "': expected a " + to_string(schema_->find(key)->type) +
+                           ", got object");
+          continue;
+        }
         bool any = false;
         for (const auto& e : schema_->entries())
           if (e.key.rfind(key + ".", 0) == 0) { any = true; break; }
-        if (!any) throw ConfigError(origin + ": unknown key '" + key + "'");
+        if (!any) {
+          errors.push_back(origin + ": unknown key '" + key + "'");
+          continue;
+        }
         walk(it.value(), key);
         continue;
       }
       const ConfigEntry* e = schema_->find(key);
-      if (!e) throw ConfigError(origin + ": unknown key '" + key + "'");
-      if (auto why = e->check(it.value()); !why.empty()) throw ConfigError(origin + ": key '" + key + "': " + why);
+      if (!e) {
+        errors.push_back(origin + ": unknown key '" + key + "'");
+        continue;
+      }
+      if (auto why = e->check(it.value()); !why.empty()) {
+        errors.push_back(origin + ": key '" + key + "': " + why);
+        continue;
+      }
       leaves.emplace_back(key, &it.value());
     }
   };
   walk(overrides, "");
+  if (!errors.empty()) {
+    std::string all = errors.front();
+    for (std::size_t i = 1; i < errors.size(); ++i) all += "\n" + errors[i];
+    throw ConfigError(all);
+  }
   for (const auto& [key, v] : leaves) (*values_)[pointer_of(key)] = *v;
   source_ = origin;
 }

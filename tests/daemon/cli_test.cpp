@@ -68,5 +68,15 @@ TEST(Cli, ConfigCheckNamesTheBadKey) {
   EXPECT_NE(r.out.find(path), std::string::npos);
 }
 
+TEST(Cli, ConfigCheckListsEveryError) {
+  const std::string path = test::scratch_path("bad_config_many.json");
+  std::ofstream(path) << R"({"run": {"laps": 0, "mission": "drag_race", "bogus": 1}, "nope": {"x": 1}})";
+  const auto r = run("config check " + path);
+  EXPECT_EQ(r.status, 2);
+  for (const char* why : {"key 'run.laps': value 0 out of range", "key 'run.mission'", "unknown key 'run.bogus'",
+                          "unknown key 'nope'"})
+    EXPECT_NE(r.out.find(why), std::string::npos) << why << " in\n" << r.out;
+}
+
 }  // namespace
 }  // namespace fsd
