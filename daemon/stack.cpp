@@ -389,13 +389,16 @@ struct Stack::Impl {
     TelemetrySnapshot s = view.snapshot(now, as_state(), cycle.out, *autopilot, vcu->status());
     if (state) {
       s.state = *state;
-      // The newest scan, placed by the estimated pose and the configured mount (drivers.vlp16.mount_*).
+      // The newest scan, placed by the estimated pose at its last firing and the configured mount
+      // (drivers.vlp16.mount_*).
       if (last_scan) {
         s.scan = last_scan;
-        s.lidar_pose = state->pose.to_pose3() * vlp_cfg.body_from_sensor();
+        const Stamp end = last_scan->points.empty() ? last_scan->stamp : last_scan->points.back().t;
+        s.lidar_pose = poses.at(end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
       }
     }
     s.detections = last_detections;
+    if (last_detections) s.detections_pose = poses.at(last_detections->stamp);
     s.camera_jpeg = last_jpeg;
     if (telemetry_extras) telemetry_extras(s);
     telemetry->publish(std::move(s));

@@ -102,7 +102,10 @@ void Telemetry::loop() {
     if (fresh && ready(car, now)) server_.publish(ch_.car, s.t, web::car_scene(s.t, s.state.pose));
     if (fresh && ready(scene, now)) {
       if (s.cone_map) server_.publish(ch_.cone_map, s.t, web::cone_map_scene(s.t, *s.cone_map));
-      if (s.detections) server_.publish(ch_.detections, s.t, web::detections_scene(s.t, *s.detections, s.state.pose));
+      // Drawn where they were seen: at the pose of their own instant (up to 100 ms before the snapshot's).
+      if (s.detections)
+        server_.publish(ch_.detections, s.t,
+                        web::detections_scene(s.t, *s.detections, s.detections_pose.value_or(s.state.pose)));
       if (s.paths) server_.publish(ch_.paths, s.t, web::paths_scene(s.t, *s.paths));
     }
     if (fresh && s.scan && s.scan != last_scan && ready(cloud, now)) {

@@ -31,6 +31,7 @@ struct TelemetrySnapshot {
   double target_speed = 0;
   std::shared_ptr<const std::vector<Cone>> cone_map;      // map frame
   std::shared_ptr<const ConeDetections> detections;       // vehicle frame
+  std::optional<Pose2> detections_pose;                    // the car's estimated pose at detections->stamp
   std::shared_ptr<const web::PathSet> paths;
   std::shared_ptr<const Scan> scan;                       // sensor frame
   std::shared_ptr<const std::vector<std::uint8_t>> camera_jpeg;  // the newest camera frame as sent
