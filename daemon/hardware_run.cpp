@@ -16,6 +16,7 @@
 #include "daemon/cli.hpp"
 #include "daemon/hardware_stats.hpp"
 #include "daemon/recorder.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/scorecard.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/stack.hpp"
@@ -368,7 +369,10 @@ int HardwareRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(sto
 nlohmann::json HardwareRun::report() const { return impl_->report(); }
 int HardwareRun::lidar_port() const { return impl_->lidar_rx->port(); }
 void HardwareRun::set_telemetry(Telemetry* telemetry) { impl_->stack->set_telemetry(telemetry); }
-void HardwareRun::set_metrics(RunMetrics* metrics) { impl_->stack->set_metrics(metrics); }
+void HardwareRun::set_metrics(RunMetrics* metrics) {
+  impl_->stack->set_metrics(metrics);
+  if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
+}
 void HardwareRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
 }  // namespace fsd

@@ -16,6 +16,7 @@
 #include "common/mcap/byte_io.hpp"
 #include "common/mcap/fsd_profile.hpp"
 #include "common/mcap/writer.hpp"
+#include "web/metrics.hpp"
 
 namespace fsd {
 
@@ -37,8 +38,9 @@ const ConfigSection<RecordSettings>& record_section() {
   static const auto s =
       ConfigSection<RecordSettings>("record")
           .number("split_mb", &RecordSettings::split_mb, 0.01, 1048576.0, "MiB",
-                  "fsd run --record: a new file (run-001.mcap, ...) once the current one reaches this size; each "
-                  "part carries the configuration and replays alone.")
+                  "fsd run --record: a new file (run-001.mcap, ...) once the current one's messages reach this "
+                  "size (the open chunk counted uncompressed), after a whole cycle; each part carries the "
+                  "configuration and replays alone.")
           .integer("queue_frames", &RecordSettings::queue_frames, 16, 1 << 22, "",
                    "fsd run --record: frames, cycle markers and commands queued between the control thread and "
                    "the recorder's writer; when full the oldest is dropped and counted (never waits on the disk).");
@@ -85,10 +87,28 @@ struct Recorder::Impl {
   std::uint16_t cycle_id = 0, command_id = 0;
   std::vector<Stamp> since_marker;  // exact times of the frames written since the last cycle marker
   std::uint64_t bytes_done = 0;     // of the finished parts
+  std::uint64_t part_head = 0;      // the current part's bytes before its first message (metadata, track)
   bool failed = false;
 
   mutable std::mutex stats_m;
   RecorderStats st;  // guarded by stats_m
+
+  struct Gauges {
+    web::Gauge &frames, &dropped, &bytes, &files, &stopped;
+  };
+  std::unique_ptr<Gauges> gauges_owned;
+  std::atomic<Gauges*> gauges{nullptr};  // set once by set_metrics, read by the writer thread
+
+  void publish() {
+    Gauges* g = gauges.load(std::memory_order_acquire);
+    if (!g) return;
+    const RecorderStats s = stats();
+    g->frames.set(static_cast<double>(s.frames_written));
+    g->dropped.set(static_cast<double>(s.dropped));
+    g->bytes.set(static_cast<double>(s.bytes));
+    g->files.set(static_cast<double>(s.files.size()));
+    g->stopped.set(s.error.empty() ? 0.0 : 1.0);
+  }
 
   Impl(std::string p, RecordSettings s, const RecordingContents& c)
       : path(std::move(p)), settings(s), run(to_metadata(c.run)), queue(static_cast<std::size_t>(s.queue_frames)) {
@@ -129,6 +149,7 @@ struct Recorder::Impl {
       a.data.assign(track_csv->begin(), track_csv->end());
       writer->write_attachment(a);
     }
+    part_head = writer->bytes_written();
     std::lock_guard lock(stats_m);
     st.files.push_back(file);
   }
@@ -205,7 +226,8 @@ struct Recorder::Impl {
       std::lock_guard lock(stats_m);
       st.bytes = bytes_done + writer->bytes_written();
     }
-    const double size = static_cast<double>(writer->bytes_written() + writer->bytes_pending());
+    // The messages' bytes in this part (compressed as far as written, the open chunk uncompressed).
+    const double size = static_cast<double>(writer->bytes_written() + writer->bytes_pending() - part_head);
     const bool cycle_done = item.kind == Item::Kind::Output;
     if ((cycle_done && size >= settings.split_mb * kMiB) || size >= 2 * settings.split_mb * kMiB) {
       finish_part();
@@ -239,18 +261,21 @@ struct Recorder::Impl {
       }
       try {
         write(*item);
+        if (item->kind == Item::Kind::Output) publish();  // once a cycle
       } catch (const std::exception& e) {
         fail(e.what());
         writer.reset();  // its destructor swallows the sink's errors
         sink.reset();
       }
     }
-    if (failed || !writer) return;
-    try {
-      finish_part();
-    } catch (const std::exception& e) {
-      fail(e.what());
+    if (!failed && writer) {
+      try {
+        finish_part();
+      } catch (const std::exception& e) {
+        fail(e.what());
+      }
     }
+    publish();
   }
 
   void close() {
@@ -289,6 +314,17 @@ void Recorder::on_output(Stamp now, const ControlCommand& command, wire::vcu::As
 }
 
 void Recorder::close() { impl_->close(); }
+
+void Recorder::set_metrics(web::Metrics& m) {
+  if (impl_->gauges.load()) return;
+  impl_->gauges_owned = std::make_unique<Impl::Gauges>(Impl::Gauges{
+      m.gauge("fsd_record_frames", "Raw frames written to the recording"),
+      m.gauge("fsd_record_dropped", "Items (frames, cycle markers, commands) the recording lost: queue full or stopped"),
+      m.gauge("fsd_record_bytes", "Bytes written to the recording's files"),
+      m.gauge("fsd_record_files", "Files of the recording (record.split_mb)"),
+      m.gauge("fsd_record_stopped", "1 when a write error stopped the recording")});
+  impl_->gauges.store(impl_->gauges_owned.get(), std::memory_order_release);
+}
 
 RecorderStats Recorder::stats() const { return impl_->stats(); }
 

@@ -22,6 +22,10 @@
 
 namespace fsd {
 
+namespace web {
+class Metrics;
+}
+
 struct RecordSettings {
   double split_mb = 2048;    // a new file once the current one reaches this (MiB)
   int queue_frames = 16384;  // items (frames, markers, commands) between the control thread and the writer
@@ -60,6 +64,8 @@ class Recorder final : public StackTap {
   void on_cycle(Stamp now) override;
   void on_output(Stamp now, const ControlCommand& command, wire::vcu::AsRequest request) override;
 
+  // Its counters on /metrics (fsd_record_*), updated by the writer thread; `metrics` must outlive the recorder.
+  void set_metrics(web::Metrics& metrics);
   // Writes what is queued and finishes the file (summary). Idempotent; later frames are not recorded.
   void close();
   RecorderStats stats() const;  // any thread

@@ -10,6 +10,7 @@
 #include "control/missions.hpp"
 #include "daemon/layout_check.hpp"
 #include "daemon/recorder.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
 #include "daemon/sim_scoring.hpp"
@@ -197,6 +198,7 @@ void SimRun::set_telemetry(Telemetry* telemetry) {
 }
 void SimRun::set_metrics(RunMetrics* metrics) {
   impl_->stack->set_metrics(metrics, [this](CycleFigures& f) { f.cones_hit = impl_->car->cones_hit(); });
+  if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
 }
 void SimRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
