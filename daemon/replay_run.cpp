@@ -202,7 +202,7 @@ struct ReplayRun::Impl {
     std::optional<Stamp> t0;
     log->info("replaying {} ({} run, {}{}) {}", file, recorded.mode, to_string(recorded.mission),
               recorded.lockstep ? ", recorded in lockstep" : "",
-              headless ? "headless" : "at " + std::to_string(rate) + "x real time");
+              headless ? std::string("headless") : fmt::format("at {:g}x real time", rate));
     while (!stop.load(std::memory_order_relaxed)) {
       auto e = reader.next();
       if (!e) break;
