@@ -162,6 +162,26 @@ TEST(Recording, ATwoLapTrackdriveReplaysBitForBit) {
   EXPECT_EQ(replayed, without_wall_time(live));
 }
 
+TEST(Recording, AConfigOnTopOfTheRecordedOneChangesTheReplay) {
+  const auto& rec = acceleration();
+  ASSERT_EQ(rec.rc, 0) << rec.log;
+  // A lower top speed: the stack plans other commands from the same frames, which the replay reports as not
+  // repeating the run (exit 1), with the first mismatch after the go (RES at 6.02 s, recorded truth).
+  const auto slower = write_text("slower.json", R"({"control": {"speed": {"v_max": 5.0}}})");
+  const auto report = test::scratch_path("acc_slower.json");
+  std::string out;
+  EXPECT_EQ(test::run_fsd("run --replay " + rec.file + " --headless --config " + slower + " --report " + report, &out), 1)
+      << out;
+  EXPECT_NE(out.find("did not repeat the recorded run bit for bit"), std::string::npos) << out;
+  const json r = read_json(report)["replay"];
+  EXPECT_GT(r["command_mismatches"].get<int>(), 0);
+  EXPECT_GT(r["first_mismatch_t"].get<double>(), 6.0);
+  // A key no fsd knows, or a value out of bounds, is refused before anything replays.
+  const auto bad = write_text("bad_override.json", R"({"control": {"speed": {"v_max": -1}}})");
+  EXPECT_EQ(test::run_fsd("run --replay " + rec.file + " --headless --config " + bad, &out), 2) << out;
+  EXPECT_NE(out.find("control.speed.v_max"), std::string::npos) << out;
+}
+
 TEST(Recording, ACutOffRecordingReplaysUpToItsLastCompleteChunk) {
   const auto& rec = acceleration();
   ASSERT_EQ(rec.rc, 0) << rec.log;
