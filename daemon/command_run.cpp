@@ -109,7 +109,7 @@ int run_command(const RunOptions& o) {
     if (dashboard) dashboard->stop();
     return finish(rc, o.report, report(run));
   };
-  if (replay) return drive(*replay, false, [](const ReplayRun& r) { return r.report(); });
+  if (replay) return drive(*replay, replay->simulator(), [](const ReplayRun& r) { return r.report(); });
   if (!o.sim) {
     // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
     HardwareRun run(cfg, o);

@@ -13,6 +13,7 @@
 #include "daemon/recording_reader.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_scoring.hpp"
+#include "daemon/sim_truth.hpp"
 #include "daemon/stack.hpp"
 #include "daemon/truth_frames.hpp"
 #include "drivers/camera/camera_calibration.hpp"
@@ -81,6 +82,7 @@ struct ReplayRun::Impl {
   Track track;
   std::unique_ptr<SimScoring> scoring;
   std::optional<TruthStateFrame> truth;
+  std::shared_ptr<const std::vector<web::TruthCone>> dashboard_cones;  // the recorded standing cones, for /truth/*
 
   // Results.
   std::uint64_t compared = 0, mismatches = 0, vcu_compared = 0, vcu_mismatches = 0, unanswered = 0;
@@ -146,7 +148,10 @@ struct ReplayRun::Impl {
         scoring->on_truth(truth_from_state(s->state));
       }
     } else if (scoring && e.channel == RawChannel::TruthCones) {
-      if (auto c = decode_truth_cones(e.bytes)) scoring->set_truth_cones(std::move(*c));
+      if (auto c = decode_truth_cones(e.bytes)) {
+        dashboard_cones = std::make_shared<const std::vector<web::TruthCone>>(truth_cones(*c));
+        scoring->set_truth_cones(std::move(*c));
+      }
     } else if (e.channel == RawChannel::VcuTx) {
       if (recorded.mode == "sim") cycle_vcu_tx.push_back(e.bytes);
       else {
@@ -289,7 +294,14 @@ const Config& ReplayRun::config() const { return impl_->cfg; }
 bool ReplayRun::simulator() const { return impl_->recorded.simulator; }
 int ReplayRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(stop); }
 nlohmann::json ReplayRun::report() const { return impl_->report(); }
-void ReplayRun::set_telemetry(Telemetry* telemetry) { impl_->stack->set_telemetry(telemetry); }
+void ReplayRun::set_telemetry(Telemetry* telemetry) {
+  if (!impl_->scoring) return impl_->stack->set_telemetry(telemetry);
+  // A simulated run's recorded truth on the dashboard's /truth/* channels, as the live run showed it.
+  impl_->stack->set_telemetry(telemetry, [this](TelemetrySnapshot& s) {
+    if (impl_->truth) s.truth = truth_state(truth_from_state(impl_->truth->state), static_cast<int>(impl_->truth->cones_hit));
+    s.truth_cones = impl_->dashboard_cones;
+  });
+}
 void ReplayRun::set_metrics(RunMetrics* metrics) { impl_->stack->set_metrics(metrics); }
 void ReplayRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
