@@ -74,7 +74,9 @@ struct Recorder::Impl {
   std::shared_ptr<spdlog::logger> log = logger("record");
 
   BoundedQueue<Item> queue;
+  bool lossless = false;
   std::atomic<bool> closing{false};
+  std::atomic<bool> failed_flag{false};  // the writer stopped on an error: nothing to wait for
   std::atomic<std::uint64_t> refused{0};  // pushed after the recording stopped
   std::thread thread;
   std::once_flag closed;
@@ -110,8 +112,9 @@ struct Recorder::Impl {
     g->stopped.set(s.error.empty() ? 0.0 : 1.0);
   }
 
-  Impl(std::string p, RecordSettings s, const RecordingContents& c)
-      : path(std::move(p)), settings(s), run(to_metadata(c.run)), queue(static_cast<std::size_t>(s.queue_frames)) {
+  Impl(std::string p, RecordSettings s, const RecordingContents& c, bool lossless_)
+      : path(std::move(p)), settings(s), run(to_metadata(c.run)), queue(static_cast<std::size_t>(s.queue_frames)),
+        lossless(lossless_) {
     if (c.config) config = flatten_config(*c.config);
     if (!c.track_file.empty()) {
       // The bytes the run's track was parsed from: the replay parses the very same (a reformatted copy would round).
@@ -130,6 +133,9 @@ struct Recorder::Impl {
   }
 
   void push(Item&& item) {
+    // One producer (the Stack's thread): only the writer changes the size meanwhile, and only downwards.
+    while (lossless && queue.size() >= queue.capacity() && !failed_flag.load(std::memory_order_relaxed))
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
     if (!queue.push(std::move(item)) && closing.load(std::memory_order_relaxed)) refused.fetch_add(1);
   }
 
@@ -238,6 +244,7 @@ struct Recorder::Impl {
 
   void fail(const std::string& why) {
     failed = true;
+    failed_flag = true;
     log->error("recording stopped: {} (the run goes on; {} frames recorded)", why, stats().frames_written);
     std::lock_guard lock(stats_m);
     st.error = why;
@@ -298,8 +305,8 @@ struct Recorder::Impl {
   }
 };
 
-Recorder::Recorder(std::string path, RecordSettings settings, const RecordingContents& contents)
-    : impl_(std::make_unique<Impl>(std::move(path), settings, contents)) {}
+Recorder::Recorder(std::string path, RecordSettings settings, const RecordingContents& contents, bool lossless)
+    : impl_(std::make_unique<Impl>(std::move(path), settings, contents, lossless)) {}
 
 Recorder::~Recorder() { close(); }
 

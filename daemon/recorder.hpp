@@ -55,7 +55,9 @@ std::string recording_part_path(const std::string& first, int part);
 class Recorder final : public StackTap {
  public:
   // Creates the first file at once: throws std::invalid_argument naming the path when it cannot be created.
-  Recorder(std::string path, RecordSettings settings, const RecordingContents& contents);
+  // `lossless`: when the queue is full the tap waits for the writer instead of dropping (headless lockstep runs:
+  // they have no real time to keep, and a dropped frame would keep the replay from repeating the run).
+  Recorder(std::string path, RecordSettings settings, const RecordingContents& contents, bool lossless = false);
   ~Recorder() override;
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;

@@ -107,7 +107,7 @@ struct SimRun::Impl {
       rc.run = {"sim", headless, so.mission, so.laps, so.simulator, so.start, so.camera->latency,
                 to_json(so.camera->calibration).dump()};
       rc.track_file = run.track;
-      recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc);
+      recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc, headless);
       stack->add_tap(recorder.get());
     }
   }

@@ -305,6 +305,30 @@ TEST(Recording, AFullDiskStopsTheRecordingNotTheRun) {
   EXPECT_NE(out.find("cut off at offset"), std::string::npos) << out;
 }
 
+TEST(Recording, AHeadlessRunWaitsForTheWriterRatherThanDropping) {
+  // A queue of 16 items against a run that makes ~800 a simulated second at ~50x real time: the lockstep loop
+  // waits for the writer, so nothing is lost and the replay still repeats the run.
+  const auto file = test::scratch_path("small_queue.mcap");
+  const auto report = test::scratch_path("small_queue.json");
+  const auto cfg = write_text("small_queue_cfg.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
+                                                           "record": {"queue_frames": 16}})");
+  std::string out;
+  ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
+                          "../shared/tracks/epfl_acceleration.csv --config " + cfg + " --record " + file +
+                              " --report " + report,
+                          &out),
+            0)
+      << out;
+  const json st = read_json(report)["recording"];
+  EXPECT_EQ(st["dropped"], 0);
+  EXPECT_LE(st["queue_high_water"].get<int>(), 16);
+  const auto replay = test::scratch_path("small_queue_replay.json");
+  ASSERT_EQ(test::run_fsd("run --replay " + file + " --headless --report " + replay, &out), 0) << out;
+  const json r = read_json(replay)["replay"];
+  EXPECT_EQ(r["commands_compared"], st["commands_written"]);
+  EXPECT_EQ(r["command_mismatches"], 0);
+}
+
 TEST(Recording, LargeRecordingsSplitIntoPartsThatEachReplay) {
   const auto file = test::scratch_path("split.mcap");
   const auto report = test::scratch_path("split.json");
