@@ -13,7 +13,10 @@
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
 #include "daemon/dashboard.hpp"
+#include "common/mcap/records.hpp"
 #include "daemon/hardware_run.hpp"
+#include "daemon/recording_reader.hpp"
+#include "daemon/replay_run.hpp"
 #include "daemon/run_options.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
@@ -57,12 +60,25 @@ void require_writable_report(const std::string& path) {
 
 int run_command(const RunOptions& o) {
   require_writable_report(o.report);
-  Config cfg = load_config(o);
-  init_logging(daemon_section().read(cfg).log_level);
-  if (!o.replay.empty() || !o.record.empty()) {
-    std::cerr << "fsd run: recording and replay (--record, --replay) are not available in this version\n";
-    return kExitBadInput;
+  if (!o.replay.empty() && (o.sim || !o.record.empty() || o.track || o.mission || o.laps || o.seed))
+    throw std::invalid_argument("--replay takes the run from the recording: --sim, --record, --track, --mission, "
+                                "--laps and --seed do not apply (a --config file overrides recorded keys)");
+  if (!(o.rate > 0.0 && o.rate <= 1000.0)) throw std::invalid_argument("--rate must be in (0, 1000]");
+  // A replay's configuration is the recording's (daemon/replay_run.hpp).
+  std::unique_ptr<ReplayRun> replay;
+  if (!o.replay.empty()) {
+    try {
+      replay = std::make_unique<ReplayRun>(o);
+    } catch (const mcap::McapError& e) {
+      std::cerr << "fsd run: " << o.replay << ": " << e.what() << "\n";
+      return kExitBadInput;
+    } catch (const RecordingError& e) {
+      std::cerr << "fsd run: " << o.replay << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
   }
+  Config cfg = replay ? replay->config() : load_config(o);
+  init_logging(daemon_section().read(cfg).log_level);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RealClock clock;
@@ -93,6 +109,7 @@ int run_command(const RunOptions& o) {
     if (dashboard) dashboard->stop();
     return finish(rc, o.report, report(run));
   };
+  if (replay) return drive(*replay, replay->simulator(), [](const ReplayRun& r) { return r.report(); });
   if (!o.sim) {
     // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
     HardwareRun run(cfg, o);
@@ -115,8 +132,10 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--laps", o.laps, "laps of trackdrive, overrides run.laps");
   cmd->add_option("--seed", o.seed, "seed of the virtual car's random processes");
   cmd->add_option("--port", o.port, "dashboard port, overrides web.port");
-  cmd->add_option("--replay", o.replay, "replay a recorded run (MCAP)");
-  cmd->add_option("--record", o.record, "record the run (MCAP)");
+  cmd->add_option("--replay", o.replay,
+                  "replay a recording through the stack (its configuration and mission; --config overrides keys)");
+  cmd->add_option("--record", o.record, "record the run to this MCAP file (with --sim or on the car)");
+  cmd->add_option("--rate", o.rate, "replay with the dashboard at this multiple of real time (default 1)");
   cmd->add_flag("--headless", o.headless, "no dashboard; the simulation runs as fast as the CPU allows (lockstep)");
   cmd->add_flag("--until-finished", o.until_finished,
                 "stop when the mission is over; exit 1 if it failed (not finished, cones hit, no stop)");

@@ -15,6 +15,8 @@
 #include "common/params.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/hardware_stats.hpp"
+#include "daemon/recorder.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/scorecard.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/stack.hpp"
@@ -107,6 +109,7 @@ struct HardwareRun::Impl {
   CameraDriverConfig cam_cfg;
 
   std::unique_ptr<Stack> stack;
+  std::unique_ptr<Recorder> recorder;  // --record: taps the Stack on the control thread
   // Every driver thread hands its raw frames to the control thread through this queue, in arrival order.
   BoundedQueue<QueuedFrame> frames{kFrameQueue};
 
@@ -155,6 +158,17 @@ struct HardwareRun::Impl {
     if (run.perception_source == "lidar_camera" && !cam_cfg.enabled)
       log->warn("run.perception_source = lidar_camera with drivers.camera.enabled = false: LiDAR-only detections");
     stack = std::make_unique<Stack>(cfg, so);
+    if (!opt.record.empty()) {
+      RecordingContents rc;
+      rc.config = &cfg.as_json();
+      rc.run = {"car", false, so.mission, so.laps, so.simulator, so.start, std::nullopt, ""};
+      if (so.camera) {
+        rc.run.camera_latency = so.camera->latency;
+        rc.run.camera_calibration = to_json(so.camera->calibration).dump();
+      }
+      recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc);
+      stack->add_tap(recorder.get());
+    }
 
     auto to_stack = [this](RawChannel c) {
       return [this, c](Stamp t, std::span<const std::uint8_t> b) {
@@ -315,6 +329,7 @@ struct HardwareRun::Impl {
     position_rx->stop();
     // What arrived after the last cycle is still decoded (and recorded): every datagram received is counted.
     while (auto f = frames.try_pop()) stack->feed({f->channel, f->t, f->bytes});
+    if (recorder) recorder->close();
     final_counters = snapshot();
     log->info("totals: {}", rates_line(HardwareCounters{}, *final_counters));
     wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -342,6 +357,7 @@ struct HardwareRun::Impl {
     j["drivers"] = final_counters ? counters_json(*final_counters) : json(nullptr);
     j["latency_ms"] = latency_json(stack->latencies());
     j["faults"] = faults_json(stack->faults());
+    if (recorder) j["recording"] = to_json(recorder->stats());
     return j;
   }
 };
@@ -353,7 +369,10 @@ int HardwareRun::run(const std::atomic<bool>& stop) { return impl_->run_loop(sto
 nlohmann::json HardwareRun::report() const { return impl_->report(); }
 int HardwareRun::lidar_port() const { return impl_->lidar_rx->port(); }
 void HardwareRun::set_telemetry(Telemetry* telemetry) { impl_->stack->set_telemetry(telemetry); }
-void HardwareRun::set_metrics(RunMetrics* metrics) { impl_->stack->set_metrics(metrics); }
+void HardwareRun::set_metrics(RunMetrics* metrics) {
+  impl_->stack->set_metrics(metrics);
+  if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
+}
 void HardwareRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
 }  // namespace fsd

@@ -10,6 +10,8 @@
 #include <string_view>
 
 #include "common/time.hpp"
+#include "common/types.hpp"
+#include "common/wire/vcu_protocol.hpp"
 
 namespace fsd {
 
@@ -34,13 +36,15 @@ struct RawFrame {
   std::span<const std::uint8_t> bytes;
 };
 
-// Sees every frame the Stack takes and every control cycle, in the order the Stack takes them (the recorder).
+// Sees every frame the Stack takes, every control cycle and its output, in the order the Stack takes them (the recorder).
 // Called on the Stack's thread: must not block (hand over to a bounded queue).
 class StackTap {
  public:
   virtual ~StackTap() = default;
   virtual void on_frame(const RawFrame& frame) = 0;
   virtual void on_cycle(Stamp now) = 0;
+  // At the end of that cycle: the command and AS request it handed to the VCU session (the replay compares them).
+  virtual void on_output(Stamp /*now*/, const ControlCommand& /*command*/, wire::vcu::AsRequest /*request*/) {}
 };
 
 }  // namespace fsd

@@ -15,7 +15,8 @@ constexpr const char* kAsHelp = "AS state of the VCU: 0 Off, 1 Ready, 2 Driving,
 }  // namespace
 
 RunMetrics::RunMetrics(web::Metrics& m)
-    : perception_(m.summary(kLatency, kLatencyHelp, {{"stage", "perception"}})),
+    : registry_(m),
+      perception_(m.summary(kLatency, kLatencyHelp, {{"stage", "perception"}})),
       planning_(m.summary(kLatency, kLatencyHelp, {{"stage", "planning"}})),
       control_(m.summary(kLatency, kLatencyHelp, {{"stage", "control"}})),
       end_to_end_(m.summary(kLatency, kLatencyHelp, {{"stage", "end_to_end"}})),

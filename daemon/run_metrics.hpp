@@ -32,9 +32,12 @@ class RunMetrics {
   explicit RunMetrics(web::Metrics& metrics);
   // Called by the control loop once per cycle, at its end. Wait-free.
   void on_cycle(const CycleFigures& f);
+  // The registry, for the run's other parts that count something (the recorder).
+  web::Metrics& registry() { return registry_; }
 
  private:
   using clock = std::chrono::steady_clock;
+  web::Metrics& registry_;
   web::Summary &perception_, &planning_, &control_, &end_to_end_, &period_;
   web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_tight_turn_;
   web::Gauge &rate_, &as_state_, &laps_, &cones_hit_, &sim_time_;

@@ -13,7 +13,8 @@ struct RunOptions {
   std::optional<int> laps;
   std::optional<int> seed;
   std::optional<int> port;           // overrides web.port
-  std::string replay, record;
+  std::string replay, record;        // --replay FILE (daemon/replay_run.hpp), --record FILE (daemon/recorder.hpp)
+  double rate = 1.0;                 // --rate: a replay with the dashboard at this multiple of real time
   bool headless = false;
   bool until_finished = false;
   std::string report;                // scorecard JSON path, empty: none

@@ -1,6 +1,7 @@
 #include "daemon/settings.hpp"
 
 #include "perception/truth_perception.hpp"
+#include "daemon/recorder.hpp"
 #include "control/control_config.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/sim/virtual_car.hpp"
@@ -51,6 +52,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   auto schema = std::make_shared<ConfigSchema>();
   daemon_section().describe(*schema);
   run_section().describe(*schema);
+  record_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
   describe_camera_stage(*schema);

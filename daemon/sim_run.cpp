@@ -9,44 +9,22 @@
 #include "common/logging.hpp"
 #include "control/missions.hpp"
 #include "daemon/layout_check.hpp"
-#include "daemon/map_score.hpp"
-#include "daemon/perception_score.hpp"
+#include "daemon/recorder.hpp"
+#include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_faults.hpp"
+#include "daemon/sim_scoring.hpp"
 #include "daemon/sim_truth.hpp"
 #include "daemon/stack.hpp"
 #include "daemon/truth_frames.hpp"
 #include "drivers/sim/virtual_car.hpp"
-#include "localization/pose_history.hpp"
+#include "drivers/camera/camera_calibration.hpp"
 
 namespace fsd {
 
 namespace {
 
 constexpr double kControlPeriod = 0.01;  // s: the control loop runs at 100 Hz
-
-// The stop zone after a mission's last timing line.
-double stop_zone(Mission m) {
-  switch (m) {
-    case Mission::Trackdrive:
-    case Mission::Autocross:
-    case Mission::Skidpad: return 30.0;
-    default: return 100.0;
-  }
-}
-
-VehicleState state_from_truth(const sim::VehicleTruth& t) {
-  VehicleState s;
-  s.stamp = t.t;
-  s.pose = t.pose;
-  s.vx = t.vx;
-  s.vy = t.vy;
-  s.yaw_rate = t.yaw_rate;
-  s.ax = t.ax;
-  s.ay = t.ay;
-  s.steering = t.steering;
-  return s;
-}
 
 // The Stack's configuration in a simulated run: the GNSS receiver's local frame is the track's map frame (the
 // simulated receiver's origin), not the first fix.
@@ -76,10 +54,9 @@ struct SimRun::Impl {
   std::unique_ptr<sim::VirtualCar> car;
   std::unique_ptr<SimFaults> faults;
   std::unique_ptr<Stack> stack;
-  std::unique_ptr<Scorecard> card;
-  PerceptionScore perception_score;
-  PoseHistory truth_poses{256};  // the car's true poses of the last 2.5 s, for the perception score
-  std::vector<Cone> truth_cones;  // the standing cones as last sent to the Stack
+  std::unique_ptr<SimScoring> scoring;
+  Scorecard* card = nullptr;  // scoring's
+  std::unique_ptr<Recorder> recorder;  // --record
   int truth_cones_hit = -1;
   std::shared_ptr<const std::vector<web::TruthCone>> dashboard_truth_cones;  // rebuilt when a cone falls
   int dashboard_cones_hit = -1;
@@ -109,7 +86,8 @@ struct SimRun::Impl {
                                   " needs the virtual car's LiDAR: sim.enable_lidar is false");
     if (run.perception_source == "lidar_camera" && !car_settings.run.camera)
       log->warn("run.perception_source = lidar_camera with sim.enable_camera = false: LiDAR-only detections");
-    stack = std::make_unique<Stack>(stack_config(cfg, car_settings), so);
+    const Config used = stack_config(cfg, car_settings);
+    stack = std::make_unique<Stack>(used, so);
     if (const auto why = layout_refusal(track, mission, stack->autopilot().config())) throw std::invalid_argument(*why);
 
     // The car's sensors hand their bytes straight to the Stack, as the devices' transports would.
@@ -121,14 +99,17 @@ struct SimRun::Impl {
     car = std::make_unique<sim::VirtualCar>(track, car_settings, static_cast<std::uint64_t>(run.seed), sinks);
     faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
 
-    card = std::make_unique<Scorecard>(track, mission, timed_laps(mission, run.laps), stop_zone(mission), run.seed);
-    // The limits the stack plans with (the scorecard's "vehicle" object).
-    const SpeedConfig& sp = stack->autopilot().config().speed;
-    card->set_vehicle_limits({sp.mu, sp.a_accel_max, sp.a_brake_max, sp.v_max});
-    // Scored against the true pose at the detections' instant, not the one the stack placed them by.
-    stack->on_detections([this](const ConeDetections& det, const Pose2&) {
-      perception_score.add_frame(det, truth_cones, truth_poses.at(det.stamp).value_or(car->truth().pose));
-    });
+    scoring = std::make_unique<SimScoring>(track, mission, run, *stack);
+    card = &scoring->card();
+    if (!opt.record.empty()) {
+      RecordingContents rc;
+      rc.config = &used.as_json();
+      rc.run = {"sim", headless, so.mission, so.laps, so.simulator, so.start, so.camera->latency,
+                to_json(so.camera->calibration).dump()};
+      rc.track_file = run.track;
+      recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc, headless);
+      stack->add_tap(recorder.get());
+    }
   }
 
   // The simulator's truth for this cycle, as frames: the state, the standing cones when they changed, the ideal
@@ -139,9 +120,10 @@ struct SimRun::Impl {
     const auto state = encode_truth_state(ts);
     stack->feed({RawChannel::TruthState, t, state});
     if (car->cones_hit() != truth_cones_hit) {
-      truth_cones = car->standing_cones();
+      const auto standing = car->standing_cones();
       truth_cones_hit = car->cones_hit();
-      const auto cones = encode_truth_cones(truth_cones);
+      const auto cones = encode_truth_cones(standing);
+      scoring->set_truth_cones(standing);
       stack->feed({RawChannel::TruthCones, t, cones});
     }
     if (faults->truth_scan_due(t)) stack->feed({RawChannel::TruthScan, t, {}});
@@ -169,17 +151,15 @@ struct SimRun::Impl {
       t = (++cycle) * kControlPeriod;
       if (!headless && !pace.sleep_until(t)) break;
       car->advance_to(t);
-      truth_poses.add(car->truth().t, car->truth().pose);
       faults->on_cycle(t);
-      card->on_truth(car->truth());
+      scoring->on_truth(car->truth());
       feed_truth(t);
       stack->vcu().tick(t, [this, t](std::vector<std::uint8_t> bytes) {
         stack->feed({RawChannel::VcuTx, t, bytes});
         car->feed_vcu(t, bytes);
       });
       stack->step(t);
-      card->set_as_state(car->vcu().state());
-      card->set_cones_hit(car->cones_hit());
+      scoring->after_step(car->vcu().state(), car->cones_hit());
 
       // The end of a run: the mission is over and the car stands (Finished or Emergency), or time ran out.
       const AsState as = car->vcu().state();
@@ -194,18 +174,12 @@ struct SimRun::Impl {
         break;
       }
     }
-    card->set_wall_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
-    card->set_latencies(stack->latencies());
-    for (const auto& f : stack->faults()) card->add_fault(f);
+    scoring->finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
     card->set_section("injected_faults", faults->report());
-    // Each section says where its figures came from (DESIGN.md §8): the sources the stack ran on.
-    auto map = to_json(score_map(track.cones, stack->cone_map()));
-    map["source"] = run.perception_source;
-    map["localization_source"] = run.localization_source;
-    card->set_section("map", map);
-    auto perception = perception_score.to_json();
-    perception["source"] = run.perception_source;
-    card->set_section("perception", perception);
+    if (recorder) {
+      recorder->close();
+      card->set_section("recording", to_json(recorder->stats()));
+    }
     const auto vc = stack->counters().vcu;
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
               to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,
@@ -224,6 +198,7 @@ void SimRun::set_telemetry(Telemetry* telemetry) {
 }
 void SimRun::set_metrics(RunMetrics* metrics) {
   impl_->stack->set_metrics(metrics, [this](CycleFigures& f) { f.cones_hit = impl_->car->cones_hit(); });
+  if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
 }
 void SimRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 

@@ -5,8 +5,9 @@
 
 namespace fsd {
 
-web::TruthState truth_state(const sim::VirtualCar& car) {
-  const sim::VehicleTruth& t = car.truth();
+web::TruthState truth_state(const sim::VirtualCar& car) { return truth_state(car.truth(), car.cones_hit()); }
+
+web::TruthState truth_state(const sim::VehicleTruth& t, int cones_hit) {
   web::TruthState s;
   s.t = t.t;
   s.pose = t.pose;
@@ -18,8 +19,25 @@ web::TruthState truth_state(const sim::VirtualCar& car) {
   s.ay = t.ay;
   s.sideslip = t.sideslip();
   s.steering = t.steering;
-  s.cones_hit = car.cones_hit();
+  s.cones_hit = cones_hit;
   return s;
+}
+
+std::vector<web::TruthCone> truth_cones(const std::vector<Cone>& standing) {
+  std::vector<web::TruthCone> out;
+  out.reserve(standing.size());
+  for (const auto& c : standing) {
+    const sim::ConeShape& shape = sim::cone_shape(c.colour == ConeColour::BigOrange);
+    web::TruthCone k;
+    k.colour = c.colour;
+    k.base_width = 2 * shape.base_radius;
+    k.top_width = 2 * shape.top_radius;
+    k.height = shape.height;
+    k.base = Pose3::Identity();
+    k.base.translation() = c.position;
+    out.push_back(k);
+  }
+  return out;
 }
 
 std::vector<web::TruthCone> truth_cones(const sim::World& world) {

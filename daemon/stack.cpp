@@ -339,6 +339,7 @@ struct Stack::Impl {
     vcu->set_command(out.command, now);
     vcu->set_as_request(out.request);
     const double w3 = wall();
+    for (auto* tap : taps) tap->on_output(now, out.command, out.request);
 
     CycleFigures& fig = cycle.figures;
     fig.t = now;

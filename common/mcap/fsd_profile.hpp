@@ -30,6 +30,7 @@ inline constexpr std::string_view kRecordingVersionKey = "fsd.recording_version"
 inline constexpr int kRecordingVersion = 1;
 inline constexpr std::string_view kConfigMetadata = "fsd.config";      // the run's configuration, key -> JSON value
 inline constexpr std::string_view kRecorderMetadata = "fsd.recorder";  // counters, e.g. "dropped" -> "12"
+inline constexpr std::string_view kRunMetadata = "fsd.run";            // how the Stack was built (daemon/recording_format)
 
 inline constexpr std::string_view kRawEncoding = "fsd.raw";
 inline constexpr std::string_view kJsonEncoding = "json";
@@ -42,6 +43,10 @@ inline constexpr std::string_view kRawSchemaNmea = "fsd.raw.nmea";              
 inline constexpr std::string_view kRawSchemaJpeg = "fsd.raw.jpeg";                     // one JPEG frame
 inline constexpr std::string_view kRawSchemaVcuRx = "fsd.raw.vcu_rx";                  // bytes from the VCU
 inline constexpr std::string_view kRawSchemaVcuTx = "fsd.raw.vcu_tx";                  // bytes to the VCU
+// The simulator's ground truth, raw frames too (daemon/truth_frames.hpp).
+inline constexpr std::string_view kRawSchemaTruthState = "fsd.raw.truth_state";
+inline constexpr std::string_view kRawSchemaTruthCones = "fsd.raw.truth_cones";
+inline constexpr std::string_view kRawSchemaTruthScan = "fsd.raw.truth_scan";
 
 // The metadata map a writer of this version puts in kRecordingMetadata.
 StringMap recording_metadata();

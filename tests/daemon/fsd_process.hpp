@@ -9,9 +9,9 @@
 
 namespace fsd::test {
 
-// Runs `FSD_BINARY args` through the shell; returns its exit status, and its output in *out when given.
-inline int run_fsd(const std::string& args, std::string* out = nullptr) {
-  const std::string cmd = std::string(FSD_BINARY) + " " + args + " 2>&1";
+// Runs `FSD_BINARY args` through the shell (after `shell_prefix`, e.g. a ulimit); returns its exit status, and its output in *out when given.
+inline int run_fsd_with(const std::string& shell_prefix, const std::string& args, std::string* out = nullptr) {
+  const std::string cmd = shell_prefix + " " + std::string(FSD_BINARY) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return -1;
   std::array<char, 4096> buf{};
@@ -21,5 +21,7 @@ inline int run_fsd(const std::string& args, std::string* out = nullptr) {
   if (out) *out = std::move(text);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
+
+inline int run_fsd(const std::string& args, std::string* out = nullptr) { return run_fsd_with("", args, out); }
 
 }  // namespace fsd::test

@@ -314,8 +314,10 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
                          R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
                          "run": {"stats_period": 1.0}, "web": {"bind": "127.0.0.1", "port": 0}})");
   const std::string report_path = scratch_path("hw_report.json");
+  const std::string recording = scratch_path("hw_run.mcap");
   std::remove(report_path.c_str());
-  Fsd run({"run", "--config", run_cfg, "--mission", "inspection", "--until-finished", "--report", report_path},
+  Fsd run({"run", "--config", run_cfg, "--mission", "inspection", "--until-finished", "--report", report_path,
+           "--record", recording},
           scratch_path("hw_run.log"));
   const int rc = run.wait(90s);
   const std::string log = run.output();
@@ -368,6 +370,27 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
   // The log shows the per-driver rates and the transitions.
   EXPECT_NE(log.find("pkt/s"), std::string::npos) << log;
   EXPECT_NE(log.find("AS Ready -> Driving"), std::string::npos) << log;
+
+  // The run was recorded as the control thread fed it (nothing dropped at these rates), and replays headless
+  // through the same stack: the frames and cycles the recorder wrote, the VCU's recorded statuses taking the AS
+  // through the same states, and the commands the live stack computed.
+  const auto& rec = r["recording"];
+  EXPECT_EQ(rec["dropped"], 0) << rec.dump(2);
+  EXPECT_EQ(rec["error"], "");
+  EXPECT_EQ(rec["cycles_written"], d["control"]["cycles"]);
+  const std::string replay_path = scratch_path("hw_replay.json");
+  std::string replay_log;
+  ASSERT_EQ(test::run_fsd("run --replay " + recording + " --headless --report " + replay_path, &replay_log), 0)
+      << replay_log;
+  const auto p = nlohmann::json::parse(slurp(replay_path));
+  EXPECT_EQ(p["mode"], "replay");
+  EXPECT_EQ(p["mission"], "inspection");
+  EXPECT_EQ(p["as_state"], "Finished");
+  EXPECT_EQ(p["replay"]["recorded_mode"], "car");
+  EXPECT_EQ(p["replay"]["frames"], rec["frames_written"]);
+  EXPECT_EQ(p["replay"]["cycles"], rec["cycles_written"]);
+  EXPECT_EQ(p["replay"]["commands_compared"], rec["commands_written"]);
+  EXPECT_EQ(p["replay"]["command_mismatches"], 0) << p["replay"].dump(2);
 }
 
 // SIGTERM mid-run, while driving: the daemon exits 0 and the last Commands the VCU sees are safe ones (speed 0,

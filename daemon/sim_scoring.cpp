@@ -1,0 +1,83 @@
+#include "daemon/sim_scoring.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "control/missions.hpp"
+#include "daemon/map_score.hpp"
+#include "daemon/stack.hpp"
+
+namespace fsd {
+
+double stop_zone(Mission m) {
+  switch (m) {
+    case Mission::Trackdrive:
+    case Mission::Autocross:
+    case Mission::Skidpad: return 30.0;
+    default: return 100.0;
+  }
+}
+
+VehicleState state_from_truth(const sim::VehicleTruth& t) {
+  VehicleState s;
+  s.stamp = t.t;
+  s.pose = t.pose;
+  s.vx = t.vx;
+  s.vy = t.vy;
+  s.yaw_rate = t.yaw_rate;
+  s.ax = t.ax;
+  s.ay = t.ay;
+  s.steering = t.steering;
+  return s;
+}
+
+sim::VehicleTruth truth_from_state(const VehicleState& s) {
+  sim::VehicleTruth t;
+  t.t = s.stamp;
+  t.pose = s.pose;
+  t.vx = s.vx;
+  t.vy = s.vy;
+  t.yaw_rate = s.yaw_rate;
+  t.ax = s.ax;
+  t.ay = s.ay;
+  t.steering = s.steering;
+  return t;
+}
+
+SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& run, Stack& stack)
+    : track_(track), run_(run), stack_(stack) {
+  card_ = std::make_unique<Scorecard>(track, mission, timed_laps(mission, run.laps), stop_zone(mission), run.seed);
+  // The limits the stack plans with (the scorecard's "vehicle" object).
+  const SpeedConfig& sp = stack.autopilot().config().speed;
+  card_->set_vehicle_limits({sp.mu, sp.a_accel_max, sp.a_brake_max, sp.v_max});
+  // Scored against the true pose at the detections' instant, not the one the stack placed them by.
+  stack.on_detections([this](const ConeDetections& det, const Pose2&) {
+    perception_.add_frame(det, truth_cones_, truth_poses_.at(det.stamp).value_or(last_pose_));
+  });
+}
+
+void SimScoring::on_truth(const sim::VehicleTruth& truth) {
+  truth_poses_.add(truth.t, truth.pose);
+  last_pose_ = truth.pose;
+  card_->on_truth(truth);
+}
+
+void SimScoring::after_step(AsState as, int cones_hit) {
+  card_->set_as_state(as);
+  card_->set_cones_hit(cones_hit);
+}
+
+void SimScoring::finish(double wall_time_s) {
+  card_->set_wall_time(wall_time_s);
+  card_->set_latencies(stack_.latencies());
+  for (const auto& f : stack_.faults()) card_->add_fault(f);
+  // Each section says where its figures came from (DESIGN.md §8): the sources the stack ran on.
+  auto map = to_json(score_map(track_.cones, stack_.cone_map()));
+  map["source"] = run_.perception_source;
+  map["localization_source"] = run_.localization_source;
+  card_->set_section("map", map);
+  auto perception = perception_.to_json();
+  perception["source"] = run_.perception_source;
+  card_->set_section("perception", perception);
+}
+
+}  // namespace fsd

@@ -1,0 +1,57 @@
+#pragma once
+// The scorecard of a run on the virtual car (daemon/scorecard.hpp), as `fsd run --sim` and the replay of its
+// recording both fill it: one Scorecard for the track and mission, fed the simulator's truth each cycle (the
+// car's true state, the standing cones), the Stack's detections scored against the truth at their instant, and at
+// the end the Stack's latencies, faults, cone map and perception figures. The live run feeds the virtual car's
+// truth; the replay the recorded truth frames (RawChannel::TruthState / TruthCones), so both score alike.
+#include <memory>
+#include <vector>
+
+#include "common/track.hpp"
+#include "common/types.hpp"
+#include "daemon/perception_score.hpp"
+#include "daemon/scorecard.hpp"
+#include "daemon/settings.hpp"
+#include "drivers/sim/vehicle_truth.hpp"
+#include "localization/pose_history.hpp"
+
+namespace fsd {
+
+class Stack;
+
+// The stop zone after a mission's last timing line (m).
+double stop_zone(Mission m);
+
+// The virtual car's true state as the Stack's VehicleState, and back (what a truth frame carries).
+VehicleState state_from_truth(const sim::VehicleTruth& t);
+sim::VehicleTruth truth_from_state(const VehicleState& s);
+
+class SimScoring {
+ public:
+  // Registers the Stack's detections hook; `stack` must outlive this.
+  SimScoring(const Track& track, Mission mission, const RunSettings& run, Stack& stack);
+
+  // Each cycle, before the Stack steps: the car's true state (monotonic time).
+  void on_truth(const sim::VehicleTruth& truth);
+  // The standing cones, whenever they change (a cone knocked over), as the Stack is sent them.
+  void set_truth_cones(std::vector<Cone> cones) { truth_cones_ = std::move(cones); }
+  // After the step: the VCU's true AS state and the cones hit so far.
+  void after_step(AsState as, int cones_hit);
+  // The end of the run: wall time, the Stack's latencies and faults, the "map" and "perception" sections.
+  void finish(double wall_time_s);
+
+  Scorecard& card() { return *card_; }
+  const Scorecard& card() const { return *card_; }
+
+ private:
+  const Track& track_;
+  RunSettings run_;
+  Stack& stack_;
+  std::unique_ptr<Scorecard> card_;
+  PerceptionScore perception_;
+  PoseHistory truth_poses_{256};  // the car's true poses of the last 2.5 s, for the perception score
+  Pose2 last_pose_;
+  std::vector<Cone> truth_cones_;
+};
+
+}  // namespace fsd
