@@ -1,0 +1,267 @@
+#include "localization/fusion/ekf_filter.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace fsd::fusion {
+
+namespace {
+constexpr double kOutOfOrder = 1e-3;  // s: reordering below this is applied at the filter's time
+}
+
+EkfFilter::EkfFilter(const FusionConfig& cfg)
+    : cfg_(cfg), gate_(cfg.gnss), heading_init_(cfg.common.heading_baseline_m) {
+  x_(Scale) = 1.0;
+  // Position unknown until the first fix; the heading is provisional (0, small σ) until the GNSS track gives it,
+  // so the linearisation never sees an arbitrary heading with a huge variance.
+  P_.diagonal() << 1e6, 1e6, 1e-4, 1.0, 1.0, 0.1, std::pow(cfg.ekf.initial_bias_sigma, 2),
+      std::pow(cfg.ekf.initial_scale_sigma, 2);
+}
+
+void EkfFilter::predict(Stamp t) {
+  const double dt = t - t_;
+  if (dt <= 0) return;
+  t_ = t;
+  const double yaw = x_(Yaw), vx = x_(Vx), vy = x_(Vy), r = x_(R);
+  const double ym = yaw + 0.5 * r * dt;  // midpoint heading
+  const double c = std::cos(ym), s = std::sin(ym);
+  const Vec2 step{dt * (vx * c - vy * s), dt * (vx * s + vy * c)};
+  x_(X) += step.x();
+  x_(Y) += step.y();
+  x_(Yaw) = wrap_angle(yaw + r * dt);
+  motion_since_fix_ += step;
+
+  Mat F = Mat::Identity();
+  F(X, Yaw) = -step.y();
+  F(Y, Yaw) = step.x();
+  F(X, R) = -step.y() * 0.5 * dt;
+  F(Y, R) = step.x() * 0.5 * dt;
+  F(X, Vx) = dt * c;
+  F(X, Vy) = -dt * s;
+  F(Y, Vx) = dt * s;
+  F(Y, Vy) = dt * c;
+  F(Yaw, R) = dt;
+  const auto& e = cfg_.ekf;
+  Mat Q = Mat::Zero();
+  Q(X, X) = Q(Y, Y) = e.position_noise * e.position_noise * dt;
+  Q(Vx, Vx) = Q(Vy, Vy) = e.accel_noise * e.accel_noise * dt;
+  Q(R, R) = e.yaw_accel_noise * e.yaw_accel_noise * dt;
+  Q(Bias, Bias) = e.bias_walk * e.bias_walk * dt;
+  Q(Scale, Scale) = e.scale_walk * e.scale_walk * dt;
+  P_ = F * P_ * F.transpose() + Q;
+}
+
+template <int M>
+double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
+                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm) {
+  Eigen::Matrix<double, M, 1> nu = z - h;
+  if constexpr (M == 3) nu(2) = wrap_angle(nu(2));
+  const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + Rm;
+  const Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S.inverse();
+  x_ += K * nu;
+  x_(Yaw) = wrap_angle(x_(Yaw));
+  // Joseph form: stays symmetric positive definite with the many small updates of a 200 Hz gyro.
+  const Mat IKH = Mat::Identity() - K * H;
+  P_ = IKH * P_ * IKH.transpose() + K * Rm * K.transpose();
+  return nu.dot(S.inverse() * nu);
+}
+
+void EkfFilter::add(const Measurement& m) {
+  const Stamp t = stamp_of(m);
+  if (!std::isfinite(t)) return;
+  if (!started_) {
+    started_ = true;
+    t_ = t;
+  }
+  const bool is_gnss = std::holds_alternative<GnssFix>(m);
+  if (t < t_ - kOutOfOrder && !is_gnss) {
+    ++dropped_;
+    return;
+  }
+  predict(t);
+  std::visit(
+      [this](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, ImuSample>) on_imu(v);
+        else if constexpr (std::is_same_v<T, BodySpeed>) on_speed(v);
+        else if constexpr (std::is_same_v<T, GnssFix>) on_gnss(v);
+        else on_odometry(v);
+      },
+      m);
+}
+
+void EkfFilter::on_imu(const ImuSample& s) {
+  if (!std::isfinite(s.gyro.z())) return;
+  last_motion_ = s.t;
+  Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
+  H(0, R) = 1.0;
+  H(0, Bias) = 1.0;
+  const double g = cfg_.ekf.gyro_sigma;
+  update<1>(Eigen::Matrix<double, 1, 1>(s.gyro.z()), Eigen::Matrix<double, 1, 1>(x_(R) + x_(Bias)), H,
+            Eigen::Matrix<double, 1, 1>(g * g));
+}
+
+void EkfFilter::on_speed(const BodySpeed& s) {
+  if (!std::isfinite(s.vx) || (s.has_vy && !std::isfinite(s.vy))) return;
+  last_motion_ = s.t;
+  speed_ = s.has_vy ? std::hypot(s.vx, s.vy) : std::abs(s.vx);
+  const double lx = s.lever.x(), ly = s.lever.y();
+  const double vx = x_(Vx), vy = x_(Vy), r = x_(R);
+  if (s.source == BodySpeed::Source::Optical) {
+    // The sensor's velocity: v + r × lever = (vx − r·ly, vy + r·lx), read through the scale k.
+    const double k = x_(Scale);
+    const double sx = vx - r * ly, sy = vy + r * lx;
+    const double sig2 = cfg_.ekf.optical_sigma * cfg_.ekf.optical_sigma;
+    if (s.has_vy) {
+      Eigen::Matrix<double, 2, kN> H = Eigen::Matrix<double, 2, kN>::Zero();
+      H(0, Vx) = k;
+      H(0, R) = -k * ly;
+      H(0, Scale) = sx;
+      H(1, Vy) = k;
+      H(1, R) = k * lx;
+      H(1, Scale) = sy;
+      update<2>(Eigen::Vector2d(s.vx, s.vy), Eigen::Vector2d(k * sx, k * sy), H,
+                Eigen::Matrix2d::Identity() * sig2);
+    } else {
+      Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
+      H(0, Vx) = k;
+      H(0, R) = -k * ly;
+      H(0, Scale) = sx;
+      update<1>(Eigen::Matrix<double, 1, 1>(s.vx), Eigen::Matrix<double, 1, 1>(k * sx), H,
+                Eigen::Matrix<double, 1, 1>(sig2));
+    }
+  } else {
+    const double sig = cfg_.ekf.wheel_sigma + cfg_.ekf.wheel_sigma_fraction * std::abs(s.vx);
+    Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
+    H(0, Vx) = 1.0;
+    H(0, R) = -ly;
+    update<1>(Eigen::Matrix<double, 1, 1>(s.vx), Eigen::Matrix<double, 1, 1>(vx - r * ly), H,
+              Eigen::Matrix<double, 1, 1>(sig * sig));
+  }
+  if (speed_ < cfg_.common.standstill_speed) {
+    // A standing car neither turns nor slides: what the gyro reads is its bias.
+    Eigen::Matrix<double, 2, kN> H = Eigen::Matrix<double, 2, kN>::Zero();
+    H(0, R) = 1.0;
+    H(1, Vy) = 1.0;
+    const double rs = cfg_.ekf.standstill_rate_sigma;
+    update<2>(Eigen::Vector2d::Zero(), Eigen::Vector2d(x_(R), x_(Vy)), H,
+              Eigen::Vector2d(rs * rs, 1e-4).asDiagonal().toDenseMatrix());
+  }
+}
+
+void EkfFilter::on_odometry(const OdometryIncrement& o) {
+  const double dt = o.t1 - o.t0;
+  if (!(dt > 1e-3) || !std::isfinite(o.delta.x) || !std::isfinite(o.delta.y) || !std::isfinite(o.delta.yaw) ||
+      !o.covariance.allFinite())
+    return;
+  last_motion_ = o.t1;
+  // The mean body velocity and yaw rate over the interval (the chord's direction is half the turn).
+  const double half = 0.5 * o.delta.yaw;
+  const Vec2 v = Eigen::Rotation2Dd(-half) * Vec2(o.delta.x, o.delta.y) / dt;
+  Eigen::Matrix<double, 3, kN> H = Eigen::Matrix<double, 3, kN>::Zero();
+  H(0, Vx) = 1.0;
+  H(1, Vy) = 1.0;
+  H(2, R) = 1.0;
+  Eigen::Matrix3d Rm = o.covariance / (dt * dt);
+  Rm += Eigen::Matrix3d::Identity() * 1e-8;
+  // The yaw row is not an angle residual: keep it out of update<3>'s wrap by staying far from ±π/dt.
+  update<3>(Eigen::Vector3d(v.x(), v.y(), o.delta.yaw / dt), Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)), H, Rm);
+}
+
+void EkfFilter::apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma) {
+  const Eigen::Rotation2Dd rot(off.yaw);
+  const Vec2 p = off.anchor_fix + rot * (Vec2(x_(X), x_(Y)) - off.anchor_dr);
+  x_(X) = p.x();
+  x_(Y) = p.y();
+  x_(Yaw) = wrap_angle(x_(Yaw) + off.yaw);
+  for (int i : {X, Y, Yaw}) {
+    P_.row(i).setZero();
+    P_.col(i).setZero();
+  }
+  P_(X, X) = P_(Y, Y) = fix_sigma * fix_sigma;
+  P_(Yaw, Yaw) = std::pow(cfg_.common.initial_heading_sigma, 2);
+  heading_known_ = true;
+  gate_.reset();
+}
+
+void EkfFilter::on_gnss(const GnssFix& f) {
+  ++out_.gnss_counters.fixes;
+  const auto reject = [this](GnssVerdict v) {
+    out_.gnss = v;
+    ++out_.gnss_counters.rejected;
+    if (v == GnssVerdict::RejectedJump) ++out_.gnss_counters.jumps;
+  };
+  if (!have_position_) {
+    if (f.fix_quality <= 0 || f.fix_quality < cfg_.gnss.min_fix_quality || !f.position.allFinite()) {
+      reject(GnssVerdict::RejectedQuality);
+      return;
+    }
+    const double sig = gate_.nominal_sigma(f);
+    x_(X) = f.position.x();
+    x_(Y) = f.position.y();
+    P_(X, X) = P_(Y, Y) = sig * sig;
+    P_.block<2, kN - 2>(0, 2).setZero();
+    P_.block<kN - 2, 2>(2, 0).setZero();
+    have_position_ = true;
+    motion_since_fix_.setZero();
+    gate_.check(f, t_, f.position, P_.topLeftCorner<2, 2>(), Vec2::Zero());  // the gate's previous fix
+    out_.gnss = GnssVerdict::Accepted;
+    out_.last_gnss_accepted = f.t;
+    ++out_.gnss_counters.accepted;
+    return;
+  }
+  if (!heading_known_ && speed_ >= cfg_.common.standstill_speed) {
+    // Moving without a heading: the fix goes to the heading initialisation, not into the state.
+    if (speed_ < cfg_.common.moving_speed || f.fix_quality < cfg_.gnss.min_fix_quality || f.fix_quality <= 0) {
+      out_.gnss = GnssVerdict::Waiting;
+      return;
+    }
+    out_.gnss = GnssVerdict::Waiting;
+    if (const auto off = heading_init_.add(f.position, Vec2(x_(X), x_(Y)))) {
+      apply_heading(*off, gate_.nominal_sigma(f));
+      motion_since_fix_.setZero();
+      gate_.check(f, t_, Vec2(x_(X), x_(Y)), P_.topLeftCorner<2, 2>(), Vec2::Zero());
+    }
+    return;
+  }
+  const GnssCheck c = gate_.check(f, t_, Vec2(x_(X), x_(Y)), P_.topLeftCorner<2, 2>(), motion_since_fix_);
+  if (c.verdict != GnssVerdict::RejectedQuality && c.verdict != GnssVerdict::RejectedStale)
+    motion_since_fix_.setZero();
+  out_.gnss_nis = c.nis;
+  if (!c.used()) {
+    reject(c.verdict);
+    return;
+  }
+  Eigen::Matrix<double, 2, kN> H = Eigen::Matrix<double, 2, kN>::Zero();
+  H(0, X) = 1.0;
+  H(1, Y) = 1.0;
+  update<2>(f.position, Vec2(x_(X), x_(Y)), H, Eigen::Matrix2d::Identity() * c.sigma * c.sigma);
+  if (f.heading_valid && std::isfinite(f.heading) && heading_known_) {
+    Eigen::Matrix<double, 1, kN> Hh = Eigen::Matrix<double, 1, kN>::Zero();
+    Hh(0, Yaw) = 1.0;
+    const double nu = wrap_angle(f.heading - x_(Yaw));
+    update<1>(Eigen::Matrix<double, 1, 1>(x_(Yaw) + nu), Eigen::Matrix<double, 1, 1>(x_(Yaw)), Hh,
+              Eigen::Matrix<double, 1, 1>(std::pow(cfg_.common.initial_heading_sigma, 2)));
+  }
+  out_.gnss = c.verdict;
+  out_.last_gnss_accepted = f.t;
+  if (c.verdict == GnssVerdict::Accepted) ++out_.gnss_counters.accepted;
+  else ++out_.gnss_counters.down_weighted;
+}
+
+LocalizationState EkfFilter::state() const {
+  LocalizationState s = out_;
+  s.stamp = t_;
+  s.initialised = have_position_ && heading_known_;
+  s.pose = Pose2{x_(X), x_(Y), x_(Yaw)};
+  s.vx = x_(Vx);
+  s.vy = x_(Vy);
+  s.yaw_rate = x_(R);
+  s.gyro_bias = x_(Bias);
+  s.speed_scale = x_(Scale);
+  s.covariance = P_.topLeftCorner<3, 3>();
+  s.quality = assess_quality(s, last_motion_, cfg_.common);
+  return s;
+}
+
+}  // namespace fsd::fusion

@@ -1,0 +1,57 @@
+#pragma once
+// The EKF of the fusion (issue #17). State (map frame, body velocity at the reference point):
+//   x, y, yaw, vx, vy, yaw rate r, gyro bias b, optical speed scale k.
+// Between measurements a constant-velocity, constant-turn model (vx, vy, r random walks); each gyro sample
+// measures r + b, each optical sample k·(v + r × lever), wheels vx + r × lever, a LiDAR odometry increment the mean
+// (vx, vy, r) over its interval, a GNSS fix the position (through the gate). A standing car is held to r = 0, so
+// the gyro's bias shows at once; GNSS while driving makes the bias and the speed scale observable, which is what
+// keeps dead reckoning through an outage well under the raw sensors' drift.
+#include <Eigen/Core>
+
+#include "localization/fusion/fusion_filter.hpp"
+#include "localization/fusion/gnss_gate.hpp"
+#include "localization/fusion/heading_init.hpp"
+
+namespace fsd::fusion {
+
+class EkfFilter final : public FusionFilter {
+ public:
+  static constexpr int kN = 8;
+  enum Index { X = 0, Y, Yaw, Vx, Vy, R, Bias, Scale };
+  using Vec = Eigen::Matrix<double, kN, 1>;
+  using Mat = Eigen::Matrix<double, kN, kN>;
+
+  explicit EkfFilter(const FusionConfig& cfg = {});
+  void add(const Measurement& m) override;
+  LocalizationState state() const override;
+  std::string_view name() const override { return "ekf"; }
+  std::uint64_t dropped_out_of_order() const override { return dropped_; }
+
+ private:
+  void predict(Stamp t);
+  template <int M>
+  double update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
+                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm);
+  void on_imu(const ImuSample& s);
+  void on_speed(const BodySpeed& s);
+  void on_gnss(const GnssFix& f);
+  void on_odometry(const OdometryIncrement& o);
+  void apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma);
+
+  FusionConfig cfg_;
+  GnssGate gate_;
+  HeadingInitialiser heading_init_;
+  Vec x_ = Vec::Zero();
+  Mat P_ = Mat::Zero();
+  Stamp t_ = 0;
+  bool started_ = false;
+  bool have_position_ = false;
+  bool heading_known_ = false;
+  double speed_ = 0;           // latest measured ground speed (m/s), for standstill and moving tests
+  Stamp last_motion_ = -1e300;
+  Vec2 motion_since_fix_ = Vec2::Zero();  // dead-reckoned displacement since the previous fix (jump test)
+  LocalizationState out_;      // GNSS verdicts and counters
+  std::uint64_t dropped_ = 0;
+};
+
+}  // namespace fsd::fusion

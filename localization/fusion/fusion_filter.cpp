@@ -1,0 +1,68 @@
+#include "localization/fusion/fusion_filter.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
+#include "localization/fusion/complementary_filter.hpp"
+#include "localization/fusion/ekf_filter.hpp"
+
+namespace fsd::fusion {
+
+Stamp stamp_of(const Measurement& m) {
+  return std::visit(
+      [](const auto& v) -> Stamp {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, OdometryIncrement>) {
+          return v.t1;
+        } else {
+          return v.t;
+        }
+      },
+      m);
+}
+
+std::string_view to_string(Quality q) {
+  switch (q) {
+    case Quality::Good: return "good";
+    case Quality::Degraded: return "degraded";
+    case Quality::Lost: return "lost";
+  }
+  return "lost";
+}
+
+std::string_view to_string(GnssVerdict v) {
+  switch (v) {
+    case GnssVerdict::None: return "none";
+    case GnssVerdict::Accepted: return "accepted";
+    case GnssVerdict::DownWeighted: return "down_weighted";
+    case GnssVerdict::RejectedQuality: return "rejected_quality";
+    case GnssVerdict::RejectedStale: return "rejected_stale";
+    case GnssVerdict::RejectedInnovation: return "rejected_innovation";
+    case GnssVerdict::RejectedJump: return "rejected_jump";
+    case GnssVerdict::Waiting: return "waiting";
+  }
+  return "none";
+}
+
+double LocalizationState::position_sigma() const {
+  const Eigen::Matrix2d P = covariance.topLeftCorner<2, 2>();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(P, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, es.eigenvalues().maxCoeff()));
+}
+
+Quality assess_quality(const LocalizationState& s, Stamp last_motion, const FusionCommonConfig& cfg) {
+  const double sigma = s.position_sigma();
+  if (!s.initialised || !std::isfinite(sigma) || sigma > cfg.lost_sigma_m || s.stamp - last_motion > cfg.motion_timeout_s)
+    return Quality::Lost;
+  const bool recent_fix = s.last_gnss_accepted >= 0 && s.stamp - s.last_gnss_accepted <= cfg.good_gnss_timeout_s;
+  return recent_fix && sigma <= cfg.good_sigma_m ? Quality::Good : Quality::Degraded;
+}
+
+std::unique_ptr<FusionFilter> make_fusion_filter(const std::string& name, const FusionConfig& cfg) {
+  if (name == "ekf") return std::make_unique<EkfFilter>(cfg);
+  if (name == "complementary") return std::make_unique<ComplementaryFilter>(cfg);
+  throw std::invalid_argument("unknown fusion filter '" + name + "' (ekf | complementary)");
+}
+
+}  // namespace fsd::fusion

@@ -1,0 +1,31 @@
+#pragma once
+// One interface for the fusion filters (issue #17): measurements in, in time order, and the state out. The filters
+// are pure: no clock, no I/O; time is the measurements' stamps. Chosen by name with make_fusion_filter (config key
+// localization.fusion.filter).
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "localization/fusion/fusion_config.hpp"
+#include "localization/fusion/measurements.hpp"
+
+namespace fsd::fusion {
+
+class FusionFilter {
+ public:
+  virtual ~FusionFilter() = default;
+  // Measurements in time order across all kinds; one older than the filter's time (beyond a millisecond) is
+  // counted and dropped, a stale GNSS fix is rejected by the gate.
+  virtual void add(const Measurement& m) = 0;
+  virtual LocalizationState state() const = 0;
+  virtual std::string_view name() const = 0;
+  virtual std::uint64_t dropped_out_of_order() const = 0;
+};
+
+// "ekf" | "complementary"; throws std::invalid_argument for another name.
+std::unique_ptr<FusionFilter> make_fusion_filter(const std::string& name, const FusionConfig& cfg = {});
+
+// The quality flag of a state from its covariance, its GNSS history and its inputs' freshness.
+Quality assess_quality(const LocalizationState& s, Stamp last_motion, const FusionCommonConfig& cfg);
+
+}  // namespace fsd::fusion

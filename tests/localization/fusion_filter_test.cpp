@@ -1,0 +1,226 @@
+// Both fusion filters on a synthetic drive with known sensor errors (tests/localization/fusion_synthetic.hpp):
+// the gyro bias and the optical speed scale they estimate against the injected values, the lever arm, the
+// heading from the GNSS track against the true start heading, a 20 s GNSS outage against the truth and against
+// raw dead reckoning, and an injected GNSS jump (rejected, flagged, the pose unharmed).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "localization/fusion/fusion_filter.hpp"
+#include "tests/localization/fusion_synthetic.hpp"
+
+namespace fsd::fusion {
+namespace {
+
+using test::SyntheticDrive;
+
+double position_error(const LocalizationState& s, const SyntheticDrive& d) {
+  const auto& tr = d.at(s.stamp);
+  return std::hypot(s.pose.x - tr.pose.x, s.pose.y - tr.pose.y);
+}
+
+// Runs all measurements; `each` sees the state after every GNSS fix.
+template <class F>
+void run(FusionFilter& f, const SyntheticDrive& d, F each) {
+  for (const auto& m : d.measurements) {
+    f.add(m);
+    if (std::holds_alternative<GnssFix>(m)) each(f.state());
+  }
+}
+
+class EachFilter : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EachFilter, EstimatesTheGyroBiasAndTheSpeedScale) {
+  SyntheticDrive d;
+  d.generate();
+  auto f = make_fusion_filter(GetParam());
+  run(*f, d, [](const LocalizationState&) {});
+  const auto s = f->state();
+  ASSERT_TRUE(s.initialised);
+  EXPECT_NEAR(s.gyro_bias, d.gyro_bias, 1.5e-3);
+  EXPECT_NEAR(s.speed_scale, d.speed_scale, 0.01);
+  EXPECT_LT(position_error(s, d), 0.5);
+  EXPECT_NEAR(wrap_angle(s.pose.yaw - d.at(s.stamp).pose.yaw), 0.0, 0.03);
+  EXPECT_EQ(s.quality, Quality::Good);
+}
+
+TEST_P(EachFilter, TakesTheHeadingFromTheGnssTrack) {
+  for (const double yaw0 : {-2.5, 0.0, 2.0}) {
+    SyntheticDrive d;
+    d.start_yaw = yaw0;
+    d.duration_s = 25.0;
+    d.generate();
+    auto f = make_fusion_filter(GetParam());
+    bool was_initialised = false;
+    run(*f, d, [&](const LocalizationState& s) {
+      if (s.stamp < 1010.0) {
+        EXPECT_FALSE(s.initialised) << "no heading while standing";
+      }
+      was_initialised = was_initialised || s.initialised;
+    });
+    const auto s = f->state();
+    ASSERT_TRUE(was_initialised);
+    EXPECT_NEAR(wrap_angle(s.pose.yaw - d.at(s.stamp).pose.yaw), 0.0, 0.05) << "start yaw " << yaw0;
+    EXPECT_LT(position_error(s, d), 0.8) << "start yaw " << yaw0;
+  }
+}
+
+TEST_P(EachFilter, BridgesATwentySecondOutageWithinTheTarget) {
+  // GNSS gone from 90 s to 110 s after the start, at 10 m/s on a weaving path: 200 m without a fix.
+  SyntheticDrive d;
+  d.gnss_filter = [](GnssFix& f) { return !(f.t > 1090.0 && f.t < 1110.0); };
+  d.generate();
+  // Run to the end of the outage and read the dead-reckoned state there, before the first fix after it.
+  auto g = make_fusion_filter(GetParam());
+  LocalizationState at_start;
+  for (const auto& m : d.measurements) {
+    if (stamp_of(m) >= 1110.0) break;
+    g->add(m);
+    if (stamp_of(m) < 1090.0) at_start = g->state();
+  }
+  const LocalizationState end = g->state();
+  const double driven = d.at(end.stamp).travelled - d.at(1090.0).travelled;
+  ASSERT_GT(driven, 150.0);
+  const double err = position_error(end, d);
+  EXPECT_LE(err, 0.007 * driven) << "error " << err << " m over " << driven << " m";
+  EXPECT_NE(end.quality, Quality::Good) << "dead reckoning for 20 s is not a good GNSS-backed state";
+  EXPECT_GT(end.position_sigma(), at_start.position_sigma()) << "the covariance grows through the outage";
+
+  // The peer: the raw sensors integrated from the true pose at the outage's start (no bias, no scale known).
+  Pose2 p = d.at(1090.0).pose;
+  double r = 0, vx = 0, vy = 0, t = 1090.0;
+  for (const auto& m : d.measurements) {
+    const Stamp tm = stamp_of(m);
+    if (tm <= 1090.0) continue;
+    if (tm >= 1110.0) break;
+    const double dt = tm - t;
+    t = tm;
+    p.x += (vx * std::cos(p.yaw) - vy * std::sin(p.yaw)) * dt;
+    p.y += (vx * std::sin(p.yaw) + vy * std::cos(p.yaw)) * dt;
+    p.yaw += r * dt;
+    if (const auto* imu = std::get_if<ImuSample>(&m)) r = imu->gyro.z();
+    if (const auto* b = std::get_if<BodySpeed>(&m)) {
+      vx = b->vx + r * b->lever.y();
+      vy = b->vy - r * b->lever.x();
+    }
+  }
+  const auto& tr = d.at(t);
+  const double naive = std::hypot(p.x - tr.pose.x, p.y - tr.pose.y);
+  EXPECT_GT(naive, 3.0 * err) << "naive " << naive << " m, fused " << err << " m";
+}
+
+TEST_P(EachFilter, RejectsAndFlagsAGnssJump) {
+  // A multipath step: every fix from 80 s to 82 s is 6 m off to the east, and the receiver does not notice
+  // (beyond the jump limit of 1.5 m + 0.2 × 1 m + 3.5 √2 × 0.3 m = 3.2 m per 0.1 s at 10 m/s).
+  SyntheticDrive d;
+  d.gnss_filter = [](GnssFix& f) {
+    if (f.t >= 1080.0 && f.t < 1082.0) f.position.x() += 6.0;
+    return true;
+  };
+  d.generate();
+  auto f = make_fusion_filter(GetParam());
+  bool saw_jump = false;
+  double worst = 0;
+  std::uint64_t jumps_before = 0;
+  run(*f, d, [&](const LocalizationState& s) {
+    if (s.stamp < 1080.0) jumps_before = s.gnss_counters.jumps;
+    if (s.stamp >= 1080.0 && s.stamp < 1080.1) {
+      EXPECT_EQ(s.gnss, GnssVerdict::RejectedJump);
+      saw_jump = true;
+    }
+    if (s.stamp > 1080.0 && s.stamp < 1082.0) {
+      EXPECT_TRUE(s.gnss == GnssVerdict::RejectedJump || s.gnss == GnssVerdict::RejectedInnovation)
+          << to_string(s.gnss) << " at " << s.stamp - 1000.0;
+      worst = std::max(worst, position_error(s, d));
+    }
+    if (s.stamp > 1081.5 && s.stamp < 1082.0) {
+      EXPECT_EQ(s.quality, Quality::Degraded);
+    }
+    if (s.stamp > 1084.0 && s.stamp < 1090.0) {
+      EXPECT_TRUE(s.gnss == GnssVerdict::Accepted || s.gnss == GnssVerdict::DownWeighted) << to_string(s.gnss);
+    }
+  });
+  EXPECT_TRUE(saw_jump);
+  EXPECT_EQ(jumps_before, 0u) << "no jump flagged on clean fixes";
+  EXPECT_GE(f->state().gnss_counters.jumps, 2u) << "the step there and the step back";
+  EXPECT_LT(worst, 0.5) << "the rejected fixes did not move the pose";
+}
+
+INSTANTIATE_TEST_SUITE_P(Fusion, EachFilter, ::testing::Values("ekf", "complementary"));
+
+TEST(FusionEkf, MovesTheOpticalSpeedToTheReferencePointByTheLeverArm) {
+  // A steady circle: 6 m/s at 0.5 rad/s, no sideslip at the reference point. The sensor at x = −0.41 reads
+  // vy = r·lx = −0.205 m/s; the filter's vy at the reference point must be 0.
+  SyntheticDrive d;
+  d.speed = [](double t) { return t < 10 ? 0.0 : std::min(6.0, (t - 10) * 2.0); };
+  d.yaw_rate = [](double t) { return t < 14 ? 0.0 : 0.5; };
+  d.duration_s = 40.0;
+  d.generate();
+  auto f = make_fusion_filter("ekf");
+  for (const auto& m : d.measurements) f->add(m);
+  const auto s = f->state();
+  EXPECT_NEAR(s.vy, 0.0, 0.03);
+  EXPECT_NEAR(s.vx, 6.0, 0.1);  // through the speed scale, still converging
+  EXPECT_NEAR(s.yaw_rate, 0.5, 0.01);
+}
+
+TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {
+  // No speed sensor: 10 Hz relative poses from the truth (as LiDAR odometry would give them) and the gyro.
+  SyntheticDrive d;
+  d.gnss_filter = [](GnssFix& f) { return !(f.t > 1090.0 && f.t < 1110.0); };
+  d.generate();
+  std::vector<Measurement> ms;
+  for (const auto& m : d.measurements)
+    if (!std::holds_alternative<BodySpeed>(m)) ms.push_back(m);
+  std::vector<Measurement> merged;
+  std::size_t k = 0;
+  for (double t = 1000.1; t < 1110.0; t += 0.1) {
+    const auto& a = d.at(t - 0.1);
+    const auto& b = d.at(t);
+    OdometryIncrement o;
+    o.t0 = a.t;
+    o.t1 = b.t;
+    o.delta = a.pose.inverse() * b.pose;
+    o.covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();
+    while (k < ms.size() && stamp_of(ms[k]) <= o.t1) merged.push_back(ms[k++]);
+    merged.emplace_back(o);
+  }
+  auto f = make_fusion_filter("ekf");
+  for (const auto& m : merged) f->add(m);
+  const auto s = f->state();
+  const double driven = d.at(s.stamp).travelled - d.at(1090.0).travelled;
+  EXPECT_LE(position_error(s, d), 0.007 * driven);
+}
+
+TEST(FusionFilters, RejectInvalidAndStaleFixes) {
+  auto f = make_fusion_filter("ekf");
+  GnssFix good;
+  good.t = 10.0;
+  good.fix_quality = 4;
+  f->add(good);
+  EXPECT_EQ(f->state().gnss, GnssVerdict::Accepted);
+  GnssFix invalid = good;
+  invalid.t = 10.1;
+  invalid.fix_quality = 0;
+  f->add(invalid);
+  EXPECT_EQ(f->state().gnss, GnssVerdict::RejectedQuality);
+  f->add(ImuSample{12.0, Vec3::Zero(), Vec3::Zero()});
+  GnssFix stale = good;
+  stale.t = 11.0;  // a second behind the filter's time
+  f->add(stale);
+  EXPECT_EQ(f->state().gnss, GnssVerdict::RejectedStale);
+  f->add(ImuSample{11.5, Vec3::Zero(), Vec3::Zero()});
+  EXPECT_EQ(f->dropped_out_of_order(), 1u);
+  EXPECT_EQ(f->state().gnss_counters.rejected, 2u);
+}
+
+TEST(FusionFilters, FactoryKnowsBothNames) {
+  EXPECT_EQ(make_fusion_filter("ekf")->name(), "ekf");
+  EXPECT_EQ(make_fusion_filter("complementary")->name(), "complementary");
+  EXPECT_THROW(make_fusion_filter("kalman"), std::invalid_argument);
+  EXPECT_EQ(make_fusion_filter("ekf")->state().quality, Quality::Lost) << "nothing known yet";
+}
+
+}  // namespace
+}  // namespace fsd::fusion
