@@ -25,6 +25,7 @@ int run_cli(int argc, char** argv) {
   add_track_command(app, exit_code);
   add_classify_command(app, exit_code);
   add_train_classifier_command(app, exit_code);
+  add_localize_command(app, exit_code);
   // CLI11 says only "A subcommand is required" for a first word it does not know: name it.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string word = argv[1];

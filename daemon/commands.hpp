@@ -17,5 +17,6 @@ void add_mcap_command(CLI::App& app, int& exit_code);
 void add_track_command(CLI::App& app, int& exit_code);
 void add_classify_command(CLI::App& app, int& exit_code);
 void add_train_classifier_command(CLI::App& app, int& exit_code);
+void add_localize_command(CLI::App& app, int& exit_code);
 
 }  // namespace fsd

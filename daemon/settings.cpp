@@ -10,6 +10,7 @@
 #include "drivers/vcu/vcu_config.hpp"
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
+#include "localization/fusion/fusion_config.hpp"
 #include "perception/camera/camera_stage.hpp"
 #include "perception/lidar_cone_detector.hpp"
 
@@ -55,6 +56,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   record_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
+  fusion::describe_fusion_config(*schema);
   describe_camera_stage(*schema);
   describe_lidar_detector_config(*schema);
   sim::describe_virtual_car_config(*schema);

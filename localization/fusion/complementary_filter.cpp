@@ -66,6 +66,9 @@ void ComplementaryFilter::on_imu(const ImuSample& s) {
 
 void ComplementaryFilter::on_speed(const BodySpeed& s) {
   if (!std::isfinite(s.vx) || (s.has_vy && !std::isfinite(s.vy))) return;
+  // One speed source drives the motion: the optical sensor where present, the wheels (slip and all) without it.
+  if (s.source == BodySpeed::Source::Optical) last_optical_ = s.t;
+  else if (s.t - last_optical_ < 0.2) return;
   last_motion_ = s.t;
   speed_ = s.has_vy ? std::hypot(s.vx, s.vy) : std::abs(s.vx);
   if (s.t <= odometry_until_) return;  // LiDAR odometry drives the motion

@@ -50,7 +50,7 @@ class ComplementaryFilter final : public FusionFilter {
   Vec2 dr_path_ = Vec2::Zero();          // the motion alone, summed without GNSS corrections
   Vec2 motion_since_fix_ = Vec2::Zero();
   std::deque<Track> track_;
-  Stamp last_motion_ = -1e300;
+  Stamp last_motion_ = -1e300, last_optical_ = -1e300;
   LocalizationState out_;
   std::uint64_t dropped_ = 0;
 };

@@ -103,6 +103,10 @@ void EkfFilter::on_imu(const ImuSample& s) {
 
 void EkfFilter::on_speed(const BodySpeed& s) {
   if (!std::isfinite(s.vx) || (s.has_vy && !std::isfinite(s.vy))) return;
+  // The wheels are the fallback: they slip, and their rpm-to-speed factor is only nominal; where the optical
+  // sensor reports, they would pull its scale estimate to that factor.
+  if (s.source == BodySpeed::Source::Optical) last_optical_ = s.t;
+  else if (s.t - last_optical_ < 0.2) return;
   last_motion_ = s.t;
   speed_ = s.has_vy ? std::hypot(s.vx, s.vy) : std::abs(s.vx);
   const double lx = s.lever.x(), ly = s.lever.y();

@@ -2,10 +2,11 @@
 // The EKF of the fusion (issue #17). State (map frame, body velocity at the reference point):
 //   x, y, yaw, vx, vy, yaw rate r, gyro bias b, optical speed scale k.
 // Between measurements a constant-velocity, constant-turn model (vx, vy, r random walks); each gyro sample
-// measures r + b, each optical sample k·(v + r × lever), wheels vx + r × lever, a LiDAR odometry increment the mean
-// (vx, vy, r) over its interval, a GNSS fix the position (through the gate). A standing car is held to r = 0, so
-// the gyro's bias shows at once; GNSS while driving makes the bias and the speed scale observable, which is what
-// keeps dead reckoning through an outage well under the raw sensors' drift.
+// measures r + b, each optical sample k·(v + r × lever), the wheels vx + r × lever (only while no optical sample
+// comes), a LiDAR odometry increment the mean (vx, vy, r) over its interval, a GNSS fix the position (through
+// the gate). A standing car is held to r = 0, so the gyro's bias shows at once; GNSS while driving makes the bias
+// and the speed scale observable, which is what keeps dead reckoning through an outage well under the raw
+// sensors' drift.
 #include <Eigen/Core>
 
 #include "localization/fusion/fusion_filter.hpp"
@@ -48,7 +49,7 @@ class EkfFilter final : public FusionFilter {
   bool have_position_ = false;
   bool heading_known_ = false;
   double speed_ = 0;           // latest measured ground speed (m/s), for standstill and moving tests
-  Stamp last_motion_ = -1e300;
+  Stamp last_motion_ = -1e300, last_optical_ = -1e300;
   Vec2 motion_since_fix_ = Vec2::Zero();  // dead-reckoned displacement since the previous fix (jump test)
   LocalizationState out_;      // GNSS verdicts and counters
   std::uint64_t dropped_ = 0;

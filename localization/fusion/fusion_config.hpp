@@ -56,7 +56,7 @@ struct ComplementaryConfig {
   double position_time_constant_s = 3.0;  // crossover: GNSS below 1/τ, dead reckoning above
   double heading_time_constant_s = 4.0;   // heading pulled to the GNSS course
   double course_baseline_m = 8.0;         // GNSS track length of one course measurement
-  double bias_time_constant_s = 40.0;     // integral of the heading correction into the gyro bias
+  double bias_time_constant_s = 15.0;     // integral of the heading correction into the gyro bias
   double standstill_bias_time_constant_s = 2.0;  // gyro bias low-passed at standstill
   double scale_baseline_m = 40.0;         // travel of one speed-scale measurement
   double scale_time_constant_s = 10.0;    // low-pass of the speed scale

@@ -21,7 +21,8 @@ struct ImuSample {
 };
 
 // Ground velocity measured by a sensor mounted at `lever` (body frame, from the reference point): an optical
-// sensor (vx and vy, scaled by the filter's speed-scale estimate) or the wheels (vx only, taken at face value).
+// sensor (vx and vy, scaled by the filter's speed-scale estimate) or the wheels (vx only, taken at face value,
+// used only while no optical sample arrives: they slip and their rpm factor is nominal).
 // The filter moves it to the reference point with its yaw rate: v_ref = v_sensor − ω × lever.
 struct BodySpeed {
   enum class Source : std::uint8_t { Optical, Wheels };
