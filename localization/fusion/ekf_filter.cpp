@@ -53,11 +53,12 @@ void EkfFilter::predict(Stamp t) {
 
 template <int M>
 double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm) {
-  Eigen::Matrix<double, M, 1> nu = z - h;
-  if constexpr (M == 3) nu(2) = wrap_angle(nu(2));
+                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm,
+                         int consider) {
+  const Eigen::Matrix<double, M, 1> nu = z - h;  // no angles here: heading residuals come in wrapped
   const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + Rm;
-  const Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S.inverse();
+  Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S.inverse();
+  if (consider >= 0) K.row(consider).setZero();
   x_ += K * nu;
   x_(Yaw) = wrap_angle(x_(Yaw));
   // Joseph form: stays symmetric positive definite with the many small updates of a 200 Hz gyro.
@@ -112,7 +113,10 @@ void EkfFilter::on_speed(const BodySpeed& s) {
   const double lx = s.lever.x(), ly = s.lever.y();
   const double vx = x_(Vx), vy = x_(Vy), r = x_(R);
   if (s.source == BodySpeed::Source::Optical) {
-    // The sensor's velocity: v + r × lever = (vx − r·ly, vy + r·lx), read through the scale k.
+    // The sensor's velocity: v + r × lever = (vx − r·ly, vy + r·lx), read through the scale k. The speed
+    // samples alone cannot tell a faster car from a larger scale: k is a consider state here (its gain held at
+    // zero, its correlation with vx kept), learnt only from what GNSS says of the distance driven. Updating it
+    // here let it wander with every acceleration (the product k·vx is not linear).
     const double k = x_(Scale);
     const double sx = vx - r * ly, sy = vy + r * lx;
     const double sig2 = cfg_.ekf.optical_sigma * cfg_.ekf.optical_sigma;
@@ -125,14 +129,14 @@ void EkfFilter::on_speed(const BodySpeed& s) {
       H(1, R) = k * lx;
       H(1, Scale) = sy;
       update<2>(Eigen::Vector2d(s.vx, s.vy), Eigen::Vector2d(k * sx, k * sy), H,
-                Eigen::Matrix2d::Identity() * sig2);
+                Eigen::Matrix2d::Identity() * sig2, Scale);
     } else {
       Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
       H(0, Vx) = k;
       H(0, R) = -k * ly;
       H(0, Scale) = sx;
       update<1>(Eigen::Matrix<double, 1, 1>(s.vx), Eigen::Matrix<double, 1, 1>(k * sx), H,
-                Eigen::Matrix<double, 1, 1>(sig2));
+                Eigen::Matrix<double, 1, 1>(sig2), Scale);
     }
   } else {
     const double sig = cfg_.ekf.wheel_sigma + cfg_.ekf.wheel_sigma_fraction * std::abs(s.vx);
@@ -168,7 +172,6 @@ void EkfFilter::on_odometry(const OdometryIncrement& o) {
   H(2, R) = 1.0;
   Eigen::Matrix3d Rm = o.covariance / (dt * dt);
   Rm += Eigen::Matrix3d::Identity() * 1e-8;
-  // The yaw row is not an angle residual: keep it out of update<3>'s wrap by staying far from ±π/dt.
   update<3>(Eigen::Vector3d(v.x(), v.y(), o.delta.yaw / dt), Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)), H, Rm);
 }
 

@@ -32,7 +32,8 @@ class EkfFilter final : public FusionFilter {
   void predict(Stamp t);
   template <int M>
   double update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm);
+                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm,
+                int consider = -1);  // a state this update must not move
   void on_imu(const ImuSample& s);
   void on_speed(const BodySpeed& s);
   void on_gnss(const GnssFix& f);

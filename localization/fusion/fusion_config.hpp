@@ -42,10 +42,10 @@ struct EkfConfig {
   double wheel_sigma = 0.3;         // m/s per sample ...
   double wheel_sigma_fraction = 0.05;  // ... plus this share of the speed (slip)
   double accel_noise = 8.0;         // m/s² /√Hz: random walk of vx and vy
-  double yaw_accel_noise = 4.0;     // rad/s² /√Hz: random walk of the yaw rate
+  double yaw_accel_noise = 1.0;     // rad/s² /√Hz: random walk of the yaw rate (0.07 rad/s per 5 ms sample)
   double bias_walk = 2e-4;          // rad/s /√s
   double scale_walk = 2e-4;         // 1/√s
-  double position_noise = 0.02;     // m/√s: what the kinematic model misses
+  double position_noise = 0.1;      // m/√s: what the kinematic model misses (slip of the contact patch, lever arms)
   double initial_bias_sigma = 0.01;   // rad/s
   double initial_scale_sigma = 0.03;  // optical speed scale
   double standstill_rate_sigma = 0.001;  // rad/s: a standing car does not turn (the gyro's bias shows)

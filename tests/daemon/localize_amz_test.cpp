@@ -145,6 +145,7 @@ TEST_P(AmzOutage, TwentySecondsWithoutGnssStayWithinPointSevenPercent) {
                 std::string(fusion::to_string(end.quality)).c_str());
     EXPECT_LE(pct, 0.7) << "outage " << w.a << "-" << w.b << " s";
     EXPECT_NE(end.quality, fusion::Quality::Good) << "20 s of dead reckoning is flagged";
+    EXPECT_LE(err, 3.0 * end.position_sigma()) << "the covariance says how good the dead-reckoned pose is";
     worst_pct = std::max(worst_pct, pct);
     sum_pct += pct;
     sum_naive_pct += naive_pct;
