@@ -39,9 +39,10 @@ const ConfigSection<RunSettings>& run_section() {
                   "only); lidar = the LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
                   "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
                   "drivers.camera.calibration on the car).")
-          .string("localization_source", &RunSettings::localization_source, {"truth", "gnss"},
+          .string("localization_source", &RunSettings::localization_source, {"truth", "gnss", "fused"},
                   "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
-                  "gnss = the GNSS-INS pose as reported.")
+                  "gnss = the GNSS-INS pose as reported; fused = GNSS-INS and the VCU's wheel speeds through the "
+                  "fusion filter (localization.fusion.*), bridging bad or missing fixes.")
           .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
                   "Headless runs give up after this much simulated time.")
           .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",

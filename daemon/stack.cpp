@@ -14,6 +14,7 @@
 #include "control/control_config.hpp"
 #include "daemon/cone_classifier_file.hpp"
 #include "daemon/dashboard_view.hpp"
+#include "daemon/fused_localization.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/lap_build_thread.hpp"
 #include "daemon/settings.hpp"
@@ -78,6 +79,7 @@ struct Stack::Impl {
   TruthPerception truth_perception;
   std::unique_ptr<LidarCameraDetector> detector;  // the lidar and lidar_camera sources
   PoseHistory poses{kPosesKept};                  // the localization's, for deskew, accumulation and the camera
+  std::unique_ptr<FusedLocalization> fused;       // the fused source
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
   std::shared_ptr<const ConeDetections> last_detections;
@@ -127,6 +129,7 @@ struct Stack::Impl {
       localization_source = "gnss";
       log->info("no ground truth on the car: run.localization_source = truth drives on the GNSS-INS pose");
     }
+    if (localization_source == "fused") fused = std::make_unique<FusedLocalization>(cfg);
     if (!opt.simulator && run.perception_source == "truth")
       log->info("no ground truth on the car: run.perception_source = truth gives no cone detections");
     if (run.perception_source != "truth") detector = make_detector(cfg);
@@ -301,6 +304,14 @@ struct Stack::Impl {
       autopilot->on_gnss(s.stamp, s.good);
       if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value())) {
         state = state_from_gnss(s, steering);
+        autopilot->on_state(*state);
+        poses.add(state->stamp, state->pose);
+      }
+    }
+    if (fused) {
+      fused->add(gnss_pending, vcu->status());
+      if (const auto v = fused->state(steering); v && (!state || v->stamp > state->stamp)) {
+        state = v;
         autopilot->on_state(*state);
         poses.add(state->stamp, state->pose);
       }

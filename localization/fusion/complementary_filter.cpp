@@ -169,6 +169,12 @@ void ComplementaryFilter::on_gnss(const GnssFix& f) {
     ++out_.gnss_counters.accepted;
     return;
   }
+  if (!heading_known_ && f.heading_valid && std::isfinite(f.heading) && quality_ok) {
+    // A dual-antenna receiver gives the heading at once, standing or not.
+    pose_.yaw = wrap_angle(f.heading);
+    yaw_var_ = std::pow(cfg_.common.initial_heading_sigma, 2);
+    heading_known_ = true;
+  }
   if (!heading_known_ && speed_ >= cfg_.common.standstill_speed) {
     out_.gnss = GnssVerdict::Waiting;
     if (speed_ < cfg_.common.moving_speed || !quality_ok) return;
@@ -197,6 +203,12 @@ void ComplementaryFilter::on_gnss(const GnssFix& f) {
     return;
   }
   correct(f, c.sigma);
+  if (f.heading_valid && std::isfinite(f.heading)) {
+    // A dual-antenna heading, low-passed like the course.
+    const double dt = 0.1;
+    const double ah = dt / (cfg_.complementary.heading_time_constant_s + dt);
+    pose_.yaw = wrap_angle(pose_.yaw + ah * wrap_angle(f.heading - pose_.yaw));
+  }
   out_.gnss = c.verdict;
   out_.last_gnss_accepted = f.t;
   if (c.verdict == GnssVerdict::Accepted) ++out_.gnss_counters.accepted;

@@ -139,12 +139,18 @@ void EkfFilter::on_speed(const BodySpeed& s) {
                 Eigen::Matrix<double, 1, 1>(sig2), Scale);
     }
   } else {
+    // Without an optical sensor nothing measures vy: the car's own kinematics do, a wheel rolls along its axis
+    // (a rear axle's sideslip stays small). Without that row the velocity's covariance, and with it the
+    // position's, grew by metres a second whenever GNSS was rejected, and the gate let a multipath step in.
     const double sig = cfg_.ekf.wheel_sigma + cfg_.ekf.wheel_sigma_fraction * std::abs(s.vx);
-    Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
+    const double lat = cfg_.ekf.wheel_lateral_sigma;
+    Eigen::Matrix<double, 2, kN> H = Eigen::Matrix<double, 2, kN>::Zero();
     H(0, Vx) = 1.0;
     H(0, R) = -ly;
-    update<1>(Eigen::Matrix<double, 1, 1>(s.vx), Eigen::Matrix<double, 1, 1>(vx - r * ly), H,
-              Eigen::Matrix<double, 1, 1>(sig * sig));
+    H(1, Vy) = 1.0;
+    H(1, R) = lx;
+    update<2>(Eigen::Vector2d(s.vx, 0.0), Eigen::Vector2d(vx - r * ly, vy + r * lx), H,
+              Eigen::Vector2d(sig * sig, lat * lat).asDiagonal().toDenseMatrix());
   }
   if (speed_ < cfg_.common.standstill_speed) {
     // A standing car neither turns nor slides: what the gyro reads is its bias.
@@ -216,6 +222,14 @@ void EkfFilter::on_gnss(const GnssFix& f) {
     out_.last_gnss_accepted = f.t;
     ++out_.gnss_counters.accepted;
     return;
+  }
+  if (!heading_known_ && f.heading_valid && std::isfinite(f.heading) && f.fix_quality > 0) {
+    // A dual-antenna receiver gives the heading at once, standing or not.
+    P_.row(Yaw).setZero();
+    P_.col(Yaw).setZero();
+    x_(Yaw) = wrap_angle(f.heading);
+    P_(Yaw, Yaw) = std::pow(cfg_.common.initial_heading_sigma, 2);
+    heading_known_ = true;
   }
   if (!heading_known_ && speed_ >= cfg_.common.standstill_speed) {
     // Moving without a heading: the fix goes to the heading initialisation, not into the state.

@@ -56,6 +56,8 @@ const ConfigSection<EkfConfig>& ekf_section() {
           .number("optical_sigma", &C::optical_sigma, 1e-4, 10.0, "m/s", "Optical speed noise per axis per sample.")
           .number("wheel_sigma", &C::wheel_sigma, 1e-3, 10.0, "m/s", "Wheel speed noise per sample ...")
           .number("wheel_sigma_fraction", &C::wheel_sigma_fraction, 0.0, 1.0, "", "... plus this share of the speed (slip).")
+          .number("wheel_lateral_sigma", &C::wheel_lateral_sigma, 0.01, 10.0, "m/s",
+                  "Without optical vy, the lateral speed at the wheels' axle is held to 0 with this σ (sideslip).")
           .number("accel_noise", &C::accel_noise, 0.01, 100.0, "m/s²/√Hz", "Random walk of vx and vy.")
           .number("yaw_accel_noise", &C::yaw_accel_noise, 0.01, 100.0, "rad/s²/√Hz", "Random walk of the yaw rate.")
           .number("bias_walk", &C::bias_walk, 0.0, 0.1, "rad/s/√s", "Random walk of the gyro bias.")

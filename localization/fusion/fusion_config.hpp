@@ -41,6 +41,7 @@ struct EkfConfig {
   double optical_sigma = 0.05;      // m/s per axis per sample
   double wheel_sigma = 0.3;         // m/s per sample ...
   double wheel_sigma_fraction = 0.05;  // ... plus this share of the speed (slip)
+  double wheel_lateral_sigma = 0.5;    // m/s: the sideslip at the wheels' axle, held to 0 without optical vy
   double accel_noise = 8.0;         // m/s² /√Hz: random walk of vx and vy
   double yaw_accel_noise = 1.0;     // rad/s² /√Hz: random walk of the yaw rate (0.07 rad/s per 5 ms sample)
   double bias_walk = 2e-4;          // rad/s /√s

@@ -1,0 +1,55 @@
+#include "daemon/fused_localization.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fsd {
+
+FusedLocalization::FusedLocalization(const Config& cfg) {
+  const auto fc = fusion::read_fusion_config(cfg);
+  filter_ = fusion::make_fusion_filter(fc.common.filter, fc);
+}
+
+void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu) {
+  std::vector<fusion::Measurement> ms;
+  for (const auto& s : gnss) {
+    if (s.yaw_rate_valid && std::isfinite(s.yaw_rate))
+      ms.emplace_back(fusion::ImuSample{s.stamp, Vec3(0, 0, s.yaw_rate), Vec3::Zero()});
+    fusion::GnssFix f;
+    f.t = s.stamp;
+    f.position = s.enu.head<2>();
+    f.fix_quality = s.fix_quality;
+    f.age_s = s.age_s;
+    f.heading_valid = s.heading_valid;
+    f.heading = s.heading;
+    ms.emplace_back(f);
+  }
+  if (vcu && vcu->stamp > last_vcu_) {
+    last_vcu_ = vcu->stamp;
+    fusion::BodySpeed b;
+    b.t = vcu->stamp;
+    b.source = fusion::BodySpeed::Source::Wheels;
+    b.vx = 0.5 * (vcu->wheel_speeds[2] + vcu->wheel_speeds[3]);  // rear wheels: the reference point's speed
+    b.has_vy = false;
+    ms.emplace_back(b);
+  }
+  std::stable_sort(ms.begin(), ms.end(), [](const fusion::Measurement& a, const fusion::Measurement& b) {
+    return fusion::stamp_of(a) < fusion::stamp_of(b);
+  });
+  for (const auto& m : ms) filter_->add(m);
+}
+
+std::optional<VehicleState> FusedLocalization::state(double steering_measured) const {
+  const auto e = filter_->state();
+  if (!e.initialised) return std::nullopt;
+  VehicleState v;
+  v.stamp = e.stamp;
+  v.pose = e.pose;
+  v.vx = e.vx;
+  v.vy = e.vy;
+  v.yaw_rate = e.yaw_rate;
+  v.steering = std::isfinite(steering_measured) ? steering_measured : 0.0;
+  return v;
+}
+
+}  // namespace fsd
