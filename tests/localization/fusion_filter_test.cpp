@@ -224,3 +224,53 @@ TEST(FusionFilters, FactoryKnowsBothNames) {
 
 }  // namespace
 }  // namespace fsd::fusion
+
+namespace fsd::fusion {
+namespace {
+
+TEST_P(EachFilter, ADualAntennaHeadingInitialisesAtStandstill) {
+  SyntheticDrive d;
+  d.start_yaw = -1.2;
+  d.duration_s = 5.0;  // standing throughout
+  d.gnss_filter = [](GnssFix& f) {
+    f.heading_valid = true;
+    f.heading = -1.2 + 0.002;  // 0.1° off, as a receiver's heading is
+    return true;
+  };
+  d.generate();
+  auto f = make_fusion_filter(GetParam());
+  for (const auto& m : d.measurements) f->add(m);
+  const auto s = f->state();
+  ASSERT_TRUE(s.initialised) << "no driving needed with a heading of the receiver's own";
+  EXPECT_NEAR(s.pose.yaw, -1.2, 0.005);
+  EXPECT_LT(std::hypot(s.pose.x, s.pose.y), 0.3);
+}
+
+TEST(FusionEkf, WheelsAloneKeepTheCovarianceBoundedWhileFixesAreRejected) {
+  // No optical sensor: wheel speed (vx only) and the gyro; GNSS off for 3 s at 10 m/s. Nothing measures vy but
+  // the wheels' kinematics; the position σ after 3 s must stay well under a metre, and the error within it.
+  SyntheticDrive d;
+  d.gnss_filter = [](GnssFix& f) { return !(f.t > 1090.0 && f.t < 1093.0); };
+  d.generate();
+  auto f = make_fusion_filter("ekf");
+  for (const auto& m : d.measurements) {
+    if (stamp_of(m) >= 1093.0) break;
+    if (const auto* b = std::get_if<BodySpeed>(&m)) {
+      BodySpeed w;
+      w.t = b->t;
+      w.source = BodySpeed::Source::Wheels;
+      w.vx = d.at(b->t).v;  // the reference point's true forward speed
+      w.has_vy = false;
+      f->add(w);
+    } else {
+      f->add(m);
+    }
+  }
+  const auto s = f->state();
+  EXPECT_LT(s.position_sigma(), 0.5);
+  EXPECT_LT(position_error(s, d), 3.0 * s.position_sigma());
+  EXPECT_NEAR(s.vy, 0.0, 0.05);
+}
+
+}  // namespace
+}  // namespace fsd::fusion
