@@ -28,6 +28,14 @@ namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop.store(true); }
 
+// Whether the configuration file sets `section.key` itself (it was validated by Config::load already).
+bool file_sets(const std::string& file, const std::string& section, const std::string& key) {
+  if (file.empty()) return false;
+  std::ifstream f(file);
+  const auto j = nlohmann::json::parse(f, nullptr, false, /*ignore_comments=*/true);
+  return j.is_object() && j.contains(section) && j[section].is_object() && j[section].contains(key);
+}
+
 // The command line's values override the configuration's, validated the same way.
 Config load_config(const RunOptions& o) {
   Config cfg = o.config_file.empty() ? Config(config_schema()) : Config::load(config_schema(), o.config_file);
@@ -36,6 +44,9 @@ Config load_config(const RunOptions& o) {
   if (o.laps) cfg.set("run.laps", *o.laps, "--laps");
   if (o.seed) cfg.set("run.seed", *o.seed, "--seed");
   if (o.port) cfg.set("web.port", *o.port, "--port");
+  // The virtual car is a desk run: its dashboard stays on this machine unless the file says otherwise (the car's
+  // default, every interface, is for the pit lane's Wi-Fi).
+  if (o.sim && !file_sets(o.config_file, "web", "bind")) cfg.set("web.bind", std::string("127.0.0.1"), "--sim");
   return cfg;
 }
 
