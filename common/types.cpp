@@ -1,5 +1,6 @@
 #include "common/types.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fsd {
@@ -50,5 +51,12 @@ std::optional<Mission> mission_from_string(std::string_view s) { return lookup(k
 
 double VehicleState::speed() const { return std::hypot(vx, vy); }
 double VehicleState::sideslip() const { return speed() < 0.1 ? 0.0 : std::atan2(vy, vx); }
+
+FiringSpan firing_span(const Scan& scan) {
+  if (scan.points.empty()) return {scan.stamp, scan.stamp};
+  FiringSpan f{scan.points.front().t, scan.points.front().t};
+  for (const auto& q : scan.points) f.first = std::min(f.first, q.t), f.last = std::max(f.last, q.t);
+  return f;
+}
 
 }  // namespace fsd

@@ -30,6 +30,12 @@ struct Scan {
   std::vector<Point> points;
 };
 
+// The earliest and latest firing times of a scan's points (both `stamp` when it has none).
+struct FiringSpan {
+  Stamp first = 0, last = 0;
+};
+FiringSpan firing_span(const Scan& scan);
+
 // Physical colour of a cone as a camera sees it.
 enum class ConeColour : std::uint8_t { Unknown = 0, Blue, Yellow, Orange, BigOrange, Red };
 std::string_view to_string(ConeColour c);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <deque>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
@@ -55,6 +56,7 @@ struct Stack::Impl {
   Vlp16Config vlp_cfg;
   std::unique_ptr<Vlp16ScanBuilder> lidar;
   std::shared_ptr<const Scan> last_scan;
+  Stamp last_scan_end = 0;  // its last firing
   bool new_scan = false;
   PositionPacketParser position;
   PpsState pps = PpsState::Absent;
@@ -135,6 +137,7 @@ struct Stack::Impl {
     if (run.perception_source != "truth") detector = make_detector(cfg);
 
     lidar = std::make_unique<Vlp16ScanBuilder>(vlp_cfg, [this](Scan&& scan) {
+      last_scan_end = firing_span(scan).last;
       last_scan = std::make_shared<const Scan>(std::move(scan));
       new_scan = true;
     });
@@ -243,8 +246,15 @@ struct Stack::Impl {
     if (!due || !truth) return false;
     const double w0 = wall();
     const Pose2 pose = truth->state.pose;
-    auto det = truth_perception.detect(now, truth_cones, pose);
-    cone_map.update(det, pose);
+    map_detections(now, truth_perception.detect(now, truth_cones, pose), pose, {}, w0);
+    return true;
+  }
+
+  // One perception frame's detections, taken at `pose`, into the map and the map to control; the stage's time
+  // from `w0` (wall clock) to here.
+  void map_detections(Stamp now, ConeDetections det, const Pose2& pose, std::span<const Cone> camera_rejected,
+                      double w0) {
+    cone_map.update(det, pose, camera_rejected);
     autopilot->on_cones(now, cone_map.cones());
     const double dt = wall() - w0;
     latency["perception"].add(dt);
@@ -252,7 +262,6 @@ struct Stack::Impl {
     if (detections_hook) detections_hook(det, pose);  // the scorecard's, outside the stage's time
     last_detections = std::make_shared<const ConeDetections>(std::move(det));
     ++perception_frames;
-    return true;
   }
 
   // The lidar and lidar_camera sources: the newest scan through the stages, placed by the localization's poses.
@@ -262,19 +271,10 @@ struct Stack::Impl {
     new_scan = false;
     const double w0 = wall();
     const BodyPoseAt pose_at = [this](Stamp t) { return poses.at(t)->to_pose3(); };
-    const Stamp scan_end = last_scan->points.empty() ? last_scan->stamp : last_scan->points.back().t;  // firing order
-    std::optional<CameraImage> image = camera_image_near(scan_end);
+    std::optional<CameraImage> image = camera_image_near(last_scan_end);
     LidarDetection d = detector->detect(*last_scan, pose_at, image ? &*image : nullptr);
-    ConeDetections& det = d.detections;
-    const Pose2 pose = *poses.at(det.stamp);
-    cone_map.update(det, pose, d.camera_rejected);
-    autopilot->on_cones(now, cone_map.cones());
-    const double dt = wall() - w0;
-    latency["perception"].add(dt);
-    cycle.figures.perception_s = dt;
-    if (detections_hook) detections_hook(det, pose);
-    last_detections = std::make_shared<const ConeDetections>(std::move(det));
-    ++perception_frames;
+    const Pose2 pose = *poses.at(d.detections.stamp);
+    map_detections(now, std::move(d.detections), pose, d.camera_rejected, w0);
     return true;
   }
 
@@ -405,8 +405,8 @@ struct Stack::Impl {
       // (drivers.vlp16.mount_*).
       if (last_scan) {
         s.scan = last_scan;
-        const Stamp end = last_scan->points.empty() ? last_scan->stamp : last_scan->points.back().t;
-        s.lidar_pose = poses.at(end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
+        s.lidar_pose =
+            poses.at(last_scan_end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
       }
     }
     s.detections = last_detections;

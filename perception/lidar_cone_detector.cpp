@@ -65,9 +65,7 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   LidarDetection out;
   auto& n = out.counters;
   n.input = scan.points.size();
-  Stamp t0 = std::numeric_limits<double>::max(), t1 = -t0;
-  for (const auto& q : scan.points) t0 = std::min(t0, q.t), t1 = std::max(t1, q.t);
-  if (scan.points.empty()) t0 = t1 = scan.stamp;
+  const auto [t0, t1] = firing_span(scan);
   out.detections.stamp = t1;
 
   // Deskew into the body frame at the last firing, and crop.

@@ -6,14 +6,13 @@
 namespace fsd::fusion {
 
 namespace {
-constexpr double kOutOfOrder = 1e-3;
 constexpr double kTrackSpan = 30.0;  // s of accepted fixes kept for course and scale
 }  // namespace
 
 ComplementaryFilter::ComplementaryFilter(const FusionConfig& cfg)
     : cfg_(cfg), gate_(cfg.gnss), heading_init_(cfg.common.heading_baseline_m) {}
 
-void ComplementaryFilter::integrate(Stamp t) {
+void ComplementaryFilter::advance(Stamp t) {
   const double dt = t - t_;
   if (dt <= 0) return;
   t_ = t;
@@ -26,30 +25,6 @@ void ComplementaryFilter::integrate(Stamp t) {
   motion_since_fix_ += step;
   drift_since_fix_ += step.norm();
   yaw_var_ += std::pow(cfg_.ekf.initial_bias_sigma, 2) * dt * 0.01;
-}
-
-void ComplementaryFilter::add(const Measurement& m) {
-  const Stamp t = stamp_of(m);
-  if (!std::isfinite(t)) return;
-  if (!started_) {
-    started_ = true;
-    t_ = t;
-  }
-  const bool is_gnss = std::holds_alternative<GnssFix>(m);
-  if (t < t_ - kOutOfOrder && !is_gnss) {
-    ++dropped_;
-    return;
-  }
-  integrate(t);
-  std::visit(
-      [this](const auto& v) {
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, ImuSample>) on_imu(v);
-        else if constexpr (std::is_same_v<T, BodySpeed>) on_speed(v);
-        else if constexpr (std::is_same_v<T, GnssFix>) on_gnss(v);
-        else on_odometry(v);
-      },
-      m);
 }
 
 void ComplementaryFilter::on_imu(const ImuSample& s) {

@@ -17,17 +17,15 @@ namespace fsd::fusion {
 class ComplementaryFilter final : public FusionFilter {
  public:
   explicit ComplementaryFilter(const FusionConfig& cfg = {});
-  void add(const Measurement& m) override;
   LocalizationState state() const override;
   std::string_view name() const override { return "complementary"; }
-  std::uint64_t dropped_out_of_order() const override { return dropped_; }
 
  private:
-  void integrate(Stamp t);
-  void on_imu(const ImuSample& s);
-  void on_speed(const BodySpeed& s);
-  void on_odometry(const OdometryIncrement& o);
-  void on_gnss(const GnssFix& f);
+  void advance(Stamp t) override;  // dead reckoning to t
+  void on_imu(const ImuSample& s) override;
+  void on_speed(const BodySpeed& s) override;
+  void on_odometry(const OdometryIncrement& o) override;
+  void on_gnss(const GnssFix& f) override;
   void correct(const GnssFix& f, double sigma);
   double position_sigma() const;
 
@@ -42,8 +40,8 @@ class ComplementaryFilter final : public FusionFilter {
   HeadingInitialiser heading_init_;
   Pose2 pose_;
   double vx_ = 0, vy_ = 0, r_ = 0, bias_ = 0, scale_ = 1.0;
-  Stamp t_ = 0, last_fix_t_ = -1, odometry_until_ = -1e300;
-  bool started_ = false, have_position_ = false, heading_known_ = false;
+  Stamp last_fix_t_ = -1, odometry_until_ = -1e300;
+  bool have_position_ = false, heading_known_ = false;
   double speed_ = 0;
   double sigma_fix_ = 1e3, drift_since_fix_ = 0;  // position σ at the last fix, and travel since
   double yaw_var_ = 1e-4;
@@ -52,7 +50,6 @@ class ComplementaryFilter final : public FusionFilter {
   std::deque<Track> track_;
   Stamp last_motion_ = -1e300, last_optical_ = -1e300;
   LocalizationState out_;
-  std::uint64_t dropped_ = 0;
 };
 
 }  // namespace fsd::fusion

@@ -6,7 +6,6 @@
 namespace fsd::fusion {
 
 namespace {
-constexpr double kOutOfOrder = 1e-3;  // s: reordering below this is applied at the filter's time
 }
 
 EkfFilter::EkfFilter(const FusionConfig& cfg)
@@ -65,30 +64,6 @@ double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matr
   const Mat IKH = Mat::Identity() - K * H;
   P_ = IKH * P_ * IKH.transpose() + K * Rm * K.transpose();
   return nu.dot(S.inverse() * nu);
-}
-
-void EkfFilter::add(const Measurement& m) {
-  const Stamp t = stamp_of(m);
-  if (!std::isfinite(t)) return;
-  if (!started_) {
-    started_ = true;
-    t_ = t;
-  }
-  const bool is_gnss = std::holds_alternative<GnssFix>(m);
-  if (t < t_ - kOutOfOrder && !is_gnss) {
-    ++dropped_;
-    return;
-  }
-  predict(t);
-  std::visit(
-      [this](const auto& v) {
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, ImuSample>) on_imu(v);
-        else if constexpr (std::is_same_v<T, BodySpeed>) on_speed(v);
-        else if constexpr (std::is_same_v<T, GnssFix>) on_gnss(v);
-        else on_odometry(v);
-      },
-      m);
 }
 
 void EkfFilter::on_imu(const ImuSample& s) {

@@ -23,21 +23,20 @@ class EkfFilter final : public FusionFilter {
   using Mat = Eigen::Matrix<double, kN, kN>;
 
   explicit EkfFilter(const FusionConfig& cfg = {});
-  void add(const Measurement& m) override;
   LocalizationState state() const override;
   std::string_view name() const override { return "ekf"; }
-  std::uint64_t dropped_out_of_order() const override { return dropped_; }
 
  private:
+  void advance(Stamp t) override { predict(t); }
   void predict(Stamp t);
   template <int M>
   double update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
                 const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm,
                 int consider = -1);  // a state this update must not move
-  void on_imu(const ImuSample& s);
-  void on_speed(const BodySpeed& s);
-  void on_gnss(const GnssFix& f);
-  void on_odometry(const OdometryIncrement& o);
+  void on_imu(const ImuSample& s) override;
+  void on_speed(const BodySpeed& s) override;
+  void on_gnss(const GnssFix& f) override;
+  void on_odometry(const OdometryIncrement& o) override;
   void apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma);
 
   FusionConfig cfg_;
@@ -45,15 +44,12 @@ class EkfFilter final : public FusionFilter {
   HeadingInitialiser heading_init_;
   Vec x_ = Vec::Zero();
   Mat P_ = Mat::Zero();
-  Stamp t_ = 0;
-  bool started_ = false;
   bool have_position_ = false;
   bool heading_known_ = false;
   double speed_ = 0;           // latest measured ground speed (m/s), for standstill and moving tests
   Stamp last_motion_ = -1e300, last_optical_ = -1e300;
   Vec2 motion_since_fix_ = Vec2::Zero();  // dead-reckoned displacement since the previous fix (jump test)
   LocalizationState out_;      // GNSS verdicts and counters
-  std::uint64_t dropped_ = 0;
 };
 
 }  // namespace fsd::fusion

@@ -22,6 +22,31 @@ Stamp stamp_of(const Measurement& m) {
       m);
 }
 
+void FusionFilter::add(const Measurement& m) {
+  constexpr double kOutOfOrder = 1e-3;  // s: reordering below this is applied at the filter's time
+  const Stamp t = stamp_of(m);
+  if (!std::isfinite(t)) return;
+  if (!started_) {
+    started_ = true;
+    t_ = t;
+  }
+  const bool is_gnss = std::holds_alternative<GnssFix>(m);
+  if (t < t_ - kOutOfOrder && !is_gnss) {
+    ++dropped_;
+    return;
+  }
+  advance(t);
+  std::visit(
+      [this](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, ImuSample>) on_imu(v);
+        else if constexpr (std::is_same_v<T, BodySpeed>) on_speed(v);
+        else if constexpr (std::is_same_v<T, GnssFix>) on_gnss(v);
+        else on_odometry(v);
+      },
+      m);
+}
+
 std::string_view to_string(Quality q) {
   switch (q) {
     case Quality::Good: return "good";

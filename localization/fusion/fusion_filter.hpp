@@ -15,11 +15,25 @@ class FusionFilter {
  public:
   virtual ~FusionFilter() = default;
   // Measurements in time order across all kinds; one older than the filter's time (beyond a millisecond) is
-  // counted and dropped, a stale GNSS fix is rejected by the gate.
-  virtual void add(const Measurement& m) = 0;
+  // counted and dropped, a stale GNSS fix is rejected by the gate. The filter is brought to the measurement's
+  // time (advance), then the measurement applied by its kind.
+  void add(const Measurement& m);
   virtual LocalizationState state() const = 0;
   virtual std::string_view name() const = 0;
-  virtual std::uint64_t dropped_out_of_order() const = 0;
+  std::uint64_t dropped_out_of_order() const { return dropped_; }
+
+ protected:
+  virtual void advance(Stamp t) = 0;  // predict / integrate to t (sets t_)
+  virtual void on_imu(const ImuSample& s) = 0;
+  virtual void on_speed(const BodySpeed& s) = 0;
+  virtual void on_gnss(const GnssFix& f) = 0;
+  virtual void on_odometry(const OdometryIncrement& o) = 0;
+
+  Stamp t_ = 0;  // the filter's time
+
+ private:
+  bool started_ = false;
+  std::uint64_t dropped_ = 0;
 };
 
 // "ekf" | "complementary"; throws std::invalid_argument for another name.

@@ -78,11 +78,6 @@ TEST(Cli, ConfigCheckListsEveryError) {
     EXPECT_NE(r.out.find(why), std::string::npos) << why << " in\n" << r.out;
 }
 
-}  // namespace
-}  // namespace fsd
-
-namespace fsd {
-namespace {
 
 // A desk run's dashboard stays on the machine; a configuration file that sets web.bind is obeyed.
 TEST(Cli, TheVirtualCarsDashboardBindsTheLoopbackUnlessConfigured) {

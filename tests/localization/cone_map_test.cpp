@@ -128,11 +128,6 @@ TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
   EXPECT_EQ(cones[0].colour, ConeColour::Blue);
 }
 
-}  // namespace
-}  // namespace fsd
-
-namespace fsd {
-namespace {
 
 // A tyre beside the track that the LiDAR takes for a cone, seen from afar (LiDAR only), then in the camera's view
 // (rejected) and beside the car (LiDAR only again); a real cone next to it that the camera verifies once and doubts
