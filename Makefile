@@ -12,7 +12,7 @@ CMAKE_FLAGS += -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=
 export CCACHE_BASEDIR := $(CURDIR)
 endif
 
-.PHONY: run test build deps clean bench fuzz
+.PHONY: run test build deps clean bench fuzz format
 
 deps:
 	@bash deploy/install-deps.sh
@@ -43,3 +43,7 @@ fuzz: deps
 
 clean:
 	@rm -rf $(BUILD)
+
+# The house style (.clang-format) over every C++ file of the tree.
+format:
+	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

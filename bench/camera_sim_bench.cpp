@@ -87,7 +87,8 @@ void BM_CameraFrameWithJpeg(benchmark::State& state) {
   for (auto _ : state) {
     const Stamp t = cam.next_capture();
     const Pose3 pose = s.poses[cam.frames_sent() % s.poses.size()];
-    cam.advance_to(t, [&](Stamp) { return pose; }, [&](Stamp, std::span<const std::uint8_t> b) { bytes += b.size(); });
+    cam.advance_to(
+        t, [&](Stamp) { return pose; }, [&](Stamp, std::span<const std::uint8_t> b) { bytes += b.size(); });
   }
   report(state, s.cfg.rate);
   state.counters["jpeg_kB"] = static_cast<double>(bytes) / 1000.0 / static_cast<double>(state.iterations());

@@ -68,8 +68,8 @@ void BM_CameraStageVerify(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["candidates"] = f.candidates_per_frame;
-  state.counters["verified_share"] =
-      static_cast<double>(stage.stats().verified) / static_cast<double>(std::max<std::uint64_t>(1, stage.stats().candidates));
+  state.counters["verified_share"] = static_cast<double>(stage.stats().verified) /
+                                     static_cast<double>(std::max<std::uint64_t>(1, stage.stats().candidates));
 }
 BENCHMARK(BM_CameraStageVerify)->Unit(benchmark::kMillisecond);
 
@@ -96,7 +96,8 @@ void BM_ColourPerRoi(benchmark::State& state) {
   std::vector<std::pair<cv::Mat, ConeView>> rois;
   for (const auto& frame : f.frames)
     for (const auto& c : frame.candidates)
-      if (const auto roi = projector.project(c.cone.position, frame.bgr.size()); c.is_cone && roi.status == RoiStatus::Inside)
+      if (const auto roi = projector.project(c.cone.position, frame.bgr.size());
+          c.is_cone && roi.status == RoiStatus::Inside)
         rois.emplace_back(cut_roi(frame.bgr, roi).clone(), roi_view(roi));
   std::size_t i = 0;
   for (auto _ : state) {

@@ -45,7 +45,8 @@ class Drive {
  public:
   Drive(std::vector<Vec2> path, double speed) : path_(std::move(path)), speed_(speed) {
     s_.push_back(0);
-    for (std::size_t i = 0; i < path_.size(); ++i) s_.push_back(s_.back() + (path_[(i + 1) % path_.size()] - path_[i]).norm());
+    for (std::size_t i = 0; i < path_.size(); ++i)
+      s_.push_back(s_.back() + (path_[(i + 1) % path_.size()] - path_[i]).norm());
   }
   Pose3 operator()(Stamp t) const {
     const double s = std::fmod(speed_ * t, s_.back());
@@ -77,7 +78,8 @@ void BM_Vlp16SimulatedSecond(benchmark::State& state) {
     lidar.advance_to(t, std::cref(drive), sink);
   }
   benchmark::DoNotOptimize(returns);
-  state.counters["sim_s_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["sim_s_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["rays_per_s"] =
       benchmark::Counter(static_cast<double>(lidar.packets_sent()) * 384.0, benchmark::Counter::kIsRate);
   state.counters["distractors"] = static_cast<double>(world.distractors().size());

@@ -71,13 +71,13 @@ const std::vector<Frame>& one_second() {
     }
     for (int i = 0; i < 50; ++i) {
       char s[400];
-      const int n = std::snprintf(
-          s, sizeof s,
-          "$GPGGA,1234%02d.%02d,4724.%05d,N,00832.%05d,E,4,12,0.8,441.2,M,47.3,M,1.0,0000*5B\r\n"
-          "$GPRMC,1234%02d.%02d,A,4724.%05d,N,00832.%05d,E,%05.2f,087.3,100517,,,D*6A\r\n"
-          "$PASHR,1234%02d.%02d,087.31,T,-0.52,1.21,,0.012,0.012,0.080,2,1*1F\r\n",
-          i / 50, i * 2, 10000 + i * 17, 20000 + i * 13, i / 50, i * 2, 10000 + i * 17, 20000 + i * 13, 14.2 + i * 0.01,
-          i / 50, i * 2);
+      const int n =
+          std::snprintf(s, sizeof s,
+                        "$GPGGA,1234%02d.%02d,4724.%05d,N,00832.%05d,E,4,12,0.8,441.2,M,47.3,M,1.0,0000*5B\r\n"
+                        "$GPRMC,1234%02d.%02d,A,4724.%05d,N,00832.%05d,E,%05.2f,087.3,100517,,,D*6A\r\n"
+                        "$PASHR,1234%02d.%02d,087.31,T,-0.52,1.21,,0.012,0.012,0.080,2,1*1F\r\n",
+                        i / 50, i * 2, 10000 + i * 17, 20000 + i * 13, i / 50, i * 2, 10000 + i * 17, 20000 + i * 13,
+                        14.2 + i * 0.01, i / 50, i * 2);
       f.push_back({1, static_cast<Timestamp>(i) * 20'000'000, Bytes(s, s + n)});
     }
     for (int i = 0; i < 15; ++i) {
@@ -87,11 +87,11 @@ const std::vector<Frame>& one_second() {
     }
     for (int i = 0; i < 50; ++i) {
       char s[400];
-      const int n = std::snprintf(s, sizeof s,
-                                  R"({"t":%.3f,"x":%.4f,"y":%.4f,"yaw":%.5f,"vx":%.3f,"vy":%.3f,"yaw_rate":%.4f,)"
-                                  R"("ax":%.3f,"ay":%.3f,"steering":%.4f,"as_state":"Driving","lap":1})",
-                                  i * 0.02, 12.3 + i * 0.28, -4.1 + i * 0.05, 0.3 + i * 0.001, 14.1, 0.12, 0.21,
-                                  0.4, 3.1, 0.05);
+      const int n =
+          std::snprintf(s, sizeof s,
+                        R"({"t":%.3f,"x":%.4f,"y":%.4f,"yaw":%.5f,"vx":%.3f,"vy":%.3f,"yaw_rate":%.4f,)"
+                        R"("ax":%.3f,"ay":%.3f,"steering":%.4f,"as_state":"Driving","lap":1})",
+                        i * 0.02, 12.3 + i * 0.28, -4.1 + i * 0.05, 0.3 + i * 0.001, 14.1, 0.12, 0.21, 0.4, 3.1, 0.05);
       f.push_back({3, static_cast<Timestamp>(i) * 20'000'000, Bytes(s, s + n)});
     }
     std::stable_sort(f.begin(), f.end(), [](const Frame& a, const Frame& b) { return a.t < b.t; });
@@ -113,10 +113,11 @@ Bytes record(int seconds, Compression c, benchmark::State* state = nullptr) {
   WriterOptions o;
   o.compression = c;
   Writer w(sink, o);
-  const std::uint16_t ch[] = {w.add_channel("/raw/vlp16/data", "fsd.raw", w.add_schema("fsd.raw.vlp16_data", "fsd.raw", {})),
-                              w.add_channel("/raw/gnss", "fsd.raw", w.add_schema("fsd.raw.nmea", "fsd.raw", {})),
-                              w.add_channel("/raw/camera", "fsd.raw", w.add_schema("fsd.raw.jpeg", "fsd.raw", {})),
-                              w.add_channel("/state", "json", 0)};
+  const std::uint16_t ch[] = {
+      w.add_channel("/raw/vlp16/data", "fsd.raw", w.add_schema("fsd.raw.vlp16_data", "fsd.raw", {})),
+      w.add_channel("/raw/gnss", "fsd.raw", w.add_schema("fsd.raw.nmea", "fsd.raw", {})),
+      w.add_channel("/raw/camera", "fsd.raw", w.add_schema("fsd.raw.jpeg", "fsd.raw", {})),
+      w.add_channel("/state", "json", 0)};
   for (int s = 0; s < seconds; ++s)
     for (const auto& f : one_second()) {
       const Timestamp t = static_cast<Timestamp>(s) * 1'000'000'000 + f.t;
@@ -131,9 +132,8 @@ void report(benchmark::State& state, int seconds) {
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * seconds *
                           static_cast<std::int64_t>(payload_per_second()));
   // Recorded seconds per CPU second: 100 / x_realtime is the share of one core in percent.
-  state.counters["x_realtime"] =
-      benchmark::Counter(static_cast<double>(seconds) * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate);
+  state.counters["x_realtime"] = benchmark::Counter(
+      static_cast<double>(seconds) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 constexpr int kSeconds = 5;
@@ -143,8 +143,11 @@ void BM_McapWrite(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(record(kSeconds, c, &state));
   report(state, kSeconds);
 }
-BENCHMARK(BM_McapWrite)->Arg(static_cast<int>(Compression::Zstd))->Arg(static_cast<int>(Compression::None))
-    ->ArgName("zstd1_none0")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_McapWrite)
+    ->Arg(static_cast<int>(Compression::Zstd))
+    ->Arg(static_cast<int>(Compression::None))
+    ->ArgName("zstd1_none0")
+    ->Unit(benchmark::kMillisecond);
 
 void BM_McapReadLinear(benchmark::State& state) {
   const auto file = record(kSeconds, static_cast<Compression>(state.range(0)));
@@ -156,8 +159,11 @@ void BM_McapReadLinear(benchmark::State& state) {
   }
   report(state, kSeconds);
 }
-BENCHMARK(BM_McapReadLinear)->Arg(static_cast<int>(Compression::Zstd))->Arg(static_cast<int>(Compression::None))
-    ->ArgName("zstd1_none0")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_McapReadLinear)
+    ->Arg(static_cast<int>(Compression::Zstd))
+    ->Arg(static_cast<int>(Compression::None))
+    ->ArgName("zstd1_none0")
+    ->Unit(benchmark::kMillisecond);
 
 void BM_McapReadIndexed(benchmark::State& state) {
   const auto file = record(kSeconds, Compression::Zstd);

@@ -53,8 +53,8 @@ Packet full_packet(std::uint8_t mode) {
 
 void report(benchmark::State& state, std::size_t returns) {
   state.SetItemsProcessed(state.iterations());
-  state.counters["x_sensor"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) / kSensorPacketsPerSecond, benchmark::Counter::kIsRate);
+  state.counters["x_sensor"] = benchmark::Counter(static_cast<double>(state.iterations()) / kSensorPacketsPerSecond,
+                                                  benchmark::Counter::kIsRate);
   state.counters["returns/pkt"] = static_cast<double>(returns) / static_cast<double>(state.iterations());
 }
 

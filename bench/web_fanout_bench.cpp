@@ -2,6 +2,8 @@
 // daemon's rates while 0 or 20 WebSocket clients on loopback subscribe to everything. Reports the loop's period
 // jitter (the control thread must not notice the clients), the cost of publish() and the telemetry latency from
 // publish() to a client's read. Run: build/bench/web_fanout_bench [seconds per case, default 10]
+#include <pthread.h>
+#include <sched.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -11,16 +13,14 @@
 #include <mutex>
 #include <string>
 #include <thread>
-#include <pthread.h>
-#include <sched.h>
 #include <utility>  // before Asio (Boost 1.74)
 #include <vector>
 
+#include <spdlog/spdlog.h>
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 
 #include "common/clock.hpp"
 #include "common/config.hpp"
@@ -38,7 +38,9 @@ using tcp = net::ip::tcp;
 using Clock = std::chrono::steady_clock;
 using namespace fsd;
 
-std::int64_t now_ns() { return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count(); }
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
 
 struct Stats {
   std::vector<double> v;
@@ -58,8 +60,9 @@ class BenchClient : public std::enable_shared_from_this<BenchClient> {
     beast::error_code ec;
     beast::get_lowest_layer(ws_).connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port), ec);
     if (ec) return false;
-    ws_.set_option(websocket::stream_base::decorator(
-        [](websocket::request_type& r) { r.set(beast::http::field::sec_websocket_protocol, "foxglove.websocket.v1"); }));
+    ws_.set_option(websocket::stream_base::decorator([](websocket::request_type& r) {
+      r.set(beast::http::field::sec_websocket_protocol, "foxglove.websocket.v1");
+    }));
     ws_.read_message_max(16 * 1024 * 1024);
     ws_.handshake("127.0.0.1", "/", ec);
     return !ec;
@@ -116,7 +119,7 @@ class BenchClient : public std::enable_shared_from_this<BenchClient> {
 
 struct Result {
   int clients;
-  double jitter_p50, jitter_p99, jitter_max;    // ms, |period - 10 ms|
+  double jitter_p50, jitter_p99, jitter_max;     // ms, |period - 10 ms|
   double publish_p50, publish_p99, publish_max;  // µs per publish() call
   double latency_p50, latency_p99, latency_max;  // ms, vehicle state publish → client read
   double received_fraction;                      // of vehicle-state messages, over all clients
@@ -169,8 +172,10 @@ Result run_case(int n_clients, double seconds, bool realtime) {
   std::vector<Cone> cones(200);
   for (std::size_t i = 0; i < cones.size(); ++i) cones[i].position = Vec3(0.5 * i, (i % 2) ? 2.0 : -2.0, 0);
   std::vector<Point> ground(6000), objects(2000);
-  for (std::size_t i = 0; i < ground.size(); ++i) ground[i] = {float(i % 80) * 0.25f, float(i / 80) * 0.25f, 0.0f, 10.0f};
-  for (std::size_t i = 0; i < objects.size(); ++i) objects[i] = {float(i % 40) * 0.3f, float(i / 40) * 0.2f, 0.2f, 60.0f};
+  for (std::size_t i = 0; i < ground.size(); ++i)
+    ground[i] = {float(i % 80) * 0.25f, float(i / 80) * 0.25f, 0.0f, 10.0f};
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    objects[i] = {float(i % 40) * 0.3f, float(i / 40) * 0.2f, 0.2f, 60.0f};
   web::PathSet paths;
   for (int i = 0; i < 600; ++i) paths.lap1_trajectory.emplace_back(0.5 * i, std::sin(0.01 * i));
 
@@ -191,7 +196,8 @@ Result run_case(int n_clients, double seconds, bool realtime) {
     for (int tick = 0; tick < ticks; ++tick) {
       std::this_thread::sleep_until(next);
       const auto woke = Clock::now();
-      if (tick > 0) jitter.v.push_back(std::abs(std::chrono::duration<double, std::milli>(woke - last_wake).count() - 10.0));
+      if (tick > 0)
+        jitter.v.push_back(std::abs(std::chrono::duration<double, std::milli>(woke - last_wake).count() - 10.0));
       last_wake = woke;
       next += period;
       const Stamp t = tick * 0.01;
@@ -233,7 +239,8 @@ Result run_case(int n_clients, double seconds, bool realtime) {
     r.latency_p50 = lat.pct(0.5);
     r.latency_p99 = lat.pct(0.99);
     r.latency_max = lat.pct(1.0);
-    r.received_fraction = n_clients ? static_cast<double>(latencies.size()) / (static_cast<double>(ticks) * n_clients) : 0;
+    r.received_fraction =
+        n_clients ? static_cast<double>(latencies.size()) / (static_cast<double>(ticks) * n_clients) : 0;
   }
   for (const auto& c : clients) bytes += c->bytes.load();
   r.mbytes_per_s = static_cast<double>(bytes) / seconds / 1e6;
@@ -254,16 +261,19 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
   bool realtime = false;
   std::thread([&] { realtime = make_realtime(); }).join();
-  std::printf("web fan-out: 100 Hz loop publishing vehicle state 100 Hz, car 20 Hz, detections 10 Hz, cloud 5 Hz "
-              "(8000 → 5000 points), paths + AS 2 Hz, cone map 1 Hz; %.0f s per case; loop thread %s\n\n",
-              seconds, realtime ? "SCHED_FIFO 50 (as on the car)" : "normal priority (SCHED_FIFO not permitted)");
-  std::printf("| clients | loop jitter p50 / p99 / max (ms) | publish() p50 / p99 / max (µs) | latency p50 / p99 / max (ms) | state msgs received | MB/s out | dropped |\n");
+  std::printf(
+      "web fan-out: 100 Hz loop publishing vehicle state 100 Hz, car 20 Hz, detections 10 Hz, cloud 5 Hz "
+      "(8000 → 5000 points), paths + AS 2 Hz, cone map 1 Hz; %.0f s per case; loop thread %s\n\n",
+      seconds, realtime ? "SCHED_FIFO 50 (as on the car)" : "normal priority (SCHED_FIFO not permitted)");
+  std::printf(
+      "| clients | loop jitter p50 / p99 / max (ms) | publish() p50 / p99 / max (µs) | latency p50 / p99 / max (ms) | "
+      "state msgs received | MB/s out | dropped |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const int n : {0, 20}) {
     const auto r = run_case(n, seconds, realtime);
-    std::printf("| %d | %.3f / %.3f / %.3f | %.1f / %.1f / %.1f | %.2f / %.2f / %.2f | %.1f %% | %.1f | %llu |\n", r.clients,
-                r.jitter_p50, r.jitter_p99, r.jitter_max, r.publish_p50, r.publish_p99, r.publish_max, r.latency_p50,
-                r.latency_p99, r.latency_max, 100.0 * r.received_fraction, r.mbytes_per_s,
+    std::printf("| %d | %.3f / %.3f / %.3f | %.1f / %.1f / %.1f | %.2f / %.2f / %.2f | %.1f %% | %.1f | %llu |\n",
+                r.clients, r.jitter_p50, r.jitter_p99, r.jitter_max, r.publish_p50, r.publish_p99, r.publish_max,
+                r.latency_p50, r.latency_p99, r.latency_max, 100.0 * r.received_fraction, r.mbytes_per_s,
                 static_cast<unsigned long long>(r.dropped));
     std::fflush(stdout);
   }

@@ -42,7 +42,9 @@ void check_quad(const PointQuad& q, const std::string& what) {
 }
 
 // Scales H so that w > 0 at `p` (a point known to be in front of the camera).
-Eigen::Matrix3d positive_at(const Eigen::Matrix3d& H, const Vec2& p) { return w_of(H, p) < 0 ? Eigen::Matrix3d(-H) : H; }
+Eigen::Matrix3d positive_at(const Eigen::Matrix3d& H, const Vec2& p) {
+  return w_of(H, p) < 0 ? Eigen::Matrix3d(-H) : H;
+}
 
 // The perspective transform of four pairs with h33 = 1: eight linear equations in the other eight entries, as
 // cv::getPerspectiveTransform sets them up.

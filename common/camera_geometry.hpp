@@ -18,7 +18,7 @@ namespace fsd {
 using PointQuad = std::array<Vec2, 4>;
 
 struct CameraIntrinsics {
-  int width = 0, height = 0;                      // image size the calibration belongs to
+  int width = 0, height = 0;  // image size the calibration belongs to
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
   std::vector<double> distortion;  // OpenCV order (k1, k2, p1, p2[, k3[, k4, k5, k6[, s1..s4[, τx, τy]]]]), or empty
 };

@@ -11,8 +11,8 @@ Stamp RealClock::now() const {
 }
 
 bool RealClock::sleep_until(Stamp t) {
-  const auto deadline = epoch_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                     std::chrono::duration<double>(t));
+  const auto deadline =
+      epoch_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(t));
   std::unique_lock lock(m_);
   cv_.wait_until(lock, deadline, [&] { return stopped_; });
   return !stopped_;

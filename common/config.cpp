@@ -12,10 +12,14 @@ using nlohmann::json;
 
 const char* to_string(ValueType t) {
   switch (t) {
-    case ValueType::Number: return "number";
-    case ValueType::Integer: return "integer";
-    case ValueType::Boolean: return "boolean";
-    case ValueType::String: return "string";
+    case ValueType::Number:
+      return "number";
+    case ValueType::Integer:
+      return "integer";
+    case ValueType::Boolean:
+      return "boolean";
+    case ValueType::String:
+      return "string";
   }
   return "?";
 }
@@ -46,7 +50,8 @@ std::string ConfigEntry::check(const json& v) const {
       if (!v.is_number()) return std::string("expected a number, got ") + v.type_name();
       break;
     case ValueType::Integer:
-      if (!v.is_number_integer()) return std::string("expected an integer, got ") + (v.is_number() ? v.dump() : v.type_name());
+      if (!v.is_number_integer())
+        return std::string("expected an integer, got ") + (v.is_number() ? v.dump() : v.type_name());
       break;
     case ValueType::Boolean:
       if (!v.is_boolean()) return std::string("expected true or false, got ") + v.type_name();
@@ -147,7 +152,10 @@ void Config::merge(const json& overrides, const std::string& origin) {
         }
         bool any = false;
         for (const auto& e : schema_->entries())
-          if (e.key.rfind(key + ".", 0) == 0) { any = true; break; }
+          if (e.key.rfind(key + ".", 0) == 0) {
+            any = true;
+            break;
+          }
         if (!any) {
           errors.push_back(origin + ": unknown key '" + key + "'");
           continue;
@@ -188,8 +196,7 @@ const ConfigEntry& Config::entry(const std::string& key, ValueType expected) con
   const ConfigEntry* e = schema_->find(key);
   if (!e) throw std::logic_error("config: key '" + key + "' is not in the schema");
   if (e->type != expected && !(expected == ValueType::Number && e->type == ValueType::Integer))
-    throw std::logic_error("config: key '" + key + "' is a " + to_string(e->type) + ", read as " +
-                           to_string(expected));
+    throw std::logic_error("config: key '" + key + "' is a " + to_string(e->type) + ", read as " + to_string(expected));
   return *e;
 }
 

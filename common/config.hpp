@@ -21,7 +21,7 @@ enum class ValueType { Number, Integer, Boolean, String };
 const char* to_string(ValueType t);
 
 struct ConfigEntry {
-  std::string key;   // dotted path, e.g. "sim.vehicle.mass"
+  std::string key;  // dotted path, e.g. "sim.vehicle.mass"
   ValueType type = ValueType::Number;
   std::shared_ptr<const nlohmann::json> default_value;
   double min = -std::numeric_limits<double>::infinity();
@@ -29,7 +29,7 @@ struct ConfigEntry {
   std::vector<std::string> choices;  // for strings: allowed values, empty = any
   std::string unit;
   std::string doc;
-  bool tunable = false;              // exposed in the parameter registry for live changes
+  bool tunable = false;  // exposed in the parameter registry for live changes
 
   // Empty when `v` is acceptable, else a message naming the problem (without the key).
   std::string check(const nlohmann::json& v) const;
@@ -45,8 +45,8 @@ class ConfigSchema {
   void add(ConfigEntry e);  // throws std::logic_error on a duplicate or badly formed key
   const ConfigEntry* find(const std::string& key) const;
   const std::vector<ConfigEntry>& entries() const { return entries_; }
-  nlohmann::json defaults() const;   // nested object with every key at its default
-  std::string markdown() const;      // the reference table of docs/configuration.md
+  nlohmann::json defaults() const;  // nested object with every key at its default
+  std::string markdown() const;     // the reference table of docs/configuration.md
 
  private:
   std::vector<ConfigEntry> entries_;
@@ -91,8 +91,7 @@ class ConfigSection {
   ConfigSection& integer(const std::string& name, int S::*m, int min, int max, std::string unit, std::string doc,
                          bool tunable = false);
   ConfigSection& boolean(const std::string& name, bool S::*m, std::string doc, bool tunable = false);
-  ConfigSection& string(const std::string& name, std::string S::*m, std::vector<std::string> choices,
-                        std::string doc);
+  ConfigSection& string(const std::string& name, std::string S::*m, std::vector<std::string> choices, std::string doc);
 
   void describe(ConfigSchema& schema) const {
     for (const auto& e : entries_) schema.add(e);
@@ -190,8 +189,8 @@ ConfigSection<S>& ConfigSection<S>::boolean(const std::string& name, bool S::*m,
 }
 
 template <class S>
-ConfigSection<S>& ConfigSection<S>::string(const std::string& name, std::string S::*m,
-                                           std::vector<std::string> choices, std::string doc) {
+ConfigSection<S>& ConfigSection<S>::string(const std::string& name, std::string S::*m, std::vector<std::string> choices,
+                                           std::string doc) {
   ConfigEntry e = base(name, ValueType::String, "", std::move(doc), false);
   e.choices = std::move(choices);
   e.default_value = make_json_string(defaults_.*m);

@@ -36,8 +36,8 @@ LocalEnu::LocalEnu(const Geodetic& origin, const Ellipsoid& e)
     : origin_(origin), ellipsoid_(e), origin_ecef_(geodetic_to_ecef(origin, e)) {
   const double sl = std::sin(origin.lat), cl = std::cos(origin.lat);
   const double so = std::sin(origin.lon), co = std::cos(origin.lon);
-  enu_from_ecef_ << -so, co, 0.0,          //
-      -sl * co, -sl * so, cl,              //
+  enu_from_ecef_ << -so, co, 0.0,  //
+      -sl * co, -sl * so, cl,      //
       cl * co, cl * so, sl;
 }
 

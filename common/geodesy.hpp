@@ -9,13 +9,13 @@
 namespace fsd {
 
 struct Ellipsoid {
-  double a = 6378137.0;              // semi-major axis, m
-  double f = 1.0 / 298.257223563;    // flattening
+  double a = 6378137.0;            // semi-major axis, m
+  double f = 1.0 / 298.257223563;  // flattening
 
   static constexpr Ellipsoid wgs84() { return {6378137.0, 1.0 / 298.257223563}; }
   static constexpr Ellipsoid grs80() { return {6378137.0, 1.0 / 298.257222101}; }  // NAD 83, ETRS89
-  constexpr double e2() const { return f * (2.0 - f); }  // first eccentricity squared
-  constexpr double b() const { return a * (1.0 - f); }   // semi-minor axis, m
+  constexpr double e2() const { return f * (2.0 - f); }                            // first eccentricity squared
+  constexpr double b() const { return a * (1.0 - f); }                             // semi-minor axis, m
 };
 
 struct Geodetic {

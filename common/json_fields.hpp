@@ -16,7 +16,8 @@ class JsonFields {
  public:
   using json = nlohmann::json;
 
-  JsonFields(const json& j, std::string origin, std::string path) : j_(j), origin_(std::move(origin)), path_(std::move(path)) {
+  JsonFields(const json& j, std::string origin, std::string path)
+      : j_(j), origin_(std::move(origin)), path_(std::move(path)) {
     if (!j_.is_object()) fail("", "expected an object, got " + std::string(j_.type_name()));
   }
 
@@ -44,17 +45,20 @@ class JsonFields {
     return v.get<std::string>();
   }
   // `v` is the array (a field or an element of one), `field` its name in messages.
-  std::vector<double> numbers(const std::string& field, const json& v, double lo = -HUGE_VAL, double hi = HUGE_VAL) const {
+  std::vector<double> numbers(const std::string& field, const json& v, double lo = -HUGE_VAL,
+                              double hi = HUGE_VAL) const {
     if (!v.is_array()) fail(field, "expected an array of numbers, got " + v.dump());
     std::vector<double> out;
     out.reserve(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number_in(v[i], field + "[" + std::to_string(i) + "]", lo, hi));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(number_in(v[i], field + "[" + std::to_string(i) + "]", lo, hi));
     return out;
   }
   std::vector<int> integers(const std::string& field, const json& v, int lo, int hi) const {
     if (!v.is_array()) fail(field, "expected an array of integers, got " + v.dump());
     std::vector<int> out;
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(integer_in(v[i], field + "[" + std::to_string(i) + "]", lo, hi));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(integer_in(v[i], field + "[" + std::to_string(i) + "]", lo, hi));
     return out;
   }
   std::string name(const std::string& field) const { return path_.empty() ? field : path_ + "." + field; }
@@ -64,13 +68,15 @@ class JsonFields {
     if (!v.is_number()) fail(field, "expected a number, got " + v.dump());
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(field, "not a finite number");
-    if (d < lo || d > hi) fail(field, std::to_string(d) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (d < lo || d > hi)
+      fail(field, std::to_string(d) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return d;
   }
   int integer_in(const json& v, const std::string& field, int lo, int hi) const {
     if (!v.is_number_integer()) fail(field, "expected an integer, got " + v.dump());
     const auto i = v.get<long long>();
-    if (i < lo || i > hi) fail(field, std::to_string(i) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (i < lo || i > hi)
+      fail(field, std::to_string(i) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return static_cast<int>(i);
   }
 

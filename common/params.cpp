@@ -22,7 +22,6 @@ ParamRegistry::ParamRegistry(const Config& config, const Clock* clock, std::size
   }
 }
 
-
 std::optional<double> ParamRegistry::get(const std::string& key) const {
   const auto it = by_key_.find(key);
   if (it == by_key_.end()) return std::nullopt;

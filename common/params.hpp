@@ -23,7 +23,7 @@ struct ParamChange {
   Stamp t = 0;
   std::string key;
   double old_value = 0, new_value = 0;
-  std::string who;   // e.g. "web 192.168.1.20 (token ok)", "cli"
+  std::string who;  // e.g. "web 192.168.1.20 (token ok)", "cli"
 };
 
 class ParamRegistry {

@@ -25,9 +25,7 @@ inline Pose3 pose_zyx(const Vec3& translation, double yaw, double pitch, double 
 // z up): mount ← optical.
 inline Eigen::Matrix3d mount_from_optical() {
   Eigen::Matrix3d R;
-  R << 0, 0, 1,
-      -1, 0, 0,
-      0, -1, 0;
+  R << 0, 0, 1, -1, 0, 0, 0, -1, 0;
   return R;
 }
 

@@ -12,18 +12,22 @@ namespace fsd {
 
 ColourConvention ColourConvention::named(const std::string& name) {
   if (name == "fsg") return {};
-  if (name == "fsac")
-    return {"fsac", ConeColour::Red, ConeColour::Blue, ConeColour::Yellow, ConeColour::Orange};
+  if (name == "fsac") return {"fsac", ConeColour::Red, ConeColour::Blue, ConeColour::Yellow, ConeColour::Orange};
   throw std::invalid_argument("unknown colour convention '" + name + "' (fsg, fsac)");
 }
 
 ConeColour ColourConvention::colour_of(ConeRole role) const {
   switch (role) {
-    case ConeRole::Left: return left;
-    case ConeRole::Right: return right;
-    case ConeRole::Timing: return timing;
-    case ConeRole::Other: return other;
-    default: return ConeColour::Unknown;
+    case ConeRole::Left:
+      return left;
+    case ConeRole::Right:
+      return right;
+    case ConeRole::Timing:
+      return timing;
+    case ConeRole::Other:
+      return other;
+    default:
+      return ConeColour::Unknown;
   }
 }
 
@@ -70,8 +74,8 @@ Track parse_track(const std::string& text, const std::string& origin, const Colo
     return TrackError(origin + ":" + std::to_string(lineno) + ": " + what);
   };
 
-  static constexpr std::array<const char*, 7> kColumns{"tag", "x", "y", "direction", "x_variance", "y_variance",
-                                                       "xy_covariance"};
+  static constexpr std::array<const char*, 7> kColumns{
+      "tag", "x", "y", "direction", "x_variance", "y_variance", "xy_covariance"};
   std::array<int, kColumns.size()> col{};
   bool have_header = false, have_start = false;
 
@@ -85,7 +89,10 @@ Track parse_track(const std::string& text, const std::string& origin, const Colo
         const auto it = std::find(cells.begin(), cells.end(), kColumns[k]);
         // The covariance columns are optional in hand-written files; the others are not.
         if (it == cells.end()) {
-          if (k >= 4) { col[k] = -1; continue; }
+          if (k >= 4) {
+            col[k] = -1;
+            continue;
+          }
           throw fail(std::string("missing column '") + kColumns[k] + "' in header");
         }
         col[k] = static_cast<int>(it - cells.begin());
@@ -114,11 +121,16 @@ Track parse_track(const std::string& text, const std::string& origin, const Colo
       continue;
     }
     TrackCone cone;
-    if (tag == "blue") cone.role = ConeRole::Left;
-    else if (tag == "yellow") cone.role = ConeRole::Right;
-    else if (tag == "orange") cone.role = ConeRole::Other;
-    else if (tag == "big_orange") cone.role = ConeRole::Timing;
-    else throw fail("unknown tag '" + tag + "' (blue, yellow, orange, big_orange, car_start)");
+    if (tag == "blue")
+      cone.role = ConeRole::Left;
+    else if (tag == "yellow")
+      cone.role = ConeRole::Right;
+    else if (tag == "orange")
+      cone.role = ConeRole::Other;
+    else if (tag == "big_orange")
+      cone.role = ConeRole::Timing;
+    else
+      throw fail("unknown tag '" + tag + "' (blue, yellow, orange, big_orange, car_start)");
     cone.position = {x, y};
     cone.colour = convention.colour_of(cone.role);
     cone.covariance << number(4), number(6), number(6), number(5);
@@ -164,11 +176,20 @@ std::string format_track(const Track& track) {
   row("car_start", track.start.position(), track.start.yaw);
   for (const auto& c : track.cones) {
     switch (c.role) {
-      case ConeRole::Left: row("blue", c.position, 0.0); break;
-      case ConeRole::Right: row("yellow", c.position, 0.0); break;
-      case ConeRole::Other: row("orange", c.position, 0.0); break;
-      case ConeRole::Timing: row("big_orange", c.position, 0.0); break;
-      default: throw std::invalid_argument("format_track: a cone without a role");
+      case ConeRole::Left:
+        row("blue", c.position, 0.0);
+        break;
+      case ConeRole::Right:
+        row("yellow", c.position, 0.0);
+        break;
+      case ConeRole::Other:
+        row("orange", c.position, 0.0);
+        break;
+      case ConeRole::Timing:
+        row("big_orange", c.position, 0.0);
+        break;
+      default:
+        throw std::invalid_argument("format_track: a cone without a role");
     }
   }
   return out;

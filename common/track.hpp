@@ -34,8 +34,8 @@ struct TrackCone {
 };
 
 struct Track {
-  std::string name;            // file stem, e.g. "epfl_track_1"
-  Pose2 start;                 // car_start row
+  std::string name;  // file stem, e.g. "epfl_track_1"
+  Pose2 start;       // car_start row
   ColourConvention convention;
   std::vector<TrackCone> cones;
   int duplicates_dropped = 0;  // rows that repeat a cone already listed (within 1 cm): one physical cone

@@ -19,24 +19,36 @@ std::string_view name_of(const std::array<std::pair<E, std::string_view>, N>& ta
   return "unknown";
 }
 
-constexpr std::array<std::pair<ConeColour, std::string_view>, 6> kColours{{
-    {ConeColour::Unknown, "unknown"}, {ConeColour::Blue, "blue"}, {ConeColour::Yellow, "yellow"},
-    {ConeColour::Orange, "orange"}, {ConeColour::BigOrange, "big_orange"}, {ConeColour::Red, "red"}}};
-constexpr std::array<std::pair<DetectionStage, std::string_view>, 3> kStages{{
-    {DetectionStage::Truth, "truth"}, {DetectionStage::Lidar, "lidar"}, {DetectionStage::Camera, "camera"}}};
-constexpr std::array<std::pair<ColourSource, std::string_view>, 4> kColourSources{{
-    {ColourSource::None, "none"}, {ColourSource::Truth, "truth"}, {ColourSource::Camera, "camera"},
-    {ColourSource::LidarIntensity, "lidar_intensity"}}};
-constexpr std::array<std::pair<ConeRole, std::string_view>, 5> kRoles{{
-    {ConeRole::Unknown, "unknown"}, {ConeRole::Left, "left"}, {ConeRole::Right, "right"},
-    {ConeRole::Timing, "timing"}, {ConeRole::Other, "other"}}};
-constexpr std::array<std::pair<AsState, std::string_view>, 5> kStates{{
-    {AsState::Off, "Off"}, {AsState::Ready, "Ready"}, {AsState::Driving, "Driving"},
-    {AsState::Emergency, "Emergency"}, {AsState::Finished, "Finished"}}};
-constexpr std::array<std::pair<Mission, std::string_view>, 7> kMissions{{
-    {Mission::None, "none"}, {Mission::Acceleration, "acceleration"}, {Mission::Skidpad, "skidpad"},
-    {Mission::Trackdrive, "trackdrive"}, {Mission::Autocross, "autocross"}, {Mission::Inspection, "inspection"},
-    {Mission::EbsTest, "ebs_test"}}};
+constexpr std::array<std::pair<ConeColour, std::string_view>, 6> kColours{{{ConeColour::Unknown, "unknown"},
+                                                                           {ConeColour::Blue, "blue"},
+                                                                           {ConeColour::Yellow, "yellow"},
+                                                                           {ConeColour::Orange, "orange"},
+                                                                           {ConeColour::BigOrange, "big_orange"},
+                                                                           {ConeColour::Red, "red"}}};
+constexpr std::array<std::pair<DetectionStage, std::string_view>, 3> kStages{
+    {{DetectionStage::Truth, "truth"}, {DetectionStage::Lidar, "lidar"}, {DetectionStage::Camera, "camera"}}};
+constexpr std::array<std::pair<ColourSource, std::string_view>, 4> kColourSources{
+    {{ColourSource::None, "none"},
+     {ColourSource::Truth, "truth"},
+     {ColourSource::Camera, "camera"},
+     {ColourSource::LidarIntensity, "lidar_intensity"}}};
+constexpr std::array<std::pair<ConeRole, std::string_view>, 5> kRoles{{{ConeRole::Unknown, "unknown"},
+                                                                       {ConeRole::Left, "left"},
+                                                                       {ConeRole::Right, "right"},
+                                                                       {ConeRole::Timing, "timing"},
+                                                                       {ConeRole::Other, "other"}}};
+constexpr std::array<std::pair<AsState, std::string_view>, 5> kStates{{{AsState::Off, "Off"},
+                                                                       {AsState::Ready, "Ready"},
+                                                                       {AsState::Driving, "Driving"},
+                                                                       {AsState::Emergency, "Emergency"},
+                                                                       {AsState::Finished, "Finished"}}};
+constexpr std::array<std::pair<Mission, std::string_view>, 7> kMissions{{{Mission::None, "none"},
+                                                                         {Mission::Acceleration, "acceleration"},
+                                                                         {Mission::Skidpad, "skidpad"},
+                                                                         {Mission::Trackdrive, "trackdrive"},
+                                                                         {Mission::Autocross, "autocross"},
+                                                                         {Mission::Inspection, "inspection"},
+                                                                         {Mission::EbsTest, "ebs_test"}}};
 }  // namespace
 
 std::string_view to_string(ConeColour c) { return name_of(kColours, c); }

@@ -8,11 +8,16 @@ namespace fsd {
 
 std::string_view to_string(InputStream s) {
   switch (s) {
-    case InputStream::Lidar: return "lidar";
-    case InputStream::Pose: return "pose";
-    case InputStream::Gnss: return "gnss";
-    case InputStream::Vcu: return "vcu";
-    case InputStream::Plan: return "planning";
+    case InputStream::Lidar:
+      return "lidar";
+    case InputStream::Pose:
+      return "pose";
+    case InputStream::Gnss:
+      return "gnss";
+    case InputStream::Vcu:
+      return "vcu";
+    case InputStream::Plan:
+      return "planning";
   }
   return "?";
 }
@@ -51,8 +56,10 @@ void AsSupervisor::on_plan(Stamp t, bool ok) {
 
 void AsSupervisor::report(Stamp t, const std::string& source, const std::string& what, const std::string& action,
                           bool active) {
-  if (active) raise(t, source, what, action);
-  else clear(source, what);
+  if (active)
+    raise(t, source, what, action);
+  else
+    clear(source, what);
 }
 
 bool AsSupervisor::stale(InputStream s, Stamp now, double timeout) const {
@@ -98,7 +105,8 @@ Supervision AsSupervisor::evaluate(Stamp now, double speed, bool finished) {
     // Ask for Ready when a mission is chosen and every stream it needs is alive, at standstill.
     if (state == AsState::Off && mission_ != Mission::None && !vcu_stale && standing && !stop_reason_) {
       bool healthy = !stale(InputStream::Pose, now, config_.pose_timeout);
-      if (required_[idx(InputStream::Lidar)]) healthy = healthy && !stale(InputStream::Lidar, now, config_.lidar_timeout);
+      if (required_[idx(InputStream::Lidar)])
+        healthy = healthy && !stale(InputStream::Lidar, now, config_.lidar_timeout);
       if (healthy) out.request = AsRequest::Ready;
     }
     return out;  // no motion outside Driving
@@ -121,7 +129,8 @@ Supervision AsSupervisor::evaluate(Stamp now, double speed, bool finished) {
   if (required_[idx(InputStream::Plan)] && !finished) {
     const auto& last = last_[idx(InputStream::Plan)];
     const Stamp since = last ? std::max(*last, *driving_since_) : *driving_since_;
-    if (now - since > config_.plan_timeout) stop(now, "planning", "no usable plan for " + seconds(config_.plan_timeout));
+    if (now - since > config_.plan_timeout)
+      stop(now, "planning", "no usable plan for " + seconds(config_.plan_timeout));
   }
 
   if (stop_reason_) {

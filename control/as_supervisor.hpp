@@ -30,24 +30,24 @@ struct Fault {
 };
 
 struct SupervisorConfig {
-  double lidar_timeout = 0.3;          // s without cone detections: slow down
-  double lidar_stop_timeout = 2.0;     // s: controlled stop
-  double pose_timeout = 0.2;           // s without a pose: controlled stop
-  double vcu_timeout = 0.2;            // s without VCU status: controlled stop
-  double plan_timeout = 0.5;           // s since the newest usable plan: controlled stop
-  double degraded_speed = 3.0;         // m/s cap while the LiDAR is stale
-  double standstill_speed = 0.1;       // m/s
-  double standstill_time = 0.5;        // s below standstill_speed counts as standing
-  double stop_timeout = 10.0;          // s: a controlled stop not at standstill by then asks for Emergency
+  double lidar_timeout = 0.3;              // s without cone detections: slow down
+  double lidar_stop_timeout = 2.0;         // s: controlled stop
+  double pose_timeout = 0.2;               // s without a pose: controlled stop
+  double vcu_timeout = 0.2;                // s without VCU status: controlled stop
+  double plan_timeout = 0.5;               // s since the newest usable plan: controlled stop
+  double degraded_speed = 3.0;             // m/s cap while the LiDAR is stale
+  double standstill_speed = 0.1;           // m/s
+  double standstill_time = 0.5;            // s below standstill_speed counts as standing
+  double stop_timeout = 10.0;              // s: a controlled stop not at standstill by then asks for Emergency
   bool emergency_after_fault_stop = true;  // at standstill after a fault stop, ask for Emergency (EBS)
-  int max_faults = 256;                // the fault log keeps the first ones
+  int max_faults = 256;                    // the fault log keeps the first ones
 };
 
 // What the supervisor allows this cycle.
 struct Supervision {
-  bool may_move = false;        // AS Driving and no stop: follow the mission's command
-  bool controlled_stop = false; // brake to standstill, steering from the follower if the pose is fresh
-  double speed_cap = 0;         // m/s
+  bool may_move = false;         // AS Driving and no stop: follow the mission's command
+  bool controlled_stop = false;  // brake to standstill, steering from the follower if the pose is fresh
+  double speed_cap = 0;          // m/s
   AsRequest request = AsRequest::None;
 };
 
@@ -66,7 +66,8 @@ class AsSupervisor {
   // (the core reads no clock); the stop comes from plan_timeout, when no usable plan arrived for that long.
   void on_plan(Stamp t, bool ok);
   // A fault found elsewhere (the mission's fallbacks); logged once while `active` stays true.
-  void report(Stamp t, const std::string& source, const std::string& what, const std::string& action, bool active = true);
+  void report(Stamp t, const std::string& source, const std::string& what, const std::string& action,
+              bool active = true);
 
   // One decision per control cycle; `speed` is the car's speed, `finished` the mission's finish.
   Supervision evaluate(Stamp now, double speed, bool finished);

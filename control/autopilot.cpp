@@ -9,19 +9,25 @@ namespace fsd {
 
 std::string to_string(const LapLineBuilt& l) {
   char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "lap path built: %.1f m, closed within %.2f m, moved %.2f m (RMS) onto the centre line, %d tight turn(s)",
-                l.length, l.closure_gap, l.recentre_rms, l.tight_turns);
+  std::snprintf(
+      buf, sizeof buf,
+      "lap path built: %.1f m, closed within %.2f m, moved %.2f m (RMS) onto the centre line, %d tight turn(s)",
+      l.length, l.closure_gap, l.recentre_rms, l.tight_turns);
   return buf;
 }
 
 std::string_view to_string(PathSource s) {
   switch (s) {
-    case PathSource::None: return "none";
-    case PathSource::Planner: return "planner";
-    case PathSource::Recorded: return "recorded";
-    case PathSource::Skidpad: return "skidpad";
-    case PathSource::Straight: return "straight";
+    case PathSource::None:
+      return "none";
+    case PathSource::Planner:
+      return "planner";
+    case PathSource::Recorded:
+      return "recorded";
+    case PathSource::Skidpad:
+      return "skidpad";
+    case PathSource::Straight:
+      return "straight";
   }
   return "none";
 }
@@ -137,7 +143,8 @@ std::optional<double> Autopilot::cone_across_straight() const {
   std::optional<double> nearest;
   for (const auto& c : cones_) {
     const Vec2 p = c.position.head<2>();
-    const double along = (p - state_->pose.position()).dot(Vec2(std::cos(state_->pose.yaw), std::sin(state_->pose.yaw)));
+    const double along =
+        (p - state_->pose.position()).dot(Vec2(std::cos(state_->pose.yaw), std::sin(state_->pose.yaw)));
     if (along < front || along > 60.0) continue;  // behind the nose, or too far to matter
     const auto proj = project(*straight_, p, car->s, 0.0, 70.0);
     if (!proj || proj->distance() > half_width) continue;
@@ -203,8 +210,8 @@ void Autopilot::update_mission(Stamp now, const FollowResult* last_follow, Contr
       // line at the lap's speed, so lap 2 is a flying lap.
       const double early = config_.trajectory.early_build_distance;
       if (!lap_path_ && !build_pending_ && !ev && early > 0 && target_laps() > 1 &&
-          lap_counter_->laps_completed() == 0 &&
-          lap_counter_->timing() && plan_ && odometer_ > config_.trajectory.min_lap_length) {
+          lap_counter_->laps_completed() == 0 && lap_counter_->timing() && plan_ &&
+          odometer_ > config_.trajectory.min_lap_length) {
         const TimingLine& line = lap_counter_->line();
         const double before = -line.past(pos);
         const bool across = std::abs((pos - line.mid()).dot(Vec2(-line.forward.y(), line.forward.x()))) <
@@ -278,9 +285,8 @@ void Autopilot::build_lap(Stamp now, Stamp t1, std::vector<Vec2> ahead, ControlO
   }
   // The job gets copies: lap 1's poses keep being recorded and the map keeps growing meanwhile.
   LapBuildJob job = [trajectory = trajectory_, t0, t1, cones = cones_, convention = convention_,
-                     profile = SpeedProfile(lap2_limits()), ahead = std::move(ahead)] {
-    return trajectory.build(t0, t1, cones, convention, profile, ahead);
-  };
+                     profile = SpeedProfile(lap2_limits()),
+                     ahead = std::move(ahead)] { return trajectory.build(t0, t1, cones, convention, profile, ahead); };
   if (lap_builder_->submit(job)) {
     build_pending_ = true;
     return;
@@ -445,9 +451,10 @@ ControlOutput Autopilot::step(Stamp now) {
   double cap = config_.speed.v_max;
   const bool straight_mission = mission_ == Mission::Acceleration || mission_ == Mission::EbsTest;
   if (finished_)
-    cap = std::min(cap, stop_speed(finish_speed_, odometer_ - finish_odometer_,
-                                   straight_mission ? config_.mission.acceleration_stop_decel : config_.mission.stop_decel,
-                                   stop_distance_));
+    cap = std::min(cap,
+                   stop_speed(finish_speed_, odometer_ - finish_odometer_,
+                              straight_mission ? config_.mission.acceleration_stop_decel : config_.mission.stop_decel,
+                              stop_distance_));
   // Never faster than the car can stop before a cone across its straight (a short braking zone's closing row):
   // braking zones differ from event to event and the row is only seen from 20 m or so.
   if (straight_mission && started_) {

@@ -43,8 +43,8 @@ struct AutopilotConfig {
   LapCounterConfig laps;
   RecordedTrajectoryConfig trajectory;
   Lap2Config lap2;
-  double replan_period = 0.1;   // s: the real-time plan is refreshed at least this often (on new cones at once)
-  double gnss_timeout = 0.5;    // s without a good GNSS fix: lap 2 falls back to real-time planning
+  double replan_period = 0.1;  // s: the real-time plan is refreshed at least this often (on new cones at once)
+  double gnss_timeout = 0.5;   // s without a good GNSS fix: lap 2 falls back to real-time planning
 };
 
 enum class PathSource { None, Planner, Recorded, Skidpad, Straight };
@@ -63,20 +63,20 @@ struct LapLineBuilt {
 std::string to_string(const LapLineBuilt& l);
 
 struct ControlOutput {
-  ControlCommand command;              // to the VCU, every cycle
-  AsRequest request = AsRequest::None; // to the VCU while not None
+  ControlCommand command;               // to the VCU, every cycle
+  AsRequest request = AsRequest::None;  // to the VCU while not None
   PathSource source = PathSource::None;
-  const Path* path = nullptr;          // the path followed this cycle (valid until the next call)
-  FollowResult follow;                 // tracking diagnostics (cross-track error, look-ahead point)
-  std::optional<LapEvent> lap;         // a lap (or skid pad circle, or acceleration run) completed this cycle
-  bool planned = false;                // the real-time planner ran this cycle (plan())
-  bool plan_ok = false;                // its outcome when it ran
-  bool plan_one_boundary = false;      // that plan ran half a width inside the only boundary seen
-  bool plan_colour_blind = false;      // that plan ignored cone colours that contradicted the geometry
-  bool plan_tight_turn = false;        // that plan shaped a turn to the steering lock
+  const Path* path = nullptr;            // the path followed this cycle (valid until the next call)
+  FollowResult follow;                   // tracking diagnostics (cross-track error, look-ahead point)
+  std::optional<LapEvent> lap;           // a lap (or skid pad circle, or acceleration run) completed this cycle
+  bool planned = false;                  // the real-time planner ran this cycle (plan())
+  bool plan_ok = false;                  // its outcome when it ran
+  bool plan_one_boundary = false;        // that plan ran half a width inside the only boundary seen
+  bool plan_colour_blind = false;        // that plan ignored cone colours that contradicted the geometry
+  bool plan_tight_turn = false;          // that plan shaped a turn to the steering lock
   std::optional<LapLineBuilt> lap_line;  // the lap path was built this cycle
-  bool finished = false;               // past the mission's finish (stopping or stopped)
-  bool stopping = false;               // a fault stop is under way
+  bool finished = false;                 // past the mission's finish (stopping or stopped)
+  bool stopping = false;                 // a fault stop is under way
 };
 
 class Autopilot {
@@ -146,7 +146,7 @@ class Autopilot {
   std::optional<VehicleState> state_;
   std::vector<Cone> cones_;
   Stamp cones_stamp_ = -1;
-  Stamp cones_unbroken_since_ = -1;      // the cone updates have come without a gap since then
+  Stamp cones_unbroken_since_ = -1;  // the cone updates have come without a gap since then
   bool new_cones_ = false;
   std::optional<Stamp> gnss_good_since_;  // stamp of the newest good fix
   bool gnss_good_ = false;
@@ -165,11 +165,11 @@ class Autopilot {
   std::optional<LapCounter> lap_counter_;
   std::optional<Stamp> lap1_start_;
   std::optional<Path> lap_path_;
-  std::vector<SpeedZone> lap_zones_;       // its profile's speed caps (tight turns)
+  std::vector<SpeedZone> lap_zones_;  // its profile's speed caps (tight turns)
   LapBuildService* lap_builder_ = nullptr;
-  bool build_pending_ = false;             // a job is out with the lap builder
-  bool pending_early_ = false;             // the pending build is the early one (before the line)
-  std::optional<Stamp> lap1_end_;          // lap 1's crossing, once it happened
+  bool build_pending_ = false;     // a job is out with the lap builder
+  bool pending_early_ = false;     // the pending build is the early one (before the line)
+  std::optional<Stamp> lap1_end_;  // lap 1's crossing, once it happened
   std::optional<Path> straight_;
   double straight_start_s_ = 0;
   std::optional<Stamp> straight_timing_start_;

@@ -46,7 +46,8 @@ ConeClearance keep_clear_of_cones(Path& path, const std::vector<Vec2>& cones, do
       auto& away = n.foot.lateral > 0 ? right : left;
       for (std::size_t i = 0; i < pts.size(); ++i) {
         const double d = std::abs(pts[i].s - n.foot.s);
-        if (d < window) away[i] = std::max(away[i], n.shortfall * 0.5 * (1.0 + std::cos(std::numbers::pi * d / window)));
+        if (d < window)
+          away[i] = std::max(away[i], n.shortfall * 0.5 * (1.0 + std::cos(std::numbers::pi * d / window)));
       }
     }
     for (std::size_t i = 0; i < pts.size(); ++i) {

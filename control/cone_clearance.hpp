@@ -12,9 +12,9 @@
 namespace fsd {
 
 struct ConeClearance {
-  int cones_too_near = 0;     // cones nearer than `need` before the repair
-  double worst_before = 0;    // m: the largest shortfall before
-  double worst_after = 0;     // m: ... and after (> 0: the gap is narrower than the car)
+  int cones_too_near = 0;   // cones nearer than `need` before the repair
+  double worst_before = 0;  // m: the largest shortfall before
+  double worst_after = 0;   // m: ... and after (> 0: the gap is narrower than the car)
 };
 
 // `path` open, any frame, `cones` in the same frame. Points within `keep_start` of the path's start (the car)

@@ -13,36 +13,50 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
           .boolean("use_colours", &C::use_colours, "Use cone colours; false plans colour-blind from geometry.", true)
           .number("width_min", &C::width_min, 1, 10, "m", "Shortest edge the walk may cross.")
           .number("width_max", &C::width_max, 2, 15, "m", "Longest crossing edge unless its colours say left-right.")
-          .number("crossing_max", &C::crossing_max, 2, 20, "m", "Longest crossing edge between a left and a right cone.")
+          .number("crossing_max", &C::crossing_max, 2, 20, "m",
+                  "Longest crossing edge between a left and a right cone.")
           .number("nominal_width", &C::nominal_width, 2, 10, "m", "Expected track width before the walk measured it.")
           .number("start_radius", &C::start_radius, 1, 20, "m", "First crossing within this distance ahead.")
           .number("start_angle_deg", &C::start_angle_deg, 10, 90, "deg", "First crossing within this bearing.")
           .number("max_turn_deg", &C::max_turn_deg, 10, 180, "deg", "Largest heading change between midpoints.")
-          .number("min_crossing_cos", &C::min_crossing_cos, 0, 1, "", "Crossing edge width across travel over its length, least.")
+          .number("min_crossing_cos", &C::min_crossing_cos, 0, 1, "",
+                  "Crossing edge width across travel over its length, least.")
           .number("horizon", &C::horizon, 5, 100, "m", "Walks stop growing at this length.", true)
           .integer("beam_width", &C::beam_width, 1, 200, "", "Partial walks kept per step.")
           .integer("max_depth", &C::max_depth, 1, 500, "", "Steps per walk.")
           .number("w_turn", &C::w_turn, 0, 100, "1/rad²", "Cost of heading change.")
           .number("w_width", &C::w_width, 0, 100, "", "Cost of relative width change.")
           .number("w_unknown", &C::w_unknown, 0, 100, "", "Cost per crossed cone of unknown side.")
-          .number("w_colour_conflict", &C::w_colour_conflict, 0, 100, "", "Cost per cone whose colour says the other side.")
-          .number("w_boundary_bend", &C::w_boundary_bend, 0, 100, "1/rad²", "Cost of boundary bend beyond the free bend.")
-          .number("boundary_free_bend_deg", &C::boundary_free_bend_deg, 0, 180, "deg", "Boundary bend per cone that costs nothing.")
-          .number("w_boundary_gap", &C::w_boundary_gap, 0, 100, "1/m²", "Cost of boundary cone spacing beyond the maximum.")
-          .number("boundary_spacing_max", &C::boundary_spacing_max, 1, 20, "m", "Boundary cone spacing that costs nothing.")
+          .number("w_colour_conflict", &C::w_colour_conflict, 0, 100, "",
+                  "Cost per cone whose colour says the other side.")
+          .number("w_boundary_bend", &C::w_boundary_bend, 0, 100, "1/rad²",
+                  "Cost of boundary bend beyond the free bend.")
+          .number("boundary_free_bend_deg", &C::boundary_free_bend_deg, 0, 180, "deg",
+                  "Boundary bend per cone that costs nothing.")
+          .number("w_boundary_gap", &C::w_boundary_gap, 0, 100, "1/m²",
+                  "Cost of boundary cone spacing beyond the maximum.")
+          .number("boundary_spacing_max", &C::boundary_spacing_max, 1, 20, "m",
+                  "Boundary cone spacing that costs nothing.")
           .number("w_length", &C::w_length, 0, 10, "1/m", "Reward per metre of walk.")
           .number("w_start", &C::w_start, 0, 10, "1/m", "Cost per metre from the car to the first midpoint.")
           .number("max_score", &C::max_score, -100, 100, "", "A best walk scoring worse is no plan.")
-          .number("colour_check_margin", &C::colour_check_margin, -1, 100, "", "A colour-blind walk this much better in geometry wins (< 0: off).")
-          .integer("max_wrong_colours", &C::max_wrong_colours, 0, 20, "", "... if it passes at most this many cones against their colour.")
+          .number("colour_check_margin", &C::colour_check_margin, -1, 100, "",
+                  "A colour-blind walk this much better in geometry wins (< 0: off).")
+          .integer("max_wrong_colours", &C::max_wrong_colours, 0, 20, "",
+                   "... if it passes at most this many cones against their colour.")
           .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the planned path.")
-          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 50, "m", "Ripples shorter than this are smoothed out.", true)
-          .boolean("keep_clear", &C::keep_clear, "Push the path off cones nearer than the body's half width (control.tight_turn's body).", true)
-          .number("keep_clear_window", &C::keep_clear_window, 0.5, 20, "m", "A push off a cone fades out over this either side of it.", true)
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 50, "m",
+                  "Ripples shorter than this are smoothed out.", true)
+          .boolean("keep_clear", &C::keep_clear,
+                   "Push the path off cones nearer than the body's half width (control.tight_turn's body).", true)
+          .number("keep_clear_window", &C::keep_clear_window, 0.5, 20, "m",
+                  "A push off a cone fades out over this either side of it.", true)
           .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")
-          .number("fallback_below", &C::fallback_below, 0, 50, "m", "Walks ending nearer try the single-boundary fallback.")
+          .number("fallback_below", &C::fallback_below, 0, 50, "m",
+                  "Walks ending nearer try the single-boundary fallback.")
           .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)
-          .number("time_budget", &C::time_budget, 0.001, 1, "s", "A plan slower than this is counted late (a warning in the log and /metrics).", true);
+          .number("time_budget", &C::time_budget, 0.001, 1, "s",
+                  "A plan slower than this is counted late (a warning in the log and /metrics).", true);
   return s;
 }
 
@@ -51,18 +65,25 @@ const ConfigSection<TightTurnConfig>& tight_turn_section() {
   static const auto s =
       ConfigSection<C>("control.tight_turn")
           .boolean("enabled", &C::enabled, "Shape the line through turns at the steering lock to the car.", true)
-          .number("kappa_on", &C::kappa_on, 0.01, 2, "1/m", "A turn is where the planned path curves tighter than this.", true)
+          .number("kappa_on", &C::kappa_on, 0.01, 2, "1/m",
+                  "A turn is where the planned path curves tighter than this.", true)
           .number("min_turn_deg", &C::min_turn_deg, 10, 360, "deg", "Heading change of a turn worth shaping.", true)
-          .number("lane_radius_max", &C::lane_radius_max, 1, 30, "m", "Only turns whose lane centre radius is below this are shaped.", true)
+          .number("lane_radius_max", &C::lane_radius_max, 1, 30, "m",
+                  "Only turns whose lane centre radius is below this are shaped.", true)
           .number("body_front", &C::body_front, 0.5, 5, "m", "Rear axle to the nose of the car.")
           .number("body_half_width", &C::body_half_width, 0.2, 2, "m", "Half the car's width.")
           .number("cone_radius", &C::cone_radius, 0, 0.5, "m", "Half a cone's base.")
           .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and the cones.", true)
-          .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.", true)
+          .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.",
+                  true)
           .number("lead", &C::lead, 0.5, 20, "m", "The path is rejoined this far before and after the turn.", true)
-          .number("transition_length", &C::transition_length, 0.1, 20, "m", "Turn-in and turn-out clothoid length.", true)
-          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 10, "m", "The joins with the path are rounded over about this.", true)
-          .number("v_max", &C::v_max, 0.5, 60, "m/s", "A shaped turn, entry to rejoin, is driven at most this fast (no steering left to correct with).", true);
+          .number("transition_length", &C::transition_length, 0.1, 20, "m", "Turn-in and turn-out clothoid length.",
+                  true)
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 10, "m",
+                  "The joins with the path are rounded over about this.", true)
+          .number("v_max", &C::v_max, 0.5, 60, "m/s",
+                  "A shaped turn, entry to rejoin, is driven at most this fast (no steering left to correct with).",
+                  true);
   return s;
 }
 
@@ -83,14 +104,19 @@ const ConfigSection<FollowerConfig>& follower_section() {
           .number("lqr_q_heading", &C::lqr_q_heading, 0, 1e4, "1/rad²", "LQR weight of heading error.", true)
           .number("lqr_r", &C::lqr_r, 1e-4, 1e4, "1/rad²", "LQR weight of steering.", true)
           .number("lqr_dt", &C::lqr_dt, 0.005, 0.5, "s", "LQR discretisation step.")
-          .number("lqr_sideslip_gain", &C::lqr_sideslip_gain, 0, 0.1, "rad·s²/m", "LQR: rear slip angle per lateral acceleration, taken off the heading error.", true)
+          .number("lqr_sideslip_gain", &C::lqr_sideslip_gain, 0, 0.1, "rad·s²/m",
+                  "LQR: rear slip angle per lateral acceleration, taken off the heading error.", true)
           .number("lqr_preview", &C::lqr_preview, 0, 2, "s", "LQR curvature feed-forward taken this far ahead.", true)
           .number("speed_preview", &C::speed_preview, 0, 3, "s", "Target speed taken this far ahead on the path.", true)
-          .number("speed_lead", &C::speed_lead, 0, 3, "s", "Target speed leads by the path's acceleration times this (1 / VCU speed-loop gain).", true)
+          .number("speed_lead", &C::speed_lead, 0, 3, "s",
+                  "Target speed leads by the path's acceleration times this (1 / VCU speed-loop gain).", true)
           .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s", "The same lead where the path slows down.", true)
-          .number("governor_offset", &C::governor_offset, 0, 5, "m", "Farther off the path (or steering at its limit) the car does not speed up.", true)
-          .number("governor_gain", &C::governor_gain, 0, 20, "m/s/m", "... and slows by this per metre beyond the offset; 0 = off.", true)
-          .number("governor_floor", &C::governor_floor, 0, 10, "m/s", "... but never asks for less than this (a crawl back to the line).", true)
+          .number("governor_offset", &C::governor_offset, 0, 5, "m",
+                  "Farther off the path (or steering at its limit) the car does not speed up.", true)
+          .number("governor_gain", &C::governor_gain, 0, 20, "m/s/m",
+                  "... and slows by this per metre beyond the offset; 0 = off.", true)
+          .number("governor_floor", &C::governor_floor, 0, 10, "m/s",
+                  "... but never asks for less than this (a crawl back to the line).", true)
           .number("search_window", &C::search_window, 1, 100, "m", "Projection window around the last foot point.")
           .number("max_offset", &C::max_offset, 0.5, 20, "m", "Farther from the path is off path (stop).");
   return s;
@@ -101,17 +127,24 @@ const ConfigSection<SpeedConfig>& speed_section() {
   static const auto s =
       ConfigSection<C>("control.speed")
           .number("mu", &C::mu, 0.1, 3, "", "Tyre-road friction coefficient of the car.", true)
-          .number("mu_margin_realtime", &C::mu_margin_realtime, 0.1, 1, "", "Share of mu when planning on what is seen.", true)
-          .number("mu_margin_known", &C::mu_margin_known, 0.1, 1, "", "Share of mu on a known straight (acceleration, EBS test).", true)
+          .number("mu_margin_realtime", &C::mu_margin_realtime, 0.1, 1, "",
+                  "Share of mu when planning on what is seen.", true)
+          .number("mu_margin_known", &C::mu_margin_known, 0.1, 1, "",
+                  "Share of mu on a known straight (acceleration, EBS test).", true)
           .number("mu_margin_skidpad", &C::mu_margin_skidpad, 0.1, 1, "", "Share of mu on the skid pad.", true)
           .number("a_accel_max", &C::a_accel_max, 0.1, 30, "m/s²", "Traction acceleration limit.", true)
           .number("a_brake_max", &C::a_brake_max, 0.1, 30, "m/s²", "Service brake deceleration limit.", true)
           .number("power_max", &C::power_max, 0, 1e6, "W", "Power at the wheels; 0 = no power limit.")
           .number("mass", &C::mass, 50, 2000, "kg", "Vehicle mass (for the power limit).")
           .number("v_max", &C::v_max, 0.5, 60, "m/s", "Target speed cap.", true)
-          .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).", true)
-          .number("kappa_rate_max", &C::kappa_rate_max, 0, 10, "1/(m·s)", "Fastest curvature change of the steering (rate / wheelbase); 0 = no limit.", true)
-          .boolean("traction_ellipse", &C::traction_ellipse, "Traction shrinks with cornering on an ellipse (rear-wheel drive); false: friction circle capped at a_accel_max.", true);
+          .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).",
+                  true)
+          .number("kappa_rate_max", &C::kappa_rate_max, 0, 10, "1/(m·s)",
+                  "Fastest curvature change of the steering (rate / wheelbase); 0 = no limit.", true)
+          .boolean("traction_ellipse", &C::traction_ellipse,
+                   "Traction shrinks with cornering on an ellipse (rear-wheel drive); false: friction circle capped at "
+                   "a_accel_max.",
+                   true);
   return s;
 }
 
@@ -121,17 +154,30 @@ const ConfigSection<MissionConfig>& mission_section() {
       ConfigSection<C>("control.mission")
           .number("stop_decel", &C::stop_decel, 0.5, 15, "m/s²", "Braking to standstill after the finish.", true)
           .number("stop_distance", &C::stop_distance, 2, 200, "m", "Stop within this after the finish line.")
-          .number("acceleration_length", &C::acceleration_length, 10, 500, "m", "Acceleration: start line to finish line.")
-          .number("acceleration_stop_distance", &C::acceleration_stop_distance, 5, 500, "m", "Acceleration: stop within this after the finish.")
-          .number("acceleration_stop_decel", &C::acceleration_stop_decel, 0.5, 15, "m/s²", "Acceleration: braking to standstill after the finish (hard: a braking zone may be short).", true)
-          .number("lane_end_margin", &C::lane_end_margin, 0.2, 10, "m", "Acceleration and EBS test: room left between the nose and a cone across the straight ahead (the braking zone's closing row).", true)
-          .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m", "Start pose to start line when no timing cones are seen.")
-          .number("open_end_sight", &C::open_end_sight, 0, 50, "m", "Open layout: a plan ending this near with no cone beyond ends the track (0: off).")
-          .number("open_end_min_travel", &C::open_end_min_travel, 0, 1000, "m", "Open layout: driven this far before an end of the track is believed.")
-          .number("open_end_settle", &C::open_end_settle, 0, 10, "s", "Open layout: cone updates unbroken this long before an end of the track is believed (the map refills after a sensor gap).")
-          .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m", "EBS test: ask for Emergency this far past the start line.")
+          .number("acceleration_length", &C::acceleration_length, 10, 500, "m",
+                  "Acceleration: start line to finish line.")
+          .number("acceleration_stop_distance", &C::acceleration_stop_distance, 5, 500, "m",
+                  "Acceleration: stop within this after the finish.")
+          .number("acceleration_stop_decel", &C::acceleration_stop_decel, 0.5, 15, "m/s²",
+                  "Acceleration: braking to standstill after the finish (hard: a braking zone may be short).", true)
+          .number("lane_end_margin", &C::lane_end_margin, 0.2, 10, "m",
+                  "Acceleration and EBS test: room left between the nose and a cone across the straight ahead (the "
+                  "braking zone's closing row).",
+                  true)
+          .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m",
+                  "Start pose to start line when no timing cones are seen.")
+          .number("open_end_sight", &C::open_end_sight, 0, 50, "m",
+                  "Open layout: a plan ending this near with no cone beyond ends the track (0: off).")
+          .number("open_end_min_travel", &C::open_end_min_travel, 0, 1000, "m",
+                  "Open layout: driven this far before an end of the track is believed.")
+          .number("open_end_settle", &C::open_end_settle, 0, 10, "s",
+                  "Open layout: cone updates unbroken this long before an end of the track is believed (the map "
+                  "refills after a sensor gap).")
+          .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m",
+                  "EBS test: ask for Emergency this far past the start line.")
           .number("skidpad_exit_length", &C::skidpad_exit_length, 5, 100, "m", "Skid pad exit lane past the crossing.")
-          .number("skidpad_entry_speed", &C::skidpad_entry_speed, 0.5, 20, "m/s", "Skid pad speed until the circles are fitted.", true)
+          .number("skidpad_entry_speed", &C::skidpad_entry_speed, 0.5, 20, "m/s",
+                  "Skid pad speed until the circles are fitted.", true)
           .number("inspection_duration", &C::inspection_duration, 1, 600, "s", "Inspection steering sweep duration.")
           .number("inspection_speed", &C::inspection_speed, 0, 5, "m/s", "Inspection wheel speed.")
           .number("inspection_period", &C::inspection_period, 0.5, 30, "s", "Inspection sweep period.")
@@ -144,15 +190,18 @@ const ConfigSection<SupervisorConfig>& supervisor_section() {
   static const auto s =
       ConfigSection<C>("control.supervisor")
           .number("lidar_timeout", &C::lidar_timeout, 0.05, 10, "s", "No cone detections this long: slow down.")
-          .number("lidar_stop_timeout", &C::lidar_stop_timeout, 0.1, 30, "s", "No cone detections this long: controlled stop.")
+          .number("lidar_stop_timeout", &C::lidar_stop_timeout, 0.1, 30, "s",
+                  "No cone detections this long: controlled stop.")
           .number("pose_timeout", &C::pose_timeout, 0.02, 5, "s", "No pose this long: controlled stop.")
           .number("vcu_timeout", &C::vcu_timeout, 0.02, 5, "s", "No VCU status this long: controlled stop.")
           .number("plan_timeout", &C::plan_timeout, 0.05, 10, "s", "No usable plan this long: controlled stop.")
           .number("degraded_speed", &C::degraded_speed, 0, 20, "m/s", "Speed cap while the LiDAR is stale.", true)
           .number("standstill_speed", &C::standstill_speed, 0.01, 2, "m/s", "Below this the car stands.")
           .number("standstill_time", &C::standstill_time, 0, 10, "s", "Standing this long counts as standstill.")
-          .number("stop_timeout", &C::stop_timeout, 1, 60, "s", "A controlled stop longer than this asks for Emergency.")
-          .boolean("emergency_after_fault_stop", &C::emergency_after_fault_stop, "Ask for Emergency at standstill after a fault stop.")
+          .number("stop_timeout", &C::stop_timeout, 1, 60, "s",
+                  "A controlled stop longer than this asks for Emergency.")
+          .boolean("emergency_after_fault_stop", &C::emergency_after_fault_stop,
+                   "Ask for Emergency at standstill after a fault stop.")
           .integer("max_faults", &C::max_faults, 1, 100000, "", "Faults kept in the log.");
   return s;
 }
@@ -174,15 +223,22 @@ const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
           .number("sample_spacing", &C::sample_spacing, 0.05, 5, "m", "Spacing of recorded lap-1 poses.")
           .integer("max_samples", &C::max_samples, 100, 1000000, "", "Recorded poses kept at most.")
           .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the lap path.")
-          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 100, "m", "Ripples of the driven line shorter than this are smoothed out.")
-          .number("max_closure_gap", &C::max_closure_gap, 0.5, 50, "m", "The lap must come back this close to its start.")
+          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 100, "m",
+                  "Ripples of the driven line shorter than this are smoothed out.")
+          .number("max_closure_gap", &C::max_closure_gap, 0.5, 50, "m",
+                  "The lap must come back this close to its start.")
           .number("min_lap_length", &C::min_lap_length, 1, 10000, "m", "Shorter recorded laps are rejected.")
           .boolean("recentre", &C::recentre, "Pull the lap onto the middle of the mapped cones.")
-          .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m", "Cones this close along and across count for recentring.")
-          .number("max_centre_offset", &C::max_centre_offset, 0, 5, "m", "The recentred lap, smoothed, stays this close to the centre line; 0 = unbounded.")
-          .string("line", &C::line, {"centre", "min_curvature"}, "Lap 2's line: the centre line, or the flattest line within the mapped boundaries.")
-          .number("racing_keep", &C::racing_keep, 0.5, 5, "m", "min_curvature: the line stays this far from each boundary's cone line.")
-          .number("early_build_distance", &C::early_build_distance, 0, 50, "m", "Lap 1's path is built and taken this far before the line (0: at the line).");
+          .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m",
+                  "Cones this close along and across count for recentring.")
+          .number("max_centre_offset", &C::max_centre_offset, 0, 5, "m",
+                  "The recentred lap, smoothed, stays this close to the centre line; 0 = unbounded.")
+          .string("line", &C::line, {"centre", "min_curvature"},
+                  "Lap 2's line: the centre line, or the flattest line within the mapped boundaries.")
+          .number("racing_keep", &C::racing_keep, 0.5, 5, "m",
+                  "min_curvature: the line stays this far from each boundary's cone line.")
+          .number("early_build_distance", &C::early_build_distance, 0, 50, "m",
+                  "Lap 1's path is built and taken this far before the line (0: at the line).");
   return s;
 }
 
@@ -190,22 +246,26 @@ const ConfigSection<Lap2Config>& lap2_section() {
   using C = Lap2Config;
   static const auto s =
       ConfigSection<C>("control.lap2")
-          .number("mu_margin", &C::mu_margin, 0.1, 1, "", "Share of mu of the lap-2 speed profile (recorded line).", true)
+          .number("mu_margin", &C::mu_margin, 0.1, 1, "", "Share of mu of the lap-2 speed profile (recorded line).",
+                  true)
           .number("lqr_q_lateral", &C::lqr_q_lateral, 0, 1e4, "1/m²", "Lap-2 LQR weight of lateral error.", true)
           .number("lqr_q_heading", &C::lqr_q_heading, 0, 1e4, "1/rad²", "Lap-2 LQR weight of heading error.", true)
           .number("lqr_r", &C::lqr_r, 1e-4, 1e4, "1/rad²", "Lap-2 LQR weight of steering.", true)
           .number("speed_preview", &C::speed_preview, 0, 3, "s", "Lap 2: target speed taken this far ahead.", true)
-          .number("speed_lead", &C::speed_lead, 0, 3, "s", "Lap 2: target speed leads by the path's acceleration times this.", true)
-          .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s", "Lap 2: the same lead where the path slows down.", true);
+          .number("speed_lead", &C::speed_lead, 0, 3, "s",
+                  "Lap 2: target speed leads by the path's acceleration times this.", true)
+          .number("speed_lead_brake", &C::speed_lead_brake, 0, 3, "s",
+                  "Lap 2: the same lead where the path slows down.", true);
   return s;
 }
 
 const ConfigSection<AutopilotConfig>& autopilot_section() {
   using C = AutopilotConfig;
-  static const auto s =
-      ConfigSection<C>("control")
-          .number("replan_period", &C::replan_period, 0.01, 5, "s", "The real-time plan is refreshed at least this often.")
-          .number("gnss_timeout", &C::gnss_timeout, 0.05, 10, "s", "No good GNSS fix this long: lap 2 falls back to real-time planning.");
+  static const auto s = ConfigSection<C>("control")
+                            .number("replan_period", &C::replan_period, 0.01, 5, "s",
+                                    "The real-time plan is refreshed at least this often.")
+                            .number("gnss_timeout", &C::gnss_timeout, 0.05, 10, "s",
+                                    "No good GNSS fix this long: lap 2 falls back to real-time planning.");
   return s;
 }
 

@@ -9,16 +9,16 @@
 
 namespace fsd {
 
-const ConfigSection<MidlinePlannerConfig>& planner_section();        // control.planner
-const ConfigSection<TightTurnConfig>& tight_turn_section();          // control.tight_turn
-const ConfigSection<FollowerConfig>& follower_section();             // control.follower
-const ConfigSection<SpeedConfig>& speed_section();                   // control.speed
-const ConfigSection<MissionConfig>& mission_section();               // control.mission (laps: run.laps)
-const ConfigSection<SupervisorConfig>& supervisor_section();         // control.supervisor
-const ConfigSection<LapCounterConfig>& lap_counter_section();        // control.laps
-const ConfigSection<RecordedTrajectoryConfig>& trajectory_section(); // control.trajectory
-const ConfigSection<Lap2Config>& lap2_section();                     // control.lap2
-const ConfigSection<AutopilotConfig>& autopilot_section();           // control (loop timing)
+const ConfigSection<MidlinePlannerConfig>& planner_section();         // control.planner
+const ConfigSection<TightTurnConfig>& tight_turn_section();           // control.tight_turn
+const ConfigSection<FollowerConfig>& follower_section();              // control.follower
+const ConfigSection<SpeedConfig>& speed_section();                    // control.speed
+const ConfigSection<MissionConfig>& mission_section();                // control.mission (laps: run.laps)
+const ConfigSection<SupervisorConfig>& supervisor_section();          // control.supervisor
+const ConfigSection<LapCounterConfig>& lap_counter_section();         // control.laps
+const ConfigSection<RecordedTrajectoryConfig>& trajectory_section();  // control.trajectory
+const ConfigSection<Lap2Config>& lap2_section();                      // control.lap2
+const ConfigSection<AutopilotConfig>& autopilot_section();            // control (loop timing)
 
 // Every control section into a schema, and all of them back into one AutopilotConfig.
 void describe_control(ConfigSchema& schema);

@@ -14,9 +14,12 @@ std::optional<FollowerType> follower_type_from_string(const std::string& s) {
 
 std::string to_string(FollowerType t) {
   switch (t) {
-    case FollowerType::PurePursuit: return "pure_pursuit";
-    case FollowerType::Stanley: return "stanley";
-    case FollowerType::Lqr: return "lqr";
+    case FollowerType::PurePursuit:
+      return "pure_pursuit";
+    case FollowerType::Stanley:
+      return "stanley";
+    case FollowerType::Lqr:
+      return "lqr";
   }
   return "pure_pursuit";
 }
@@ -61,10 +64,9 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
   const double delta_now = std::isfinite(state.steering) ? state.steering : 0.0;
   const Pose2 pose = predict_bicycle(pose0, v, delta_now, config_.wheelbase, std::max(0.0, config_.latency));
 
-  const bool same_path = hint_ && hint_->stamp == path.stamp && hint_->size == path.points.size() &&
-                         hint_->length == path.length();
-  const auto proj = same_path ? project(path, pose.position(), hint_->s, config_.search_window,
-                                        config_.search_window)
+  const bool same_path =
+      hint_ && hint_->stamp == path.stamp && hint_->size == path.points.size() && hint_->length == path.length();
+  const auto proj = same_path ? project(path, pose.position(), hint_->s, config_.search_window, config_.search_window)
                               : project(path, pose.position());
   if (!proj) return r;
   hint_ = Hint{path.stamp, path.points.size(), path.length(), proj->s};
@@ -76,9 +78,15 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
 
   double delta = 0;
   switch (type_) {
-    case FollowerType::PurePursuit: delta = pure_pursuit(path, pose, v, proj->s, r.target); break;
-    case FollowerType::Stanley: delta = stanley(path, pose, v, proj->s); break;
-    case FollowerType::Lqr: delta = lqr(path, *proj, pose, v); break;
+    case FollowerType::PurePursuit:
+      delta = pure_pursuit(path, pose, v, proj->s, r.target);
+      break;
+    case FollowerType::Stanley:
+      delta = stanley(path, pose, v, proj->s);
+      break;
+    case FollowerType::Lqr:
+      delta = lqr(path, *proj, pose, v);
+      break;
   }
   if (!std::isfinite(delta)) delta = 0;
   r.command.steering = std::clamp(delta, -config_.max_steer, config_.max_steer);

@@ -16,38 +16,38 @@ std::optional<FollowerType> follower_type_from_string(const std::string& s);
 std::string to_string(FollowerType t);
 
 struct FollowerConfig {
-  std::string type = "lqr";            // pure_pursuit | stanley | lqr
-  double wheelbase = 1.53;             // m, rear axle to front axle
-  double max_steer = 0.5;              // rad, front wheel angle limit (≈ 29°); must match the car
-  double latency = 0.06;               // s: sensing-to-wheel delay the pose is predicted over
+  std::string type = "lqr";  // pure_pursuit | stanley | lqr
+  double wheelbase = 1.53;   // m, rear axle to front axle
+  double max_steer = 0.5;    // rad, front wheel angle limit (≈ 29°); must match the car
+  double latency = 0.06;     // s: sensing-to-wheel delay the pose is predicted over
   // Pure pursuit: look-ahead distance k·v + L0 along the path, clamped.
-  double pp_gain = 0.2;                // s
-  double pp_min = 2.5;                 // m (L0 and the floor)
-  double pp_max = 12.0;                // m
+  double pp_gain = 0.2;  // s
+  double pp_min = 2.5;   // m (L0 and the floor)
+  double pp_max = 12.0;  // m
   // Stanley: δ = ψe − atan(k·e / (v_soft + v)), heading and lateral error at the front axle.
-  double stanley_gain = 2.0;           // 1/s
-  double stanley_softening = 1.0;      // m/s
+  double stanley_gain = 2.0;       // 1/s
+  double stanley_softening = 1.0;  // m/s
   // Kinematic LQR on (lateral error, heading error) with curvature feed-forward.
-  double lqr_q_lateral = 1.0;          // 1/m²
-  double lqr_q_heading = 1.0;          // 1/rad²
-  double lqr_r = 3.0;                  // 1/rad²
-  double lqr_dt = 0.05;                // s: discretisation of the error model
-  double lqr_sideslip_gain = 0.008;    // rad per m/s²: rear slip angle per lateral acceleration (virtual car: 0.004
-                                       // from its tyres' linear stiffness, 0.008 measured nearer the grip limit)
-  double lqr_preview = 0.1;            // s: curvature feed-forward taken this far ahead (steering actuator lag)
-  double speed_preview = 0.4;          // s: the target speed is the path's speed this far ahead
-  double speed_lead = 0.0;             // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)
-  double speed_lead_brake = 0.0;       // s: the same where the path slows down (braking already at the friction
-                                       // circle's limit; a lead there over-brakes into the corner entry)
+  double lqr_q_lateral = 1.0;        // 1/m²
+  double lqr_q_heading = 1.0;        // 1/rad²
+  double lqr_r = 3.0;                // 1/rad²
+  double lqr_dt = 0.05;              // s: discretisation of the error model
+  double lqr_sideslip_gain = 0.008;  // rad per m/s²: rear slip angle per lateral acceleration (virtual car: 0.004
+                                     // from its tyres' linear stiffness, 0.008 measured nearer the grip limit)
+  double lqr_preview = 0.1;          // s: curvature feed-forward taken this far ahead (steering actuator lag)
+  double speed_preview = 0.4;        // s: the target speed is the path's speed this far ahead
+  double speed_lead = 0.0;           // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)
+  double speed_lead_brake = 0.0;     // s: the same where the path slows down (braking already at the friction
+                                     // circle's limit; a lead there over-brakes into the corner entry)
   // Tracking governor: farther than governor_offset from the path, or with the steering at its limit, the
   // target speed is held at or below the car's speed, less governor_gain per metre beyond the offset (but not
   // below governor_floor, so that a car standing off the line still drives back onto it). A car
   // pushed wide at the grip limit only gets back by slowing down; accelerating there spins or leaves the track.
-  double governor_offset = 0.5;        // m (0.5 m is the largest allowed cross-track error on lap 2)
-  double governor_gain = 3.0;          // m/s per m beyond the offset; 0 = governor off
-  double governor_floor = 2.0;         // m/s: the governor never asks for less
-  double search_window = 15.0;         // m: projection window around the last foot point on the same path
-  double max_offset = 4.0;             // m: farther from the path is "off path" (result not ok)
+  double governor_offset = 0.5;  // m (0.5 m is the largest allowed cross-track error on lap 2)
+  double governor_gain = 3.0;    // m/s per m beyond the offset; 0 = governor off
+  double governor_floor = 2.0;   // m/s: the governor never asks for less
+  double search_window = 15.0;   // m: projection window around the last foot point on the same path
+  double max_offset = 4.0;       // m: farther from the path is "off path" (result not ok)
 };
 
 struct FollowResult {

@@ -15,8 +15,8 @@ TimingLine line_across(const Pose2& pose, double half_width) {
 }
 
 std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones, const Pose2& start,
-                                                 const ColourConvention& convention, int index,
-                                                 double search_behind, double search_ahead) {
+                                                 const ColourConvention& convention, int index, double search_behind,
+                                                 double search_ahead) {
   struct Local {
     Vec2 map, local;
   };

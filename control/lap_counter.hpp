@@ -30,15 +30,15 @@ std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones,
 TimingLine line_across(const Pose2& pose, double half_width = 5.0);
 
 struct LapCounterConfig {
-  double hysteresis = 10.0;    // m: the car must be this far from the line before the next crossing counts
-  double min_lap_time = 5.0;   // s: crossings closer in time than this are ignored
-  double line_margin = 1.5;    // m: the line's ends are extended by this (cones are on the boundary)
+  double hysteresis = 10.0;   // m: the car must be this far from the line before the next crossing counts
+  double min_lap_time = 5.0;  // s: crossings closer in time than this are ignored
+  double line_margin = 1.5;   // m: the line's ends are extended by this (cones are on the boundary)
 };
 
 struct LapEvent {
-  int lap = 0;         // number of the lap just completed (1 = first)
-  Stamp t = 0;         // time of the crossing (interpolated)
-  double time_s = 0;   // lap time, crossing to crossing (or from the start when it began past the line)
+  int lap = 0;        // number of the lap just completed (1 = first)
+  Stamp t = 0;        // time of the crossing (interpolated)
+  double time_s = 0;  // lap time, crossing to crossing (or from the start when it began past the line)
 };
 
 class LapCounter {
@@ -52,7 +52,7 @@ class LapCounter {
   // lap is timed from `t` and ends at the first crossing.
   void start_timing_at(Stamp t);
 
-  bool timing() const { return lap_start_.has_value(); }     // a lap is being timed
+  bool timing() const { return lap_start_.has_value(); }  // a lap is being timed
   int laps_completed() const { return static_cast<int>(lap_times_.size()); }
   const std::vector<double>& lap_times() const { return lap_times_; }
   std::optional<Stamp> last_crossing() const { return last_crossing_; }

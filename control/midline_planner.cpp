@@ -104,7 +104,8 @@ class Walker {
     }
     finals_.insert(finals_.end(), beam_.begin(), beam_.end());
     if (finals_.empty()) return {};
-    const int best = *std::min_element(finals_.begin(), finals_.end(), [&](int a, int b) { return score(a) < score(b); });
+    const int best =
+        *std::min_element(finals_.begin(), finals_.end(), [&](int a, int b) { return score(a) < score(b); });
     // Even the best walk may be implausible (the track ends, or only the next stretch of track is in view).
     if (score(best) > c_.max_score) return {};
     Walk out;
@@ -413,7 +414,8 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
     std::set<int> against;
     for (const auto& [cone, side] : geometric.passed)
       if (local[static_cast<std::size_t>(cone)].side * side == -1) against.insert(cone);
-    const bool better = !walk.mids.empty() && geometric.geometric_score + config_.colour_check_margin < walk.geometric_score;
+    const bool better =
+        !walk.mids.empty() && geometric.geometric_score + config_.colour_check_margin < walk.geometric_score;
     if (!geometric.mids.empty() && static_cast<int>(against.size()) <= config_.max_wrong_colours && better) {
       walk = std::move(geometric);
       result.ignored_colours = true;
@@ -451,7 +453,8 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
   Path smooth = smooth_path(raw, config_.ds, config_.smoothing_wavelength);
   if (config_.keep_clear) {
     const auto& tt = config_.tight_turn;
-    keep_clear_of_cones(smooth, positions, tt.body_half_width + tt.cone_radius + tt.clearance, config_.keep_clear_window);
+    keep_clear_of_cones(smooth, positions, tt.body_half_width + tt.cone_radius + tt.clearance,
+                        config_.keep_clear_window);
   }
   std::vector<SpeedZone> zones;
   if (auto turn = shape_tight_turn(smooth, positions, config_.tight_turn)) {

@@ -21,55 +21,55 @@
 namespace fsd {
 
 struct MidlinePlannerConfig {
-  double range = 22.0;            // m: cones farther from the car are ignored
-  double behind = 3.0;            // m: cones farther than this behind the rear axle are ignored
-  int max_cones = 160;            // nearest cones kept (bounds the work per plan)
-  double merge_distance = 0.25;   // m: cones closer than this are one cone
-  bool use_colours = true;        // false: colour-blind (every cone's side from geometry only)
-  double width_min = 2.5;         // m: shortest crossing edge
-  double width_max = 6.5;         // m: longest crossing edge unless its colours say left–right
-  double crossing_max = 7.0;      // m: longest crossing edge between a known left and a known right cone
-  double nominal_width = 3.5;     // m: expected track width before the walk has measured it
-  double start_radius = 7.0;      // m: the first crossing edge lies within this distance ahead of the car
-  double start_angle_deg = 70.0;  // ... and within this bearing of the heading
-  double max_turn_deg = 80.0;     // largest heading change from one midpoint to the next
-  double min_crossing_cos = 0.5;  // a crossing edge's width across the travel direction over its length
-  double horizon = 30.0;          // m: walks stop growing at this length
-  int beam_width = 16;            // partial walks kept per step
-  int max_depth = 80;             // steps per walk
-  double w_turn = 1.0;            // cost per rad² of heading change
-  double w_width = 0.5;           // cost per squared relative width change
-  double w_unknown = 0.05;        // cost per cone of unknown side crossed
-  double w_colour_conflict = 3.0; // cost per cone whose colour says the other side
-  double w_boundary_bend = 4.0;   // cost per rad² of boundary bend beyond the free bend
+  double range = 22.0;                   // m: cones farther from the car are ignored
+  double behind = 3.0;                   // m: cones farther than this behind the rear axle are ignored
+  int max_cones = 160;                   // nearest cones kept (bounds the work per plan)
+  double merge_distance = 0.25;          // m: cones closer than this are one cone
+  bool use_colours = true;               // false: colour-blind (every cone's side from geometry only)
+  double width_min = 2.5;                // m: shortest crossing edge
+  double width_max = 6.5;                // m: longest crossing edge unless its colours say left–right
+  double crossing_max = 7.0;             // m: longest crossing edge between a known left and a known right cone
+  double nominal_width = 3.5;            // m: expected track width before the walk has measured it
+  double start_radius = 7.0;             // m: the first crossing edge lies within this distance ahead of the car
+  double start_angle_deg = 70.0;         // ... and within this bearing of the heading
+  double max_turn_deg = 80.0;            // largest heading change from one midpoint to the next
+  double min_crossing_cos = 0.5;         // a crossing edge's width across the travel direction over its length
+  double horizon = 30.0;                 // m: walks stop growing at this length
+  int beam_width = 16;                   // partial walks kept per step
+  int max_depth = 80;                    // steps per walk
+  double w_turn = 1.0;                   // cost per rad² of heading change
+  double w_width = 0.5;                  // cost per squared relative width change
+  double w_unknown = 0.05;               // cost per cone of unknown side crossed
+  double w_colour_conflict = 3.0;        // cost per cone whose colour says the other side
+  double w_boundary_bend = 4.0;          // cost per rad² of boundary bend beyond the free bend
   double boundary_free_bend_deg = 60.0;  // bend of a boundary from one cone to the next that costs nothing
-  double w_boundary_gap = 0.1;    // cost per m² of boundary cone spacing beyond boundary_spacing_max
-  double boundary_spacing_max = 5.5;  // m: FS boundaries have cones at most 5 m apart
-  double w_length = 0.2;          // reward per metre of walk
-  double w_start = 0.05;          // cost per metre from the car to the first midpoint
-  double max_score = 1.0;         // a best walk scoring worse (cost − length reward) is no plan
-  double colour_check_margin = 1.0;  // a colour-blind walk this much better in geometry wins; < 0: no check
-  int max_wrong_colours = 2;      // ... if it passes at most this many cones against their colour
-  double ds = 0.25;               // m: spacing of the output path
-  double smoothing_wavelength = 5.0;  // m: ripples shorter than this are smoothed out
-  double min_length = 3.0;        // m: shorter walks are a failed plan
-  double fallback_below = 8.0;    // m: a walk ending nearer than this tries the single-boundary fallback
-  double end_speed = 0.0;         // m/s: speed allowed at the end of the planned horizon
-  double time_budget = 0.025;     // s: the caller counts a plan slower than this as late (a warning)
-  TightTurnConfig tight_turn;     // the line through hairpins and other turns at the steering lock
-  bool keep_clear = true;         // push the path off cones nearer than the body's half width (tight_turn's body)
-  double keep_clear_window = 3.0; // m: a push fades out over this either side of the cone
+  double w_boundary_gap = 0.1;           // cost per m² of boundary cone spacing beyond boundary_spacing_max
+  double boundary_spacing_max = 5.5;     // m: FS boundaries have cones at most 5 m apart
+  double w_length = 0.2;                 // reward per metre of walk
+  double w_start = 0.05;                 // cost per metre from the car to the first midpoint
+  double max_score = 1.0;                // a best walk scoring worse (cost − length reward) is no plan
+  double colour_check_margin = 1.0;      // a colour-blind walk this much better in geometry wins; < 0: no check
+  int max_wrong_colours = 2;             // ... if it passes at most this many cones against their colour
+  double ds = 0.25;                      // m: spacing of the output path
+  double smoothing_wavelength = 5.0;     // m: ripples shorter than this are smoothed out
+  double min_length = 3.0;               // m: shorter walks are a failed plan
+  double fallback_below = 8.0;           // m: a walk ending nearer than this tries the single-boundary fallback
+  double end_speed = 0.0;                // m/s: speed allowed at the end of the planned horizon
+  double time_budget = 0.025;            // s: the caller counts a plan slower than this as late (a warning)
+  TightTurnConfig tight_turn;            // the line through hairpins and other turns at the steering lock
+  bool keep_clear = true;          // push the path off cones nearer than the body's half width (tight_turn's body)
+  double keep_clear_window = 3.0;  // m: a push fades out over this either side of the cone
 };
 
 struct PlanResult {
-  Path path;                      // empty unless ok
+  Path path;  // empty unless ok
   bool ok = false;
-  std::string reason;             // why the plan failed, empty when ok
-  bool single_boundary = false;   // planned half a width inside one boundary (the other one is missing)
-  bool ignored_colours = false;   // colours contradicted the geometry; planned colour-blind
+  std::string reason;            // why the plan failed, empty when ok
+  bool single_boundary = false;  // planned half a width inside one boundary (the other one is missing)
+  bool ignored_colours = false;  // colours contradicted the geometry; planned colour-blind
   int cones_used = 0;
   int triangles = 0;
-  std::vector<Vec2> midpoints;    // the chosen crossing-edge midpoints, map frame (for display)
+  std::vector<Vec2> midpoints;          // the chosen crossing-edge midpoints, map frame (for display)
   std::optional<TightTurn> tight_turn;  // the turn whose line was shaped to the car, map frame
 };
 

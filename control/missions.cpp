@@ -26,8 +26,7 @@ SpeedLimits SpeedConfig::known() const {
   return l;
 }
 
-std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Pose2& start, double length,
-                                        double ds) {
+std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Pose2& start, double length, double ds) {
   // The lane from the start heading first, then from its own fit: the start pose may be a few degrees off the
   // lane, which a long lane turns into metres.
   Vec2 origin = start.position(), dir(std::cos(start.yaw), std::sin(start.yaw));

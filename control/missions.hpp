@@ -31,33 +31,36 @@ struct SpeedConfig {
 };
 
 struct MissionConfig {
-  int laps = 2;                          // trackdrive laps (FSAC 2017: 2, FSG: 10); autocross is 1
-  double stop_decel = 4.0;               // m/s²: braking to standstill after the finish
-  double stop_distance = 25.0;           // m: stop within this after the finish line (trackdrive, skid pad)
-  double acceleration_length = 75.0;     // m: start line to finish line
+  int laps = 2;                              // trackdrive laps (FSAC 2017: 2, FSG: 10); autocross is 1
+  double stop_decel = 4.0;                   // m/s²: braking to standstill after the finish
+  double stop_distance = 25.0;               // m: stop within this after the finish line (trackdrive, skid pad)
+  double acceleration_length = 75.0;         // m: start line to finish line
   double acceleration_stop_distance = 70.0;  // m: stop within this after the finish (the braking zone is 100 m)
   double acceleration_stop_decel = 7.0;      // m/s²: braking after the acceleration finish (zones can be short)
   double lane_end_margin = 1.5;              // m left between the nose and a cone across the straight ahead
   double acceleration_start_offset = 0.0;    // m from the start pose to the start line when no timing cones are seen
-  double open_end_sight = 12.0;          // m: a plan ending this near with no cone beyond is an open layout's end
-  double open_end_min_travel = 20.0;     // m driven before an end of the track is believed
-  double open_end_settle = 0.5;          // s of unbroken cone updates before an end of the track is believed
-  double ebs_trigger_distance = 40.0;    // m past the start line where the EBS test asks for Emergency
-  double skidpad_exit_length = 25.0;     // m of exit lane past the crossing
-  double skidpad_entry_speed = 4.0;      // m/s until the circles are fitted
-  double inspection_duration = 25.0;     // s of steering sweep
-  double inspection_speed = 1.0;         // m/s (wheels turning)
-  double inspection_period = 4.0;        // s per steering sweep
-  double inspection_amplitude = 0.8;     // share of the steering limit swept
+  double open_end_sight = 12.0;              // m: a plan ending this near with no cone beyond is an open layout's end
+  double open_end_min_travel = 20.0;         // m driven before an end of the track is believed
+  double open_end_settle = 0.5;              // s of unbroken cone updates before an end of the track is believed
+  double ebs_trigger_distance = 40.0;        // m past the start line where the EBS test asks for Emergency
+  double skidpad_exit_length = 25.0;         // m of exit lane past the crossing
+  double skidpad_entry_speed = 4.0;          // m/s until the circles are fitted
+  double inspection_duration = 25.0;         // s of steering sweep
+  double inspection_speed = 1.0;             // m/s (wheels turning)
+  double inspection_period = 4.0;            // s per steering sweep
+  double inspection_amplitude = 0.8;         // share of the steering limit swept
 };
 
 // The laps a mission times, as the timekeeper counts line crossings: trackdrive `trackdrive_laps`, skid pad 4
 // circles, every other mission one run.
 inline int timed_laps(Mission mission, int trackdrive_laps) {
   switch (mission) {
-    case Mission::Trackdrive: return trackdrive_laps;
-    case Mission::Skidpad: return 4;
-    default: return 1;
+    case Mission::Trackdrive:
+      return trackdrive_laps;
+    case Mission::Skidpad:
+      return 4;
+    default:
+      return 1;
   }
 }
 

@@ -159,8 +159,7 @@ std::optional<PathProjection> project(const Path& path, const Vec2& point) {
   return best;
 }
 
-std::optional<PathProjection> project(const Path& path, const Vec2& point, double s_hint, double back,
-                                      double ahead) {
+std::optional<PathProjection> project(const Path& path, const Vec2& point, double s_hint, double back, double ahead) {
   const std::size_t segs = segment_count(path);
   if (segs == 0) return std::nullopt;
   const double len = path.length();
@@ -186,9 +185,12 @@ std::optional<PathProjection> project(const Path& path, const Vec2& point, doubl
     const double seg = segment_end_s(path, i) - pts[i].s;
     covered += seg;
     if (covered >= s1 - s0) break;
-    if (i + 1 < segs) ++i;
-    else if (path.closed) i = 0;
-    else break;
+    if (i + 1 < segs)
+      ++i;
+    else if (path.closed)
+      i = 0;
+    else
+      break;
   }
   return best;
 }

@@ -19,9 +19,9 @@ struct PathPoint {
 };
 
 struct Path {
-  Stamp stamp = 0;                // time of the data it was planned from
+  Stamp stamp = 0;  // time of the data it was planned from
   std::vector<PathPoint> points;
-  bool closed = false;            // the last point joins the first (a lap)
+  bool closed = false;  // the last point joins the first (a lap)
 
   bool empty() const { return points.size() < 2; }
   // Total arc length; for a closed path including the closing segment.
@@ -30,13 +30,13 @@ struct Path {
 
 // Where a point lies relative to a path.
 struct PathProjection {
-  double s = 0;             // arc length of the foot point
-  double lateral = 0;       // signed offset of the point from the path, m (left of the path positive)
-  std::size_t index = 0;    // segment start index: the foot lies between points[index] and the next one
-  Vec2 foot = Vec2::Zero(); // closest point on the path
-  double yaw = 0;           // path heading at the foot
-  double kappa = 0;         // path curvature at the foot
-  double v = 0;             // path speed at the foot
+  double s = 0;              // arc length of the foot point
+  double lateral = 0;        // signed offset of the point from the path, m (left of the path positive)
+  std::size_t index = 0;     // segment start index: the foot lies between points[index] and the next one
+  Vec2 foot = Vec2::Zero();  // closest point on the path
+  double yaw = 0;            // path heading at the foot
+  double kappa = 0;          // path curvature at the foot
+  double v = 0;              // path speed at the foot
   double distance() const { return lateral < 0 ? -lateral : lateral; }
 };
 

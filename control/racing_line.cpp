@@ -64,8 +64,7 @@ RacingLineResult minimum_curvature_line(const Path& centre, const std::vector<do
   RacingLineResult r;
   r.path = centre;
   const auto n = static_cast<Eigen::Index>(centre.points.size());
-  if (!centre.closed || n < 8 || room_left.size() != centre.points.size() ||
-      room_right.size() != centre.points.size())
+  if (!centre.closed || n < 8 || room_left.size() != centre.points.size() || room_right.size() != centre.points.size())
     return r;
   const double ds = centre.length() / static_cast<double>(n);
   // The total offset from the centre line, kept inside the room; re-linearised about the moved line a few times.

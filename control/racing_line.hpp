@@ -12,9 +12,9 @@
 namespace fsd {
 
 struct RacingLineResult {
-  Path path;           // the line, at the input's spacing, geometry recomputed; speeds are not kept
-  double max_offset = 0;  // m: the largest |α|
-  bool converged = false; // every ADMM pass met its tolerance (the line is inside the room either way)
+  Path path;               // the line, at the input's spacing, geometry recomputed; speeds are not kept
+  double max_offset = 0;   // m: the largest |α|
+  bool converged = false;  // every ADMM pass met its tolerance (the line is inside the room either way)
 };
 
 // `room_left[i]`, `room_right[i]` (≥ 0): how far point i may move to its left and right. A closed path only;

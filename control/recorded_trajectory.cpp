@@ -18,8 +18,7 @@ void RecordedTrajectory::record(const VehicleState& state) {
   samples_.push_back({state.stamp, p});
 }
 
-double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention,
-                         double reach) {
+double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention, double reach) {
   // Each boundary is the polyline through its cones in their order along the line.
   const Corridor corridor = corridor_along(path, cones, convention, reach);
   const auto& left = corridor.left;

@@ -15,29 +15,29 @@
 namespace fsd {
 
 struct RecordedTrajectoryConfig {
-  double sample_spacing = 0.3;       // m between recorded poses
-  int max_samples = 20000;           // bound on memory (6 km at the default spacing)
-  double ds = 0.25;                  // m, spacing of the lap path
-  double smoothing_wavelength = 12.0; // m: ripples of the driven line shorter than this are smoothed out
-  double max_closure_gap = 6.0;      // m: the recorded lap's end must come back this close to its start
-  double min_lap_length = 30.0;      // m
-  bool recentre = true;              // pull the line to the middle of the mapped cones
-  double recentre_reach = 4.0;       // m: cones this far along and across the line count for its corridor
-  double max_centre_offset = 0.35;   // m: the recentred lap, smoothed, stays this close to the centre line; 0 = free
+  double sample_spacing = 0.3;         // m between recorded poses
+  int max_samples = 20000;             // bound on memory (6 km at the default spacing)
+  double ds = 0.25;                    // m, spacing of the lap path
+  double smoothing_wavelength = 12.0;  // m: ripples of the driven line shorter than this are smoothed out
+  double max_closure_gap = 6.0;        // m: the recorded lap's end must come back this close to its start
+  double min_lap_length = 30.0;        // m
+  bool recentre = true;                // pull the line to the middle of the mapped cones
+  double recentre_reach = 4.0;         // m: cones this far along and across the line count for its corridor
+  double max_centre_offset = 0.35;     // m: the recentred lap, smoothed, stays this close to the centre line; 0 = free
   // "centre": lap 2 on the centre line (what the scorecard's cross-track error measures); "min_curvature": the
   // flattest line within the mapped boundaries, each cone's line kept `racing_keep` from the car's path.
   std::string line = "centre";
-  double racing_keep = 1.2;          // m: half the body (0.7) + a cone's radius (0.12) + what tracking may stray
+  double racing_keep = 1.2;            // m: half the body (0.7) + a cone's radius (0.12) + what tracking may stray
   double early_build_distance = 25.0;  // m: lap 1's path is built and taken this far before the line (0: at it)
-  TightTurnConfig tight_turn;        // turns at the steering lock get the car's line (control.tight_turn), as on lap 1
+  TightTurnConfig tight_turn;  // turns at the steering lock get the car's line (control.tight_turn), as on lap 1
 };
 
 struct TrajectoryResult {
-  std::optional<Path> path;   // closed lap with speeds, or nothing
-  std::string reason;         // why not, when empty
-  double closure_gap = 0;     // m
-  double recentre_rms = 0;    // m, how far recentring moved the line
-  double racing_offset = 0;   // m: the min-curvature line's largest move off the centre line
+  std::optional<Path> path;      // closed lap with speeds, or nothing
+  std::string reason;            // why not, when empty
+  double closure_gap = 0;        // m
+  double recentre_rms = 0;       // m, how far recentring moved the line
+  double racing_offset = 0;      // m: the min-curvature line's largest move off the centre line
   std::vector<SpeedZone> zones;  // the speed caps its profile was computed with (tight turns): kept for re-profiling
 };
 

@@ -61,8 +61,7 @@ std::vector<Vec2> whittaker_smooth(const std::vector<Vec2>& points, bool closed,
   return to_points(p);
 }
 
-std::vector<Vec2> whittaker_smooth_within(const std::vector<Vec2>& points, bool closed, double lambda,
-                                          double radius) {
+std::vector<Vec2> whittaker_smooth_within(const std::vector<Vec2>& points, bool closed, double lambda, double radius) {
   if (too_few(points.size(), closed, lambda)) return points;
   if (!(radius > 0)) return points;
   // ADMM on min |p − c|² + λ|Dp|² subject to z = p, |z_i − c_i| ≤ radius: the p-step is one solve with the

@@ -10,13 +10,13 @@
 namespace fsd {
 
 struct SpeedLimits {
-  double mu = 0.9;            // friction coefficient the profile may use (already including any margin)
-  double g = 9.81;            // m/s²
-  double a_accel_max = 5.0;   // motor traction limit, m/s²
-  double a_brake_max = 8.0;   // service brake limit, m/s²
-  double power_max = 0.0;     // power at the wheels, W; 0 = no power limit
-  double mass = 230.0;        // kg, with driver-less payload; used with power_max only
-  double v_max = 20.0;        // m/s
+  double mu = 0.9;           // friction coefficient the profile may use (already including any margin)
+  double g = 9.81;           // m/s²
+  double a_accel_max = 5.0;  // motor traction limit, m/s²
+  double a_brake_max = 8.0;  // service brake limit, m/s²
+  double power_max = 0.0;    // power at the wheels, W; 0 = no power limit
+  double mass = 230.0;       // kg, with driver-less payload; used with power_max only
+  double v_max = 20.0;       // m/s
   // Fastest change of path curvature the steering can make, 1/(m·s): the steering rate over the wheelbase
   // (δ ≈ L·κ, so δ̇ ≈ L·κ̇; exact at small angles, cautious at large ones). 0 = no limit.
   double kappa_rate_max = 0.0;

@@ -184,8 +184,8 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   const double r_lock = cfg.wheelbase / std::tan(cfg.max_steer) * (1.0 + cfg.lock_margin);
   const double r_in = turn.inner_radius + keep + cfg.body_half_width;
   const double out = turn.outer_radius - keep;
-  const double r_out = out > cfg.body_front ? std::sqrt(out * out - cfg.body_front * cfg.body_front) - cfg.body_half_width
-                                            : 0.0;
+  const double r_out =
+      out > cfg.body_front ? std::sqrt(out * out - cfg.body_front * cfg.body_front) - cfg.body_half_width : 0.0;
   turn.radius = std::max(r_lock, std::min(0.5 * (r_in + r_out), r_out));
 
   // The car cannot step its steering onto the arc: it turns in along a clothoid (curvature rising linearly over
@@ -280,7 +280,8 @@ double sharpest_bend(const Path& path, const TightTurn& turn) {
 }
 
 // Whether the rebuilt stretch keeps the body's half width and a cone's radius off every cone.
-bool clear_of_cones(const Path& path, const TightTurn& turn, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
+bool clear_of_cones(const Path& path, const TightTurn& turn, const std::vector<Vec2>& cones,
+                    const TightTurnConfig& cfg) {
   const double keep = cfg.body_half_width + cfg.cone_radius;
   for (const auto& c : cones)
     for (const auto& q : path.points)
@@ -307,9 +308,18 @@ std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::option
   Path best_path;
   double best_bend = std::numeric_limits<double>::infinity();
   // One side changed first (the bend is usually on one side), then both.
-  static const std::array<std::pair<double, double>, 12> kLeads = {{{1.0, 0.6}, {1.0, 0.3}, {1.0, 1.5}, {1.0, 2.0},
-                                                                    {0.6, 1.0}, {0.3, 1.0}, {1.5, 1.0}, {2.0, 1.0},
-                                                                    {0.6, 0.6}, {1.5, 1.5}, {0.6, 1.5}, {1.5, 0.6}}};
+  static const std::array<std::pair<double, double>, 12> kLeads = {{{1.0, 0.6},
+                                                                    {1.0, 0.3},
+                                                                    {1.0, 1.5},
+                                                                    {1.0, 2.0},
+                                                                    {0.6, 1.0},
+                                                                    {0.3, 1.0},
+                                                                    {1.5, 1.0},
+                                                                    {2.0, 1.0},
+                                                                    {0.6, 0.6},
+                                                                    {1.5, 1.5},
+                                                                    {0.6, 1.5},
+                                                                    {1.5, 0.6}}};
   for (const auto& [in, out] : kLeads) {
     Path trial = path;
     const auto other = shape_segment(trial, seg, cones, cfg, in * cfg.lead, out * cfg.lead);
@@ -367,7 +377,8 @@ std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec
   }
   if (turns.empty()) return turns;
   // Close it again: the last point repeats the first.
-  if (open.points.size() > 2 && (open.points.back().p - open.points.front().p).norm() < 0.5 * ds) open.points.pop_back();
+  if (open.points.size() > 2 && (open.points.back().p - open.points.front().p).norm() < 0.5 * ds)
+    open.points.pop_back();
   open.closed = true;
   compute_geometry(open);
   lap = std::move(open);

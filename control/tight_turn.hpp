@@ -26,14 +26,15 @@ struct TightTurnConfig {
   double clearance = 0.05;       // m: kept between body and cones
   double lock_margin = 0.02;     // the arc's curvature stays this share below the lock's
   double lead = 5.0;             // m: the path is rejoined this far before and after the turn
-  double transition_length = 2.5;  // m: the turn-in and turn-out clothoids (steering rate × speed / wheelbase, and more)
+  double transition_length =
+      2.5;  // m: the turn-in and turn-out clothoids (steering rate × speed / wheelbase, and more)
   double smoothing_wavelength = 1.5;  // m: the joins with the path are rounded over about this
   // At the lock the follower has no steering left to correct with (a car carried wide stays wide), and the rejoin
   // can bend harder than the arc: the shaped stretch is driven at most this fast.
-  double v_max = 5.0;            // m/s
+  double v_max = 5.0;  // m/s
   // Not in the configuration section: the steering's limits, from control.follower.
-  double wheelbase = 1.53;       // m
-  double max_steer = 0.5;        // rad
+  double wheelbase = 1.53;  // m
+  double max_steer = 0.5;   // rad
 };
 
 struct TightTurn {
@@ -50,6 +51,7 @@ struct TightTurn {
 std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& config);
 
 // The same for every tight turn of a closed lap (lap 2's trajectory); returns the turns shaped.
-std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec2>& cones, const TightTurnConfig& config);
+std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec2>& cones,
+                                                const TightTurnConfig& config);
 
 }  // namespace fsd

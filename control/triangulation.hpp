@@ -10,8 +10,8 @@ namespace fsd {
 
 struct Triangulation {
   struct Edge {
-    int a = -1, b = -1;               // vertex indices, a < b
-    std::array<int, 2> tri{-1, -1};   // adjacent triangles; tri[1] = -1 on the hull
+    int a = -1, b = -1;              // vertex indices, a < b
+    std::array<int, 2> tri{-1, -1};  // adjacent triangles; tri[1] = -1 on the hull
     int other(int t) const { return tri[0] == t ? tri[1] : tri[0]; }
   };
   std::vector<std::array<int, 3>> triangles;       // vertex indices, counter-clockwise

@@ -20,14 +20,14 @@ namespace fsd {
 
 struct TrainingSetConfig {
   RenderedScenesConfig scenes;
-  int held_back_every = 5;            // frames (and real crops) k·N − 1 are held back
-  std::filesystem::path real_dir;     // optional: real crops in real_dir/cone and real_dir/not_cone
+  int held_back_every = 5;         // frames (and real crops) k·N − 1 are held back
+  std::filesystem::path real_dir;  // optional: real crops in real_dir/cone and real_dir/not_cone
 };
 
 struct TrainingSet {
-  FeatureSet train, held_back;            // rendered (training also holds the real training crops)
-  FeatureSet real_held_back;              // real crops held back
-  std::size_t real_train = 0;             // real crops trained on (mirrored ones not counted)
+  FeatureSet train, held_back;               // rendered (training also holds the real training crops)
+  FeatureSet real_held_back;                 // real crops held back
+  std::size_t real_train = 0;                // real crops trained on (mirrored ones not counted)
   std::map<std::string, std::size_t> kinds;  // training samples by kind (cone, tyre, ..., real_cone, real_not_cone)
 };
 

@@ -30,7 +30,8 @@ int run_cli(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-') {
     const std::string word = argv[1];
     bool known = false;
-    for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) known = known || sub->get_name() == word;
+    for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; }))
+      known = known || sub->get_name() == word;
     if (!known) {
       std::cerr << "fsd: unknown subcommand '" << word << "' (fsd --help lists them)\n";
       return kExitBadInput;

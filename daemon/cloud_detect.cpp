@@ -43,13 +43,13 @@ nlohmann::ordered_json detection_json(const LidarDetection& d) {
   nlohmann::ordered_json cones = nlohmann::ordered_json::array();
   for (const auto& c : d.detections.cones)
     cones.push_back(nlohmann::ordered_json{{"x", c.position.x()},
-                     {"y", c.position.y()},
-                     {"z", c.position.z()},
-                     {"colour", std::string(to_string(c.colour))},
-                     {"confidence", c.confidence},
-                     {"points", c.points}});
-  return nlohmann::ordered_json{{"cones", cones},
-                                {"ground", nlohmann::ordered_json{{"a", d.ground.a}, {"b", d.ground.b}, {"h", d.ground.h}}}};
+                                           {"y", c.position.y()},
+                                           {"z", c.position.z()},
+                                           {"colour", std::string(to_string(c.colour))},
+                                           {"confidence", c.confidence},
+                                           {"points", c.points}});
+  return nlohmann::ordered_json{
+      {"cones", cones}, {"ground", nlohmann::ordered_json{{"a", d.ground.a}, {"b", d.ground.b}, {"h", d.ground.h}}}};
 }
 
 std::string detection_table(const std::string& file, const LoadedCloud& cloud, const LidarDetection& d) {
@@ -62,7 +62,8 @@ std::string detection_table(const std::string& file, const LoadedCloud& cloud, c
   const auto& n = d.counters;
   add("%s (%s): %zu points", file.c_str(), cloud.kind.c_str(), cloud.scan.points.size());
   if (cloud.dropped > 0) add(", %zu rows dropped (coordinates not finite)", cloud.dropped);
-  if (cloud.kind == "pcap") add(cloud.partial ? ", partial revolution (%.0f deg)" : ", one revolution", cloud.azimuth_span_deg);
+  if (cloud.kind == "pcap")
+    add(cloud.partial ? ", partial revolution (%.0f deg)" : ", one revolution", cloud.azimuth_span_deg);
   o += "\n";
   add("ground: z = %+.4f x %+.4f y %+.3f (tilt %.2f deg, %zu inliers, RMS %.3f m)%s\n", d.ground.a, d.ground.b,
       d.ground.h, rad2deg(d.ground.tilt()), d.ground.inliers, d.ground.rms,
@@ -81,13 +82,13 @@ std::string detection_table(const std::string& file, const LoadedCloud& cloud, c
       static_cast<unsigned long long>(n.beside_taller), static_cast<unsigned long long>(n.clusters_too_large));
   add("%zu cone(s)\n", d.detections.cones.size());
   if (d.detections.cones.empty()) return o;
-  add("  %3s %8s %8s %8s %7s %7s %-10s %5s %6s\n", "#", "x [m]", "y [m]", "z [m]", "range", "height", "colour",
-      "conf", "points");
+  add("  %3s %8s %8s %8s %7s %7s %-10s %5s %6s\n", "#", "x [m]", "y [m]", "z [m]", "range", "height", "colour", "conf",
+      "points");
   for (std::size_t i = 0; i < d.detections.cones.size(); ++i) {
     const auto& c = d.detections.cones[i];
     const auto& k = d.candidates[i];
-    add("  %3zu %8.3f %8.3f %8.3f %7.2f %7.3f %-10s %5.2f %6u\n", i + 1, c.position.x(), c.position.y(),
-        c.position.z(), k.range, k.height, std::string(to_string(c.colour)).c_str(), c.confidence, c.points);
+    add("  %3zu %8.3f %8.3f %8.3f %7.2f %7.3f %-10s %5.2f %6u\n", i + 1, c.position.x(), c.position.y(), c.position.z(),
+        k.range, k.height, std::string(to_string(c.colour)).c_str(), c.confidence, c.points);
   }
   return o;
 }

@@ -16,10 +16,10 @@ namespace fsd {
 
 struct LoadedCloud {
   Scan scan;
-  std::string kind;            // "csv" or "pcap"
-  std::size_t dropped = 0;     // CSV rows dropped (coordinates not finite or absurd)
-  bool partial = false;        // pcap: less than one revolution in the file
-  double azimuth_span_deg = 0; // pcap: azimuth covered
+  std::string kind;             // "csv" or "pcap"
+  std::size_t dropped = 0;      // CSV rows dropped (coordinates not finite or absurd)
+  bool partial = false;         // pcap: less than one revolution in the file
+  double azimuth_span_deg = 0;  // pcap: azimuth covered
 };
 
 // Throws CloudError, PcapError or LaserTableError (all bad input) when the file cannot give a cloud.

@@ -60,8 +60,9 @@ void add_classify_command(CLI::App& app, int& exit_code) {
   static ClassifyArgs args;
   cmd->add_option("--image", args.image, "the crop: an image the cone fills (PNG or JPEG)")->required();
   cmd->add_flag("--json", args.json, "print {\"cone\", \"score\", \"colour\", \"confidence\"} as one JSON object");
-  cmd->add_option("--config", args.config,
-                  "configuration file (perception.camera.*: the model file, thresholds); default: compiled-in defaults");
+  cmd->add_option(
+      "--config", args.config,
+      "configuration file (perception.camera.*: the model file, thresholds); default: compiled-in defaults");
   cmd->callback([&exit_code] { exit_code = classify(args); });
 }
 

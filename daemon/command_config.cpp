@@ -20,11 +20,10 @@ void add_config_command(CLI::App& app, int& exit_code) {
         exit_code = kExitOk;
       });
 
-  cmd->add_subcommand("doc", "Print the reference table of every configuration key (Markdown)")
-      ->callback([&exit_code] {
-        std::cout << config_schema()->markdown();
-        exit_code = kExitOk;
-      });
+  cmd->add_subcommand("doc", "Print the reference table of every configuration key (Markdown)")->callback([&exit_code] {
+    std::cout << config_schema()->markdown();
+    exit_code = kExitOk;
+  });
 
   auto* check = cmd->add_subcommand("check", "Validate a configuration file; exit 2 with the bad key if invalid");
   static std::string file;

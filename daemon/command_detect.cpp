@@ -55,8 +55,9 @@ int detect(const DetectArgs& a) {
 
 void add_detect_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
-      "detect", "LiDAR cone detection on one cloud in its own frame (x forward, y left, z up at the sensor): a CSV "
-                "x,y,z[,intensity] (header optional) or a VLP-16 pcap (its first full revolution)");
+      "detect",
+      "LiDAR cone detection on one cloud in its own frame (x forward, y left, z up at the sensor): a CSV "
+      "x,y,z[,intensity] (header optional) or a VLP-16 pcap (its first full revolution)");
   static DetectArgs args;
   cmd->add_option("--cloud", args.cloud, "CSV or pcap file")->required();
   cmd->add_flag("--json", args.json,

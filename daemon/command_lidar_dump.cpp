@@ -11,9 +11,10 @@
 namespace fsd {
 
 void add_lidar_dump_command(CLI::App& app, int& exit_code) {
-  auto* cmd = app.add_subcommand(
-      "lidar-dump", "VLP-16 returns of a capture file: a summary, or with --csv one row per valid return "
-                    "(t_us,laser,azimuth_deg,distance_m,intensity,x,y,z; sensor frame, x forward, y left, z up)");
+  auto* cmd =
+      app.add_subcommand("lidar-dump",
+                         "VLP-16 returns of a capture file: a summary, or with --csv one row per valid return "
+                         "(t_us,laser,azimuth_deg,distance_m,intensity,x,y,z; sensor frame, x forward, y left, z up)");
   static std::string file;
   static bool csv = false;
   static std::string laser_table;

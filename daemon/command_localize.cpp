@@ -1,7 +1,7 @@
 #include <charconv>
 #include <cmath>
-#include <optional>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -70,9 +70,9 @@ int localize(const LocalizeArgs& a) {
     return kExitBadInput;
   }
   const auto& last = states.back();
-  std::cout << "fsd localize: " << opt.filter << ", " << states.size() << " poses, "
-            << last.gnss_counters.accepted << " fixes accepted, " << last.gnss_counters.down_weighted
-            << " down-weighted, " << last.gnss_counters.rejected << " rejected (" << last.gnss_counters.jumps
+  std::cout << "fsd localize: " << opt.filter << ", " << states.size() << " poses, " << last.gnss_counters.accepted
+            << " fixes accepted, " << last.gnss_counters.down_weighted << " down-weighted, "
+            << last.gnss_counters.rejected << " rejected (" << last.gnss_counters.jumps
             << " jumps); final position sigma " << last.position_sigma() << " m, " << to_string(last.quality)
             << "; gyro bias " << last.gyro_bias << " rad/s, speed scale " << last.speed_scale << "\n";
   return kExitOk;
@@ -82,8 +82,9 @@ int localize(const LocalizeArgs& a) {
 
 void add_localize_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
-      "localize", "Fusion of recorded sensor logs (CSV in the format of ../shared/data/amz_2017) into a trajectory "
-                  "t_unix_s,east_m,north_m,yaw_rad in the ENU frame of the first GNSS fix");
+      "localize",
+      "Fusion of recorded sensor logs (CSV in the format of ../shared/data/amz_2017) into a trajectory "
+      "t_unix_s,east_m,north_m,yaw_rad in the ENU frame of the first GNSS fix");
   static LocalizeArgs args;
   cmd->add_option("--imu", args.files.imu, "IMU log: t_unix_s,gyro_x/y/z_rad_s,acc_x/y/z_m_s2")->required();
   cmd->add_option("--speed", args.files.speed, "optical ground speed log: t_unix_s,vx_m_s,vy_m_s")->required();

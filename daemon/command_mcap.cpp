@@ -18,8 +18,9 @@ namespace {
 
 void add_info(CLI::App& mcap_cmd, int& exit_code) {
   auto* cmd = mcap_cmd.add_subcommand(
-      "info", "What a recording holds: profile, library, duration, channels with message counts, chunks, "
-              "metadata, attachments, summary, damage. Reads the whole file, so it works on cut-off files");
+      "info",
+      "What a recording holds: profile, library, duration, channels with message counts, chunks, "
+      "metadata, attachments, summary, damage. Reads the whole file, so it works on cut-off files");
   static std::string file;
   static bool json = false;
   cmd->add_option("FILE", file, "MCAP file")->required();
@@ -43,8 +44,9 @@ void add_info(CLI::App& mcap_cmd, int& exit_code) {
 
 void add_recover(CLI::App& mcap_cmd, int& exit_code) {
   auto* cmd = mcap_cmd.add_subcommand(
-      "recover", "Rewrite a recording cut off mid-write (or with damaged chunks) into a whole file with a full "
-                 "summary, keeping every intact message; prints what was kept and lost");
+      "recover",
+      "Rewrite a recording cut off mid-write (or with damaged chunks) into a whole file with a full "
+      "summary, keeping every intact message; prints what was kept and lost");
   static std::string in, out;
   cmd->add_option("IN", in, "damaged MCAP file")->required();
   cmd->add_option("OUT", out, "new MCAP file (must not be IN)")->required();

@@ -9,11 +9,11 @@
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
+#include "common/mcap/records.hpp"
 #include "common/params.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
 #include "daemon/dashboard.hpp"
-#include "common/mcap/records.hpp"
 #include "daemon/hardware_run.hpp"
 #include "daemon/recording_reader.hpp"
 #include "daemon/replay_run.hpp"
@@ -72,8 +72,9 @@ void require_writable_report(const std::string& path) {
 int run_command(const RunOptions& o) {
   require_writable_report(o.report);
   if (!o.replay.empty() && (o.sim || !o.record.empty() || o.track || o.mission || o.laps || o.seed))
-    throw std::invalid_argument("--replay takes the run from the recording: --sim, --record, --track, --mission, "
-                                "--laps and --seed do not apply (a --config file overrides recorded keys)");
+    throw std::invalid_argument(
+        "--replay takes the run from the recording: --sim, --record, --track, --mission, "
+        "--laps and --seed do not apply (a --config file overrides recorded keys)");
   if (!(o.rate > 0.0 && o.rate <= 1000.0)) throw std::invalid_argument("--rate must be in (0, 1000]");
   // A replay's configuration is the recording's (daemon/replay_run.hpp).
   std::unique_ptr<ReplayRun> replay;

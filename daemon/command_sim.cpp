@@ -2,12 +2,12 @@
 // wire formats on the real transports: VLP-16 UDP packets to drivers.vlp16's port on sim.udp_host, NMEA on one
 // pseudo-terminal and the VCU protocol on another (their paths are printed), optionally a pcap of the LiDAR.
 #include <atomic>
-#include <utility>
 #include <csignal>
 #include <iostream>
+#include <utility>
 
-#include <boost/asio.hpp>
 #include <CLI/CLI.hpp>
+#include <boost/asio.hpp>
 #include <nlohmann/json.hpp>
 
 #include "common/clock.hpp"
@@ -97,7 +97,8 @@ void add_sim_command(CLI::App& app, int& exit_code) {
   static SimOptions o;
   cmd->add_option("--config", o.config_file, "configuration file (JSON)")->check(CLI::ExistingFile);
   cmd->add_option("--track", o.track, "track file (EUFS/FSDS CSV)");
-  cmd->add_option("--duration", o.duration, "simulated seconds to run (0: until Ctrl-C)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--duration", o.duration, "simulated seconds to run (0: until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--lidar-pcap", o.lidar_pcap, "also write the VLP-16 packets to this pcap file");
   cmd->add_option("--seed", o.seed, "seed of the random processes");
   cmd->add_option("--udp-host", o.udp_host, "where the VLP-16 packets go (default 127.0.0.1)");

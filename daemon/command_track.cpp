@@ -28,7 +28,8 @@ struct GenerateArgs {
 int generate(GenerateArgs& a) {
   sim::TrackGeneratorOptions& o = a.options;
   const auto kind = sim::layout_kind_from_string(a.kind);
-  if (!kind) throw std::invalid_argument("--kind: unknown kind '" + a.kind + "' (trackdrive, autocross, acceleration, skidpad)");
+  if (!kind)
+    throw std::invalid_argument("--kind: unknown kind '" + a.kind + "' (trackdrive, autocross, acceleration, skidpad)");
   o.kind = *kind;
   o.seed = a.seed;
   if (o.open && o.kind != sim::LayoutKind::Trackdrive && o.kind != sim::LayoutKind::Autocross)
@@ -58,9 +59,10 @@ int generate(GenerateArgs& a) {
 void add_track_command(CLI::App& app, int& exit_code) {
   auto* track = app.add_subcommand("track", "track layouts");
   track->require_subcommand(1);
-  auto* gen = track->add_subcommand(
-      "generate", "a layout within the Formula Student Driverless rules, in the shared track CSV format "
-                  "(docs/track-generator.md); the same seed and options give the same file");
+  auto* gen =
+      track->add_subcommand("generate",
+                            "a layout within the Formula Student Driverless rules, in the shared track CSV format "
+                            "(docs/track-generator.md); the same seed and options give the same file");
   static GenerateArgs a;
   sim::TrackGeneratorOptions& o = a.options;
   sim::FeatureShares& sh = o.shares;
@@ -69,18 +71,22 @@ void add_track_command(CLI::App& app, int& exit_code) {
   gen->add_option("--out", a.out, "file to write (default: stdout)");
   gen->add_flag("--open", o.open, "trackdrive/autocross: an open course with separate start and finish lines");
   gen->add_option("--width", a.width, "track width, m (default: sampled from --width-min/--width-max)");
-  gen->add_option("--width-min", o.width_min, "sampled track width from (the rules' minimum is 3 m)")->capture_default_str();
+  gen->add_option("--width-min", o.width_min, "sampled track width from (the rules' minimum is 3 m)")
+      ->capture_default_str();
   gen->add_option("--width-max", o.width_max, "sampled track width up to")->capture_default_str();
   gen->add_option("--cone-spacing", a.spacing, "largest gap between cones along a boundary, m (default: sampled)");
   gen->add_option("--cone-spacing-min", o.spacing_min, "sampled largest gap from")->capture_default_str();
-  gen->add_option("--cone-spacing-max", o.spacing_max, "sampled largest gap up to (the rules' maximum is 5 m)")->capture_default_str();
+  gen->add_option("--cone-spacing-max", o.spacing_max, "sampled largest gap up to (the rules' maximum is 5 m)")
+      ->capture_default_str();
   gen->add_option("--turn-angle", o.turn_angle, "rad of boundary arc between cones in turns")->capture_default_str();
-  gen->add_option("--separation", o.separation, "m between the boundaries of two parts of a loop")->capture_default_str();
+  gen->add_option("--separation", o.separation, "m between the boundaries of two parts of a loop")
+      ->capture_default_str();
   gen->add_option("--lap-min", o.lap_min, "shortest centre line, m")->capture_default_str();
   gen->add_option("--lap-max", o.lap_max, "longest centre line, m")->capture_default_str();
   gen->add_option("--braking-length", a.braking, "acceleration: braking zone, m (default: sampled)");
   gen->add_option("--braking-min", o.braking_min, "sampled braking zone from")->capture_default_str();
-  gen->add_option("--braking-max", o.braking_max, "sampled braking zone up to (the rules' 100 m)")->capture_default_str();
+  gen->add_option("--braking-max", o.braking_max, "sampled braking zone up to (the rules' 100 m)")
+      ->capture_default_str();
   gen->add_option("--share-straight", sh.straight, "weight of straights")->capture_default_str();
   gen->add_option("--share-turn", sh.turn, "weight of constant turns")->capture_default_str();
   gen->add_option("--share-hairpin", sh.hairpin, "weight of hairpins")->capture_default_str();

@@ -23,9 +23,12 @@ namespace fsd {
 namespace {
 struct TrainArgs {
   std::string out = ConeClassifierConfig{}.model;
-  std::vector<std::string> tracks{"../shared/tracks/epfl_track_1.csv",         "../shared/tracks/epfl_track_3.csv",
-                                  "../shared/tracks/epfl_fsds_competition_1.csv", "../shared/tracks/epfl_VSV.csv",
-                                  "../shared/tracks/amz_fssim_thin.csv",       "../shared/tracks/epfl_skidpad.csv",
+  std::vector<std::string> tracks{"../shared/tracks/epfl_track_1.csv",
+                                  "../shared/tracks/epfl_track_3.csv",
+                                  "../shared/tracks/epfl_fsds_competition_1.csv",
+                                  "../shared/tracks/epfl_VSV.csv",
+                                  "../shared/tracks/amz_fssim_thin.csv",
+                                  "../shared/tracks/epfl_skidpad.csv",
                                   "../shared/tracks/epfl_acceleration.csv"};
   std::uint64_t seed = 1;
   int frames = 120;
@@ -64,14 +67,10 @@ int train(const TrainArgs& a) {
     const ConeClassifier classifier(model);
     const Confusion held = evaluate(classifier, set.held_back);
     std::printf("  held-back rendered crops: %s\n", held.summary().c_str());
-    nlohmann::json provenance = {{"tool", "fsd train-classifier"},
-                                 {"seed", a.seed},
-                                 {"frames_per_track", a.frames},
-                                 {"c", a.c},
-                                 {"position_noise", a.position_noise},
-                                 {"tracks", nlohmann::json::array()},
-                                 {"training_samples", set.train.size()},
-                                 {"held_back_rendered", metrics(held)}};
+    nlohmann::json provenance = {{"tool", "fsd train-classifier"},       {"seed", a.seed},
+                                 {"frames_per_track", a.frames},         {"c", a.c},
+                                 {"position_noise", a.position_noise},   {"tracks", nlohmann::json::array()},
+                                 {"training_samples", set.train.size()}, {"held_back_rendered", metrics(held)}};
     for (const auto& t : a.tracks) provenance["tracks"].push_back(std::filesystem::path(t).stem().string());
     if (!a.real.empty()) {
       const Confusion real = evaluate(classifier, set.real_held_back);
@@ -106,13 +105,17 @@ void add_train_classifier_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args.out, "model file to write")->capture_default_str();
   cmd->add_option("--track", args.tracks, "track files to render (repeat the option); default: seven shared tracks");
   cmd->add_option("--seed", args.seed, "seed of the worlds, cameras, poses and lighting")->capture_default_str();
-  cmd->add_option("--frames", args.frames, "frames rendered per track")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--frames", args.frames, "frames rendered per track")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_option("--real", args.real, "folder of real crops: DIR/cone/*.png|jpg and DIR/not_cone/*.png|jpg");
   cmd->add_option("--position-noise", args.position_noise,
                   "σ of the candidates' position error (m) in the rendered training crops")
       ->check(CLI::Range(0.0, 0.5))
       ->capture_default_str();
-  cmd->add_option("--c", args.c, "soft-margin penalty C of the linear SVM")->check(CLI::Range(1e-6, 1e6))->capture_default_str();
+  cmd->add_option("--c", args.c, "soft-margin penalty C of the linear SVM")
+      ->check(CLI::Range(1e-6, 1e6))
+      ->capture_default_str();
   cmd->callback([&exit_code] { exit_code = train(args); });
 }
 

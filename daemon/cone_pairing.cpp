@@ -14,8 +14,8 @@ std::vector<ConePair> pair_cones(const std::vector<Vec2>& estimates, const std::
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const ConePair& a, const ConePair& b) {
-    return a.distance < b.distance || (a.distance == b.distance && (a.estimate < b.estimate ||
-                                                                    (a.estimate == b.estimate && a.truth < b.truth)));
+    return a.distance < b.distance ||
+           (a.distance == b.distance && (a.estimate < b.estimate || (a.estimate == b.estimate && a.truth < b.truth)));
   });
   std::vector<bool> e_used(estimates.size(), false), t_used(truths.size(), false);
   std::vector<ConePair> pairs;

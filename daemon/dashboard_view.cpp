@@ -9,8 +9,10 @@ namespace fsd {
 
 void DashboardView::on_cycle(Stamp now, AsState as, const ControlOutput& out, std::size_t laps_done,
                              const std::optional<Vec2>& position, std::uint64_t cycle) {
-  if (out.lap) lap_started_ = out.lap->t;
-  else if (!lap_started_ && as == AsState::Driving) lap_started_ = now;
+  if (out.lap)
+    lap_started_ = out.lap->t;
+  else if (!lap_started_ && as == AsState::Driving)
+    lap_started_ = now;
   if (as != AsState::Driving || !position || cycle % 10 != 0) return;
   auto& trail = laps_done == 0 ? lap1_trail_ : later_trail_;
   if (trail.size() < kMaxTrailPoints) trail.push_back(*position);

@@ -5,8 +5,8 @@
 namespace fsd {
 
 bool gnss_pose_usable(const GnssSample& s, bool have_origin) {
-  return have_origin && s.fix_quality != 0 && s.heading_valid && std::isfinite(s.enu.x()) &&
-         std::isfinite(s.enu.y()) && std::isfinite(s.heading);
+  return have_origin && s.fix_quality != 0 && s.heading_valid && std::isfinite(s.enu.x()) && std::isfinite(s.enu.y()) &&
+         std::isfinite(s.heading);
 }
 
 VehicleState state_from_gnss(const GnssSample& s, double steering_measured) {

@@ -32,8 +32,8 @@ namespace fsd {
 
 namespace {
 
-constexpr double kControlPeriod = 0.01;          // s: 100 Hz
-constexpr std::size_t kFrameQueue = 4096;         // raw frames between two control cycles (~10 at full rate)
+constexpr double kControlPeriod = 0.01;    // s: 100 Hz
+constexpr std::size_t kFrameQueue = 4096;  // raw frames between two control cycles (~10 at full rate)
 constexpr int kCameraJpegQuality = 85;
 
 // A serial device must be there at start: a typo in the path should not look like a VCU that never answers.
@@ -51,7 +51,8 @@ void require_camera_source(const CameraDriverConfig& c) {
   namespace fs = std::filesystem;
   std::error_code ec;
   switch (classify_camera_source(c.source)) {
-    case CameraSourceKind::Pipeline: return;  // GStreamer checks it when it opens
+    case CameraSourceKind::Pipeline:
+      return;  // GStreamer checks it when it opens
     case CameraSourceKind::Device: {
       const bool index = c.source.rfind("/dev/", 0) != 0;
       const std::string path = index ? "/dev/video" + c.source : c.source;
@@ -87,7 +88,8 @@ Mission mission_of(const RunSettings& run) {
 
 std::optional<std::string> hardware_mission_refusal(Mission m) {
   switch (m) {
-    case Mission::Inspection: return std::nullopt;
+    case Mission::Inspection:
+      return std::nullopt;
     case Mission::EbsTest:
       return "mission 'ebs_test' needs perception (it drives a straight fitted to the cones and brakes at a "
              "distance along it): not available in this version; use --sim";
@@ -154,7 +156,8 @@ struct HardwareRun::Impl {
     so.lap_build_worker = true;  // the lap-2 build must not hold up the 100 Hz control thread
     so.start = clock.now();
     // The camera stage sees through the calibrated camera; its frames are stamped at capture already.
-    if (!cam_cfg.calibration.empty()) so.camera = StackOptions::Camera{load_camera_calibration(cam_cfg.calibration), 0.0};
+    if (!cam_cfg.calibration.empty())
+      so.camera = StackOptions::Camera{load_camera_calibration(cam_cfg.calibration), 0.0};
     if (run.perception_source == "lidar_camera" && !cam_cfg.enabled)
       log->warn("run.perception_source = lidar_camera with drivers.camera.enabled = false: LiDAR-only detections");
     stack = std::make_unique<Stack>(cfg, so);
@@ -190,17 +193,16 @@ struct HardwareRun::Impl {
 
     gnss_port = std::make_unique<SerialPort>(
         SerialPortConfig{.device = gnss_cfg.device, .baud = gnss_cfg.baud},
-        SerialPort::Handlers{.on_bytes =
-                                 [this, feed = to_stack(RawChannel::Nmea)](std::span<const std::uint8_t> b) {
-                                   feed(clock.now(), b);
-                                 },
-                             .on_open = {},
-                             .on_lost = [this](Stamp t, const std::string& why) {
-                               log->warn("GNSS-INS port lost at {:.2f} s: {}", t, why);
-                             },
-                             .on_gap = [this](const SerialGap& g) {
-                               log->info("GNSS-INS port back after {:.2f} s ({})", g.duration(), g.reason);
-                             }},
+        SerialPort::Handlers{
+            .on_bytes = [this,
+                         feed = to_stack(RawChannel::Nmea)](std::span<const std::uint8_t> b) { feed(clock.now(), b); },
+            .on_open = {},
+            .on_lost = [this](Stamp t,
+                              const std::string& why) { log->warn("GNSS-INS port lost at {:.2f} s: {}", t, why); },
+            .on_gap =
+                [this](const SerialGap& g) {
+                  log->info("GNSS-INS port back after {:.2f} s ({})", g.duration(), g.reason);
+                }},
         &clock);
 
     VcuLink::Handlers vh;
@@ -287,9 +289,11 @@ struct HardwareRun::Impl {
 
   int run_loop(const std::atomic<bool>& stop) {
     const auto wall0 = std::chrono::steady_clock::now();
-    log->info("{} on the car: VLP-16 on udp {}:{} (position packets :{}), GNSS-INS on {} at {} baud, VCU on {} at {} baud, camera {}",
-              to_string(mission), vlp_cfg.address, lidar_rx->port(), position_rx->port(), gnss_cfg.device, gnss_cfg.baud,
-              vcu_cfg.device, vcu_cfg.baud, camera ? cam_cfg.source : std::string("off"));
+    log->info(
+        "{} on the car: VLP-16 on udp {}:{} (position packets :{}), GNSS-INS on {} at {} baud, VCU on {} at {} baud, "
+        "camera {}",
+        to_string(mission), vlp_cfg.address, lidar_rx->port(), position_rx->port(), gnss_cfg.device, gnss_cfg.baud,
+        vcu_cfg.device, vcu_cfg.baud, camera ? cam_cfg.source : std::string("off"));
     log->info("no perception in this version: state from GNSS-INS only, no cone detections");
     vcu->start();
     gnss_port->start();

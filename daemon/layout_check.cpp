@@ -9,8 +9,8 @@
 namespace fsd {
 
 namespace {
-constexpr double kLaneReach = 3.0;   // m from the lane's centre line: its boundary cones (lanes are 3-5 m wide)
-constexpr double kLaneShare = 0.8;   // of control.mission.acceleration_length the lane's cones must span
+constexpr double kLaneReach = 3.0;  // m from the lane's centre line: its boundary cones (lanes are 3-5 m wide)
+constexpr double kLaneShare = 0.8;  // of control.mission.acceleration_length the lane's cones must span
 }  // namespace
 
 std::optional<std::string> layout_refusal(const Track& track, Mission mission, const AutopilotConfig& control) {
@@ -58,7 +58,8 @@ std::optional<std::string> layout_refusal(const Track& track, Mission mission, c
       return std::nullopt;
     }
     case Mission::Inspection:
-    case Mission::None: return std::nullopt;
+    case Mission::None:
+      return std::nullopt;
   }
   return std::nullopt;
 }

@@ -26,13 +26,12 @@ SensorCsvSpec spec(std::vector<std::string> columns, double max_gap) {
 
 LocalizeLogs load_localize_logs(const LocalizeLogFiles& files, const LocalizeOptions& options) {
   LocalizeLogs logs;
-  const auto imu = load_sensor_csv(
-      files.imu, spec({"t_unix_s", "gyro_x_rad_s", "gyro_y_rad_s", "gyro_z_rad_s", "acc_x_m_s2", "acc_y_m_s2",
-                       "acc_z_m_s2"},
-                      kMaxMotionGap));
+  const auto imu = load_sensor_csv(files.imu, spec({"t_unix_s", "gyro_x_rad_s", "gyro_y_rad_s", "gyro_z_rad_s",
+                                                    "acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"},
+                                                   kMaxMotionGap));
   for (std::size_t i = 0; i < imu.rows(); ++i)
-    logs.imu.push_back({imu.at(i, 0), Vec3(imu.at(i, 1), imu.at(i, 2), imu.at(i, 3)),
-                        Vec3(imu.at(i, 4), imu.at(i, 5), imu.at(i, 6))});
+    logs.imu.push_back(
+        {imu.at(i, 0), Vec3(imu.at(i, 1), imu.at(i, 2), imu.at(i, 3)), Vec3(imu.at(i, 4), imu.at(i, 5), imu.at(i, 6))});
 
   const auto speed = load_sensor_csv(files.speed, spec({"t_unix_s", "vx_m_s", "vy_m_s"}, kMaxMotionGap));
   for (std::size_t i = 0; i < speed.rows(); ++i) {
@@ -46,7 +45,8 @@ LocalizeLogs load_localize_logs(const LocalizeLogFiles& files, const LocalizeOpt
   }
 
   if (!files.wheels.empty()) {
-    const auto w = load_sensor_csv(files.wheels, spec({"t_unix_s", "fl_rpm", "fr_rpm", "rl_rpm", "rr_rpm"}, kMaxMotionGap));
+    const auto w =
+        load_sensor_csv(files.wheels, spec({"t_unix_s", "fl_rpm", "fr_rpm", "rl_rpm", "rr_rpm"}, kMaxMotionGap));
     for (std::size_t i = 0; i < w.rows(); ++i) {
       // The mean of the four wheels is the speed at the centre between the axles (left and right cancel in a turn).
       fusion::BodySpeed b;
@@ -92,8 +92,9 @@ std::vector<fusion::LocalizationState> run_localize(const LocalizeLogs& logs, co
     all.emplace_back(m);
   }
   // Stable: equal stamps keep the order above (IMU, speed, wheels, GNSS).
-  std::stable_sort(all.begin(), all.end(),
-                   [](const Measurement& a, const Measurement& b) { return fusion::stamp_of(a) < fusion::stamp_of(b); });
+  std::stable_sort(all.begin(), all.end(), [](const Measurement& a, const Measurement& b) {
+    return fusion::stamp_of(a) < fusion::stamp_of(b);
+  });
 
   auto filter = fusion::make_fusion_filter(options.filter, options.config);
   std::vector<fusion::LocalizationState> out;

@@ -26,8 +26,8 @@ struct LocalizeOptions {
   std::string filter = "ekf";
   fusion::FusionConfig config;
   std::optional<std::pair<double, double>> gnss_outage;  // s after the first fix: GNSS ignored in [A, B]
-  Vec2 optical_lever{-0.41, 0.27};  // the Correvit from the IMU (the logs' reference point)
-  double wheel_rpm_per_m_s = 621.0; // motor rpm per m/s of wheel speed
+  Vec2 optical_lever{-0.41, 0.27};                       // the Correvit from the IMU (the logs' reference point)
+  double wheel_rpm_per_m_s = 621.0;                      // motor rpm per m/s of wheel speed
 };
 
 // Throws SensorCsvError (from drivers/logs/sensor_csv.hpp) naming the file and line.

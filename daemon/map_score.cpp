@@ -32,8 +32,12 @@ MapScore score_map(const std::vector<TrackCone>& truth, const std::vector<Cone>&
 }
 
 nlohmann::json to_json(const MapScore& s) {
-  return {{"true_cones", s.true_cones}, {"mapped", s.mapped},   {"matched", s.matched},
-          {"missed", s.missed},         {"ghosts", s.ghosts},   {"rmse_m", std::round(s.rmse_m * 1e4) / 1e4},
+  return {{"true_cones", s.true_cones},
+          {"mapped", s.mapped},
+          {"matched", s.matched},
+          {"missed", s.missed},
+          {"ghosts", s.ghosts},
+          {"rmse_m", std::round(s.rmse_m * 1e4) / 1e4},
           {"colour_accuracy", std::round(s.colour_accuracy * 1e4) / 1e4}};
 }
 

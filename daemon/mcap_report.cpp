@@ -45,8 +45,8 @@ std::string format_mcap_info(const std::string& file, const mcap::FileInfo& info
       enc_w = std::max(enc_w, c.message_encoding.size());
     }
     char buf[512];
-    std::snprintf(buf, sizeof buf, "  %5s  %-*s  %-*s  %10s  %s\n", "id", int(topic_w), "topic", int(enc_w),
-                  "encoding", "messages", "schema");
+    std::snprintf(buf, sizeof buf, "  %5s  %-*s  %-*s  %10s  %s\n", "id", int(topic_w), "topic", int(enc_w), "encoding",
+                  "messages", "schema");
     o << buf;
     for (const auto& c : info.channels) {
       std::snprintf(buf, sizeof buf, "  %5u  %-*s  %-*s  %10llu  %s\n", unsigned(c.id), int(topic_w), c.topic.c_str(),

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -76,7 +76,7 @@ struct Recorder::Impl {
   BoundedQueue<Item> queue;
   bool lossless = false;
   std::atomic<bool> closing{false};
-  std::atomic<bool> failed_flag{false};  // the writer stopped on an error: nothing to wait for
+  std::atomic<bool> failed_flag{false};   // the writer stopped on an error: nothing to wait for
   std::atomic<std::uint64_t> refused{0};  // pushed after the recording stopped
   std::thread thread;
   std::once_flag closed;
@@ -113,7 +113,10 @@ struct Recorder::Impl {
   }
 
   Impl(std::string p, RecordSettings s, const RecordingContents& c, bool lossless_)
-      : path(std::move(p)), settings(s), run(to_metadata(c.run)), queue(static_cast<std::size_t>(s.queue_frames)),
+      : path(std::move(p)),
+        settings(s),
+        run(to_metadata(c.run)),
+        queue(static_cast<std::size_t>(s.queue_frames)),
         lossless(lossless_) {
     if (c.config) config = flatten_config(*c.config);
     if (!c.track_file.empty()) {
@@ -324,12 +327,13 @@ void Recorder::close() { impl_->close(); }
 
 void Recorder::set_metrics(web::Metrics& m) {
   if (impl_->gauges.load()) return;
-  impl_->gauges_owned = std::make_unique<Impl::Gauges>(Impl::Gauges{
-      m.gauge("fsd_record_frames", "Raw frames written to the recording"),
-      m.gauge("fsd_record_dropped", "Items (frames, cycle markers, commands) the recording lost: queue full or stopped"),
-      m.gauge("fsd_record_bytes", "Bytes written to the recording's files"),
-      m.gauge("fsd_record_files", "Files of the recording (record.split_mb)"),
-      m.gauge("fsd_record_stopped", "1 when a write error stopped the recording")});
+  impl_->gauges_owned = std::make_unique<Impl::Gauges>(
+      Impl::Gauges{m.gauge("fsd_record_frames", "Raw frames written to the recording"),
+                   m.gauge("fsd_record_dropped",
+                           "Items (frames, cycle markers, commands) the recording lost: queue full or stopped"),
+                   m.gauge("fsd_record_bytes", "Bytes written to the recording's files"),
+                   m.gauge("fsd_record_files", "Files of the recording (record.split_mb)"),
+                   m.gauge("fsd_record_stopped", "1 when a write error stopped the recording")});
   impl_->gauges.store(impl_->gauges_owned.get(), std::memory_order_release);
 }
 

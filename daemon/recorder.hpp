@@ -34,11 +34,11 @@ const ConfigSection<RecordSettings>& record_section();
 
 struct RecorderStats {
   std::uint64_t frames_written = 0, cycles_written = 0, commands_written = 0;
-  std::uint64_t dropped = 0;     // items lost: the queue was full, or the recording had stopped on an error
-  std::uint64_t bytes = 0;       // written to every file so far
+  std::uint64_t dropped = 0;  // items lost: the queue was full, or the recording had stopped on an error
+  std::uint64_t bytes = 0;    // written to every file so far
   std::uint64_t queue_high_water = 0;
   std::vector<std::string> files;
-  std::string error;             // why the recording stopped early; empty when it did not
+  std::string error;  // why the recording stopped early; empty when it did not
 };
 nlohmann::json to_json(const RecorderStats& s);
 
@@ -46,7 +46,7 @@ nlohmann::json to_json(const RecorderStats& s);
 struct RecordingContents {
   nlohmann::json const* config = nullptr;  // the configuration the Stack was built from (Config::as_json)
   RecordedRun run;
-  std::string track_file;                  // the layout driven (simulator runs), attached as it is on disk
+  std::string track_file;  // the layout driven (simulator runs), attached as it is on disk
 };
 
 // The path of part `part` of a recording: part 0 is `first` itself, then "run-001.mcap", "run-002.mcap", ...

@@ -69,8 +69,7 @@ double number(const mcap::StringMap& m, const std::string& key) {
     std::size_t used = 0;
     const double d = std::stod(v, &used);
     if (used == v.size() && std::isfinite(d)) return d;
-  } catch (const std::exception&) {
-  }
+  } catch (const std::exception&) {}
   throw std::invalid_argument(std::string(mcap::kRunMetadata) + ": '" + key + "' is not a number: '" + v + "'");
 }
 
@@ -91,30 +90,48 @@ std::optional<RawChannel> raw_channel_of_topic(std::string_view topic) {
 
 std::string_view raw_schema(RawChannel c) {
   switch (c) {
-    case RawChannel::Vlp16Data: return mcap::kRawSchemaVlp16Data;
-    case RawChannel::Vlp16Position: return mcap::kRawSchemaVlp16Position;
-    case RawChannel::Nmea: return mcap::kRawSchemaNmea;
-    case RawChannel::Camera: return mcap::kRawSchemaJpeg;
-    case RawChannel::VcuRx: return mcap::kRawSchemaVcuRx;
-    case RawChannel::VcuTx: return mcap::kRawSchemaVcuTx;
-    case RawChannel::TruthState: return mcap::kRawSchemaTruthState;
-    case RawChannel::TruthCones: return mcap::kRawSchemaTruthCones;
-    case RawChannel::TruthScan: return mcap::kRawSchemaTruthScan;
+    case RawChannel::Vlp16Data:
+      return mcap::kRawSchemaVlp16Data;
+    case RawChannel::Vlp16Position:
+      return mcap::kRawSchemaVlp16Position;
+    case RawChannel::Nmea:
+      return mcap::kRawSchemaNmea;
+    case RawChannel::Camera:
+      return mcap::kRawSchemaJpeg;
+    case RawChannel::VcuRx:
+      return mcap::kRawSchemaVcuRx;
+    case RawChannel::VcuTx:
+      return mcap::kRawSchemaVcuTx;
+    case RawChannel::TruthState:
+      return mcap::kRawSchemaTruthState;
+    case RawChannel::TruthCones:
+      return mcap::kRawSchemaTruthCones;
+    case RawChannel::TruthScan:
+      return mcap::kRawSchemaTruthScan;
   }
   return "fsd.raw.unknown";
 }
 
 std::string raw_schema_description(RawChannel c) {
   switch (c) {
-    case RawChannel::Vlp16Data: return "VLP-16 data packet: the 1206-byte UDP payload (port 2368)";
-    case RawChannel::Vlp16Position: return "VLP-16 position packet: the 512-byte UDP payload (port 8308)";
-    case RawChannel::Nmea: return "GNSS-INS serial bytes (NMEA 0183) as read, any chunking";
-    case RawChannel::Camera: return "one camera frame, JPEG";
-    case RawChannel::VcuRx: return "VCU protocol bytes from the VCU (docs/vcu-protocol.md)";
-    case RawChannel::VcuTx: return "VCU protocol bytes to the VCU (docs/vcu-protocol.md)";
-    case RawChannel::TruthState: return "simulator truth: the true vehicle state (daemon/truth_frames.hpp)";
-    case RawChannel::TruthCones: return "simulator truth: the standing cones (daemon/truth_frames.hpp)";
-    case RawChannel::TruthScan: return "simulator truth: the ideal detector's scan tick (no bytes)";
+    case RawChannel::Vlp16Data:
+      return "VLP-16 data packet: the 1206-byte UDP payload (port 2368)";
+    case RawChannel::Vlp16Position:
+      return "VLP-16 position packet: the 512-byte UDP payload (port 8308)";
+    case RawChannel::Nmea:
+      return "GNSS-INS serial bytes (NMEA 0183) as read, any chunking";
+    case RawChannel::Camera:
+      return "one camera frame, JPEG";
+    case RawChannel::VcuRx:
+      return "VCU protocol bytes from the VCU (docs/vcu-protocol.md)";
+    case RawChannel::VcuTx:
+      return "VCU protocol bytes to the VCU (docs/vcu-protocol.md)";
+    case RawChannel::TruthState:
+      return "simulator truth: the true vehicle state (daemon/truth_frames.hpp)";
+    case RawChannel::TruthCones:
+      return "simulator truth: the standing cones (daemon/truth_frames.hpp)";
+    case RawChannel::TruthScan:
+      return "simulator truth: the ideal detector's scan tick (no bytes)";
   }
   return "";
 }
@@ -199,7 +216,8 @@ RecordedRun recorded_run_from_metadata(const mcap::StringMap& m) {
     throw std::invalid_argument(std::string(mcap::kRunMetadata) + ": unknown mode '" + r.mode + "'");
   r.lockstep = required(m, "lockstep") == "true";
   const auto mission = mission_from_string(required(m, "mission"));
-  if (!mission) throw std::invalid_argument(std::string(mcap::kRunMetadata) + ": unknown mission '" + m.at("mission") + "'");
+  if (!mission)
+    throw std::invalid_argument(std::string(mcap::kRunMetadata) + ": unknown mission '" + m.at("mission") + "'");
   r.mission = *mission;
   const double laps = number(m, "laps");
   if (laps < 1 || laps > 1000 || laps != std::floor(laps))

@@ -35,10 +35,10 @@ inline constexpr std::string_view kCommandSchema = "fsd.stack.command";
 inline constexpr std::string_view kTrackAttachment = "track.csv";
 inline constexpr std::uint32_t kMaxCycleFrames = 1u << 20;  // frames between two cycles a decoder accepts
 
-std::string raw_topic(RawChannel c);                               // "/raw/vlp16_data"
+std::string raw_topic(RawChannel c);  // "/raw/vlp16_data"
 std::optional<RawChannel> raw_channel_of_topic(std::string_view topic);
-std::string_view raw_schema(RawChannel c);                          // fsd_profile's schema names
-std::string raw_schema_description(RawChannel c);                   // the schema data: a line about the bytes
+std::string_view raw_schema(RawChannel c);         // fsd_profile's schema names
+std::string raw_schema_description(RawChannel c);  // the schema data: a line about the bytes
 
 // Seconds on the run's clock to MCAP nanoseconds (negative times clamp to 0).
 mcap::Timestamp to_ns(Stamp t);
@@ -60,14 +60,14 @@ std::optional<CommandRecord> decode_command(std::span<const std::uint8_t> bytes)
 
 // How the live feeder built the Stack (StackOptions), so that replay builds the same one.
 struct RecordedRun {
-  std::string mode = "sim";      // "sim" (fsd run --sim) or "car"
-  bool lockstep = false;         // headless sim: the lap-2 build ran inside the step (replays bit for bit)
+  std::string mode = "sim";  // "sim" (fsd run --sim) or "car"
+  bool lockstep = false;     // headless sim: the lap-2 build ran inside the step (replays bit for bit)
   Mission mission = Mission::Trackdrive;
   int laps = 2;
   bool simulator = false;
   Stamp start = 0;
-  std::optional<double> camera_latency;     // StackOptions::camera was set
-  std::string camera_calibration;           // its calibration (JSON text), when set
+  std::optional<double> camera_latency;  // StackOptions::camera was set
+  std::string camera_calibration;        // its calibration (JSON text), when set
 };
 mcap::StringMap to_metadata(const RecordedRun& r);
 // Throws std::invalid_argument naming the key for a missing or malformed value.

@@ -41,9 +41,12 @@ void RecordingReader::take(const mcap::Record& r) {
   } else if (const auto* c = std::get_if<mcap::Channel>(&r)) {
     ChannelUse u;
     if (c->message_encoding == mcap::kRawEncoding) {
-      if (c->topic == kCycleTopic) u.use = Use::Cycle;
-      else if (c->topic == kCommandTopic) u.use = Use::Command;
-      else if (const auto raw = raw_channel_of_topic(c->topic)) u = {Use::Raw, *raw};
+      if (c->topic == kCycleTopic)
+        u.use = Use::Cycle;
+      else if (c->topic == kCommandTopic)
+        u.use = Use::Command;
+      else if (const auto raw = raw_channel_of_topic(c->topic))
+        u = {Use::Raw, *raw};
     }
     channels_.emplace(c->id, u);  // a repeated channel record (the summary) keeps the first
   }
@@ -52,8 +55,10 @@ void RecordingReader::take(const mcap::Record& r) {
 void RecordingReader::flush_frames(const CycleMarker* marker) {
   const bool exact = marker && marker->frame_times.size() == held_.size();
   for (std::size_t i = 0; i < held_.size(); ++i) {
-    if (exact) held_[i].t = marker->frame_times[i];
-    else ++counters_.inexact_frames;
+    if (exact)
+      held_[i].t = marker->frame_times[i];
+    else
+      ++counters_.inexact_frames;
     ready_.push_back(std::move(held_[i]));
   }
   held_.clear();
@@ -97,7 +102,9 @@ bool RecordingReader::take_message(mcap::Message&& m) {
       ++counters_.commands;
       return true;
     }
-    case Use::Other: ++counters_.other_messages; return false;
+    case Use::Other:
+      ++counters_.other_messages;
+      return false;
   }
   return false;
 }
@@ -116,8 +123,10 @@ std::optional<RecordingEvent> RecordingReader::next() {
       flush_frames(nullptr);
       break;
     }
-    if (auto* m = std::get_if<mcap::Message>(&r->record)) take_message(std::move(*m));
-    else take(r->record);
+    if (auto* m = std::get_if<mcap::Message>(&r->record))
+      take_message(std::move(*m));
+    else
+      take(r->record);
   }
   if (ready_.empty()) return std::nullopt;
   RecordingEvent e = std::move(ready_.front());

@@ -37,9 +37,9 @@ struct RecordingEvent {
 
 struct RecordingReaderCounters {
   std::uint64_t frames = 0, cycles = 0, commands = 0;
-  std::uint64_t inexact_frames = 0;   // replayed with their nanosecond time (see above)
-  std::uint64_t bad_messages = 0;     // a marker or command that does not decode, a message on an unknown channel
-  std::uint64_t other_messages = 0;   // on channels the replay does not use (derived channels)
+  std::uint64_t inexact_frames = 0;  // replayed with their nanosecond time (see above)
+  std::uint64_t bad_messages = 0;    // a marker or command that does not decode, a message on an unknown channel
+  std::uint64_t other_messages = 0;  // on channels the replay does not use (derived channels)
 };
 
 class RecordingReader {
@@ -66,8 +66,8 @@ class RecordingReader {
     Use use = Use::Other;
     RawChannel raw = RawChannel::Nmea;
   };
-  void take(const mcap::Record& r);          // metadata, attachments, channels
-  bool take_message(mcap::Message&& m);      // true when events were queued
+  void take(const mcap::Record& r);      // metadata, attachments, channels
+  bool take_message(mcap::Message&& m);  // true when events were queued
   void flush_frames(const CycleMarker* marker);
 
   mcap::LinearReader reader_;
@@ -75,7 +75,7 @@ class RecordingReader {
   std::vector<mcap::Attachment> attachments_;
   std::map<std::uint16_t, ChannelUse> channels_;
   std::optional<mcap::Message> first_message_;  // read ahead by the constructor
-  std::vector<RecordingEvent> held_;           // frames waiting for their cycle's marker
+  std::vector<RecordingEvent> held_;            // frames waiting for their cycle's marker
   std::deque<RecordingEvent> ready_;
   bool done_ = false;
   RecordingReaderCounters counters_;

@@ -116,7 +116,9 @@ class SceneMaker {
   }
 
  private:
-  Vec3 to_vehicle(const Vec2& map) const { return vehicle_from_map_ * Vec3(map.x(), map.y(), world_.ground_height(map.x(), map.y())); }
+  Vec3 to_vehicle(const Vec2& map) const {
+    return vehicle_from_map_ * Vec3(map.x(), map.y(), world_.ground_height(map.x(), map.y()));
+  }
 
   RenderedCandidate candidate(const Vec3& vehicle, std::string kind) {
     RenderedCandidate c;

@@ -24,37 +24,37 @@
 namespace fsd {
 
 struct RenderedCandidate {
-  Cone cone;                    // as the LiDAR stages report it: vehicle frame, stage Lidar, no colour
-  CandidateSize size;           // its cluster's envelope
+  Cone cone;           // as the LiDAR stages report it: vehicle frame, stage Lidar, no colour
+  CandidateSize size;  // its cluster's envelope
   bool is_cone = false;
   ConeColour colour = ConeColour::Unknown;  // truth, for cones
-  std::string kind;             // cone, tyre, tyre_stack, post, fence, ground, grass
-  double range = 0.0;           // m from the camera to the base
-  double visible_fraction = 1.0;  // cones: share of the silhouette not hidden by nearer objects
-  bool truncated = false;       // cones: the silhouette is cut by the image border
-  bool crowded = false;         // not a cone, but a visible cone covers a quarter of its ROI: no clean label
-  cv::Rect truth_box;           // cones: the silhouette's pixels (cut to the image)
-  cv::Point2d truth_base;       // cones: the pixel of the base centre
+  std::string kind;                         // cone, tyre, tyre_stack, post, fence, ground, grass
+  double range = 0.0;                       // m from the camera to the base
+  double visible_fraction = 1.0;            // cones: share of the silhouette not hidden by nearer objects
+  bool truncated = false;                   // cones: the silhouette is cut by the image border
+  bool crowded = false;    // not a cone, but a visible cone covers a quarter of its ROI: no clean label
+  cv::Rect truth_box;      // cones: the silhouette's pixels (cut to the image)
+  cv::Point2d truth_base;  // cones: the pixel of the base centre
 };
 
 struct RenderedFrame {
-  std::string track;            // file stem
-  int frame = 0;                // index within the track, from 0
-  cv::Mat bgr;                  // JPEG-decoded, as the driver delivers it
+  std::string track;              // file stem
+  int frame = 0;                  // index within the track, from 0
+  cv::Mat bgr;                    // JPEG-decoded, as the driver delivers it
   CameraCalibration calibration;  // the camera's exact pinhole (intrinsics and mount)
   std::vector<RenderedCandidate> candidates;
 };
 
 struct RenderedScenesConfig {
-  std::vector<std::string> tracks;   // track files (EUFS/FSDS CSV)
+  std::vector<std::string> tracks;  // track files (EUFS/FSDS CSV)
   int frames_per_track = 40;
-  int frames_per_camera = 20;        // a new camera (mount, field of view, sun, exposure) after this many frames
+  int frames_per_camera = 20;  // a new camera (mount, field of view, sun, exposure) after this many frames
   std::uint64_t seed = 1;
-  double max_range = 20.0;           // m: candidates farther away are not offered
-  double position_noise = 0.05;      // m, σ of the LiDAR centroid in x and y
-  int ground_candidates = 3;         // bare-ground candidates per frame
-  bool fsac_share = true;            // every other track in FSAC colours (red and blue), so red cones appear
-  bool vary_camera = true;           // mount, field of view, sun and exposure drawn per track
+  double max_range = 20.0;       // m: candidates farther away are not offered
+  double position_noise = 0.05;  // m, σ of the LiDAR centroid in x and y
+  int ground_candidates = 3;     // bare-ground candidates per frame
+  bool fsac_share = true;        // every other track in FSAC colours (red and blue), so red cones appear
+  bool vary_camera = true;       // mount, field of view, sun and exposure drawn per track
 };
 
 // Renders the frames one by one (a world and a camera per track, frames in order) and hands each to `frame_fn`.

@@ -94,7 +94,11 @@ struct ReplayRun::Impl {
   nlohmann::json car_summary;
 
   explicit Impl(const RunOptions& o)
-      : file(o.replay), headless(o.headless), until_finished(o.until_finished), rate(o.rate), mapped(o.replay),
+      : file(o.replay),
+        headless(o.headless),
+        until_finished(o.until_finished),
+        rate(o.rate),
+        mapped(o.replay),
         reader(mapped.bytes()),
         recorded(recorded_run_from_metadata(*reader.metadata(mcap::kRunMetadata))),
         cfg(replay_config(*reader.metadata(mcap::kConfigMetadata), o.config_file, *log)),
@@ -126,8 +130,10 @@ struct ReplayRun::Impl {
     if (recorded.simulator) {
       const auto convention = ColourConvention::named(run.colours);
       // The attached bytes, named as the recorded run.track names them (the scorecard's "track").
-      if (const auto csv = reader.attachment(kTrackAttachment)) track = parse_track(*csv, run.track, convention);
-      else track = load_track(run.track, convention);
+      if (const auto csv = reader.attachment(kTrackAttachment))
+        track = parse_track(*csv, run.track, convention);
+      else
+        track = load_track(run.track, convention);
       scoring = std::make_unique<SimScoring>(track, recorded.mission, run, *stack);
     }
     for (const auto& i : reader.issues()) log->warn("{}: {}", file, i.what);
@@ -153,7 +159,8 @@ struct ReplayRun::Impl {
         scoring->set_truth_cones(std::move(*c));
       }
     } else if (e.channel == RawChannel::VcuTx) {
-      if (recorded.mode == "sim") cycle_vcu_tx.push_back(e.bytes);
+      if (recorded.mode == "sim")
+        cycle_vcu_tx.push_back(e.bytes);
       else {
         // On the car the link's sender thread encoded these, when it sent them.
         ++vcu_compared;
@@ -228,10 +235,11 @@ struct ReplayRun::Impl {
     if (const auto cut = reader.truncated_at())
       log->warn("{}: cut off at offset {}: replayed up to its last complete chunk (t = {:.3f} s)", file, *cut, t_last);
     const auto& c = reader.counters();
-    log->info("replay over at t = {:.2f} s: {} frames, {} cycles in {:.2f} s ({:.1f}x real time); commands: {} "
-              "compared, {} mismatched; VCU frames: {} compared, {} mismatched",
-              t_last, c.frames, c.cycles, wall_time, wall_time > 0 ? (t_last - t_first) / wall_time : 0.0, compared,
-              mismatches, vcu_compared, vcu_mismatches);
+    log->info(
+        "replay over at t = {:.2f} s: {} frames, {} cycles in {:.2f} s ({:.1f}x real time); commands: {} "
+        "compared, {} mismatched; VCU frames: {} compared, {} mismatched",
+        t_last, c.frames, c.cycles, wall_time, wall_time > 0 ? (t_last - t_first) / wall_time : 0.0, compared,
+        mismatches, vcu_compared, vcu_mismatches);
     if (scoring) scoring->finish(wall_time);
     int rc = kExitOk;
     if (recorded.lockstep && (mismatches > 0 || vcu_mismatches > 0)) {
@@ -248,25 +256,26 @@ struct ReplayRun::Impl {
     nlohmann::json issues = nlohmann::json::array();
     for (const auto& i : reader.issues())
       issues.push_back({{"kind", mcap::to_string(i.kind)}, {"offset", i.offset}, {"what", i.what}});
-    nlohmann::json j = {{"file", file},
-                        {"recorded_mode", recorded.mode},
-                        {"recorded_lockstep", recorded.lockstep},
-                        {"frames", c.frames},
-                        {"cycles", c.cycles},
-                        {"inexact_frames", c.inexact_frames},
-                        {"bad_messages", c.bad_messages},
-                        {"commands_compared", compared},
-                        {"command_mismatches", mismatches},
-                        {"commands_without_cycle", unanswered},
-                        {"vcu_frames_compared", vcu_compared},
-                        {"vcu_frame_mismatches", vcu_mismatches},
-                        {"first_mismatch_t", first_mismatch ? nlohmann::json(*first_mismatch) : nlohmann::json()},
-                        {"complete", reader.complete()},
-                        {"truncated_at", reader.truncated_at() ? nlohmann::json(*reader.truncated_at()) : nlohmann::json()},
-                        {"issues", issues},
-                        {"replayed_s", any_cycle ? t_last - t_first : 0.0},
-                        {"wall_time_s", wall_time},
-                        {"speed_x", wall_time > 0 && any_cycle ? (t_last - t_first) / wall_time : 0.0}};
+    nlohmann::json j = {
+        {"file", file},
+        {"recorded_mode", recorded.mode},
+        {"recorded_lockstep", recorded.lockstep},
+        {"frames", c.frames},
+        {"cycles", c.cycles},
+        {"inexact_frames", c.inexact_frames},
+        {"bad_messages", c.bad_messages},
+        {"commands_compared", compared},
+        {"command_mismatches", mismatches},
+        {"commands_without_cycle", unanswered},
+        {"vcu_frames_compared", vcu_compared},
+        {"vcu_frame_mismatches", vcu_mismatches},
+        {"first_mismatch_t", first_mismatch ? nlohmann::json(*first_mismatch) : nlohmann::json()},
+        {"complete", reader.complete()},
+        {"truncated_at", reader.truncated_at() ? nlohmann::json(*reader.truncated_at()) : nlohmann::json()},
+        {"issues", issues},
+        {"replayed_s", any_cycle ? t_last - t_first : 0.0},
+        {"wall_time_s", wall_time},
+        {"speed_x", wall_time > 0 && any_cycle ? (t_last - t_first) / wall_time : 0.0}};
     return j;
   }
 
@@ -298,7 +307,8 @@ void ReplayRun::set_telemetry(Telemetry* telemetry) {
   if (!impl_->scoring) return impl_->stack->set_telemetry(telemetry);
   // A simulated run's recorded truth on the dashboard's /truth/* channels, as the live run showed it.
   impl_->stack->set_telemetry(telemetry, [this](TelemetrySnapshot& s) {
-    if (impl_->truth) s.truth = truth_state(truth_from_state(impl_->truth->state), static_cast<int>(impl_->truth->cones_hit));
+    if (impl_->truth)
+      s.truth = truth_state(truth_from_state(impl_->truth->state), static_cast<int>(impl_->truth->cones_hit));
     s.truth_cones = impl_->dashboard_cones;
   });
 }

@@ -35,8 +35,8 @@ RunMetrics::RunMetrics(web::Metrics& m)
       sim_time_(m.gauge("fsd_run_time_seconds", "The run's clock (simulated time in sim runs)")) {
   for (int i = 0; i < 5; ++i) {
     const std::string name(to_string(static_cast<AsState>(i)));
-    as_active_[i] = &m.gauge("fsd_as_state_active", "1 for the AS state the VCU is in, 0 for the others",
-                             {{"state", name}});
+    as_active_[i] =
+        &m.gauge("fsd_as_state_active", "1 for the AS state the VCU is in, 0 for the others", {{"state", name}});
   }
   cones_hit_.set(-1);
 }

@@ -13,18 +13,18 @@ namespace fsd {
 
 // What one control cycle measured; a negative latency means "this stage did not run in this cycle".
 struct CycleFigures {
-  Stamp t = 0;                    // run clock
-  double perception_s = -1;       // wall time of the perception stage (sensor frame → cone map update)
-  double planning_s = -1;         // wall time of a new plan
-  double control_s = -1;          // wall time of the path follower and supervisor
-  bool planned = false;           // a real-time plan ran; and what it had to do:
-  bool plan_one_boundary = false; //   only one boundary seen
-  bool plan_colour_blind = false; //   colours contradicted the geometry
-  bool plan_tight_turn = false;   //   a turn shaped to the steering lock
-  double end_to_end_s = -1;       // from the start of perception to the command handed to the VCU link
+  Stamp t = 0;                     // run clock
+  double perception_s = -1;        // wall time of the perception stage (sensor frame → cone map update)
+  double planning_s = -1;          // wall time of a new plan
+  double control_s = -1;           // wall time of the path follower and supervisor
+  bool planned = false;            // a real-time plan ran; and what it had to do:
+  bool plan_one_boundary = false;  //   only one boundary seen
+  bool plan_colour_blind = false;  //   colours contradicted the geometry
+  bool plan_tight_turn = false;    //   a turn shaped to the steering lock
+  double end_to_end_s = -1;        // from the start of perception to the command handed to the VCU link
   AsState as_state = AsState::Off;
   int laps = 0;
-  int cones_hit = -1;             // -1: unknown (not a simulated run)
+  int cones_hit = -1;  // -1: unknown (not a simulated run)
 };
 
 class RunMetrics {

@@ -6,18 +6,18 @@
 namespace fsd {
 
 struct RunOptions {
-  std::string config_file;           // empty: compiled-in defaults
+  std::string config_file;  // empty: compiled-in defaults
   bool sim = false;
   std::optional<std::string> track;  // overrides run.track
   std::optional<std::string> mission;
   std::optional<int> laps;
   std::optional<int> seed;
-  std::optional<int> port;           // overrides web.port
-  std::string replay, record;        // --replay FILE (daemon/replay_run.hpp), --record FILE (daemon/recorder.hpp)
-  double rate = 1.0;                 // --rate: a replay with the dashboard at this multiple of real time
+  std::optional<int> port;     // overrides web.port
+  std::string replay, record;  // --replay FILE (daemon/replay_run.hpp), --record FILE (daemon/recorder.hpp)
+  double rate = 1.0;           // --rate: a replay with the dashboard at this multiple of real time
   bool headless = false;
   bool until_finished = false;
-  std::string report;                // scorecard JSON path, empty: none
+  std::string report;  // scorecard JSON path, empty: none
 };
 
 }  // namespace fsd

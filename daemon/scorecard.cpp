@@ -72,7 +72,8 @@ void Scorecard::on_truth(const sim::VehicleTruth& truth) {
     for (std::size_t g = 0; g < gates_.gates().size() && !open_; ++g) {
       const double past = gates_.past(g, pos);
       const Vec2 lat(-gates_.gates()[g].forward.y(), gates_.gates()[g].forward.x());
-      if (past > 0.0 && past < 10.0 && std::fabs((pos - gates_.gates()[g].centre).dot(lat)) <= gates_.gates()[g].half_width)
+      if (past > 0.0 && past < 10.0 &&
+          std::fabs((pos - gates_.gates()[g].centre).dot(lat)) <= gates_.gates()[g].half_width)
         start_past_line_ = true;
     }
   } else {
@@ -126,7 +127,8 @@ void Scorecard::on_truth(const sim::VehicleTruth& truth) {
   if (finished_ && !stopped_after_finish_ && !left_stop_zone_) {
     if (mission_ == Mission::EbsTest) {
       // Stopped on the lane (the centre line ± 1.5 m), before the lane's end.
-      if (ref_.distance(pos) > 1.5) left_stop_zone_ = true;
+      if (ref_.distance(pos) > 1.5)
+        left_stop_zone_ = true;
       else if (truth.speed() < 0.05) {
         stopped_after_finish_ = true;
         ebs_stop_distance_ = (pos - *ebs_trigger_at_).norm();
@@ -136,8 +138,10 @@ void Scorecard::on_truth(const sim::VehicleTruth& truth) {
       // layouts stop near their centre line.
       const Vec2 lat(-finish_.forward.y(), finish_.forward.x());
       const double off = mission_ == Mission::Skidpad ? std::fabs((pos - finish_.centre).dot(lat)) : ref_.distance(pos);
-      if (past(finish_, pos) > stop_zone_m_ || off > (mission_ == Mission::Skidpad ? 2.0 : 4.0)) left_stop_zone_ = true;
-      else if (truth.speed() < 0.05) stopped_after_finish_ = true;
+      if (past(finish_, pos) > stop_zone_m_ || off > (mission_ == Mission::Skidpad ? 2.0 : 4.0))
+        left_stop_zone_ = true;
+      else if (truth.speed() < 0.05)
+        stopped_after_finish_ = true;
     }
   }
   last_ = truth;
@@ -209,8 +213,10 @@ nlohmann::json Scorecard::to_json() const {
 nlohmann::json latency_json(const std::map<std::string, LatencyStats>& stages) {
   nlohmann::json lat = nlohmann::json::object();
   for (const auto& [stage, s] : stages)
-    lat[stage] = {{"p50", std::round(s.quantile(0.5) * 1e6) / 1e3}, {"p99", std::round(s.quantile(0.99) * 1e6) / 1e3},
-                  {"max", std::round(s.max() * 1e6) / 1e3}, {"n", s.count()}};
+    lat[stage] = {{"p50", std::round(s.quantile(0.5) * 1e6) / 1e3},
+                  {"p99", std::round(s.quantile(0.99) * 1e6) / 1e3},
+                  {"max", std::round(s.max() * 1e6) / 1e3},
+                  {"n", s.count()}};
   return lat;
 }
 

@@ -80,12 +80,12 @@ class Scorecard {
   sim::TimingGates gates_;
   bool open_ = false;
   bool start_past_line_ = false;  // the car stands just past a timing line: lap 1 from its first motion
-  sim::Gate end_gate_;  // open layouts: across the last left and right boundary cones
+  sim::Gate end_gate_;            // open layouts: across the last left and right boundary cones
   // Skid pad: its centre line is two circles (and the entry/exit axis), not a loop between the boundaries.
   std::vector<Vec2> skidpad_centres_;
   sim::Gate skidpad_gate_;
   double centre_distance(const Vec2& p) const;
-  sim::Gate finish_;    // the gate the finish was crossed at
+  sim::Gate finish_;  // the gate the finish was crossed at
   double ebs_trigger_speed_ = 0;
   std::optional<Vec2> ebs_trigger_at_;
   double ebs_stop_distance_ = 0;

@@ -1,18 +1,18 @@
 #include "daemon/settings.hpp"
 
-#include "perception/truth_perception.hpp"
-#include "daemon/recorder.hpp"
 #include "control/control_config.hpp"
+#include "daemon/recorder.hpp"
 #include "drivers/camera/camera_source.hpp"
-#include "drivers/sim/virtual_car.hpp"
-#include "web/config.hpp"
 #include "drivers/gnss/gnss_config.hpp"
+#include "drivers/sim/virtual_car.hpp"
 #include "drivers/vcu/vcu_config.hpp"
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
 #include "localization/fusion/fusion_config.hpp"
 #include "perception/camera/camera_stage.hpp"
 #include "perception/lidar_cone_detector.hpp"
+#include "perception/truth_perception.hpp"
+#include "web/config.hpp"
 
 namespace fsd {
 
@@ -26,7 +26,8 @@ const ConfigSection<DaemonSettings>& daemon_section() {
 const ConfigSection<RunSettings>& run_section() {
   static const auto s =
       ConfigSection<RunSettings>("run")
-          .string("track", &RunSettings::track, {}, "Track file (EUFS/FSDS CSV) for the virtual car, relative to the working directory.")
+          .string("track", &RunSettings::track, {},
+                  "Track file (EUFS/FSDS CSV) for the virtual car, relative to the working directory.")
           .string("mission", &RunSettings::mission,
                   {"trackdrive", "autocross", "acceleration", "skidpad", "inspection", "ebs_test"},
                   "Mission selected at start.")

@@ -17,8 +17,8 @@
 #include "daemon/sim_truth.hpp"
 #include "daemon/stack.hpp"
 #include "daemon/truth_frames.hpp"
-#include "drivers/sim/virtual_car.hpp"
 #include "drivers/camera/camera_calibration.hpp"
+#include "drivers/sim/virtual_car.hpp"
 
 namespace fsd {
 
@@ -55,7 +55,7 @@ struct SimRun::Impl {
   std::unique_ptr<SimFaults> faults;
   std::unique_ptr<Stack> stack;
   std::unique_ptr<SimScoring> scoring;
-  Scorecard* card = nullptr;  // scoring's
+  Scorecard* card = nullptr;           // scoring's
   std::unique_ptr<Recorder> recorder;  // --record
   int truth_cones_hit = -1;
   std::shared_ptr<const std::vector<web::TruthCone>> dashboard_truth_cones;  // rebuilt when a cone falls
@@ -63,7 +63,10 @@ struct SimRun::Impl {
   std::shared_ptr<spdlog::logger> log = logger("run");
 
   Impl(const Config& cfg, const RunOptions& opt)
-      : run(run_section().read(cfg)), mission(mission_of(run)), headless(opt.headless), until_finished(opt.until_finished) {
+      : run(run_section().read(cfg)),
+        mission(mission_of(run)),
+        headless(opt.headless),
+        until_finished(opt.until_finished) {
     track = load_track(run.track, ColourConvention::named(run.colours));
     if (track.duplicates_dropped > 0)
       log->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
@@ -104,8 +107,8 @@ struct SimRun::Impl {
     if (!opt.record.empty()) {
       RecordingContents rc;
       rc.config = &used.as_json();
-      rc.run = {"sim", headless, so.mission, so.laps, so.simulator, so.start, so.camera->latency,
-                to_json(so.camera->calibration).dump()};
+      rc.run = {"sim",        headless, so.mission,         so.laps,
+                so.simulator, so.start, so.camera->latency, to_json(so.camera->calibration).dump()};
       rc.track_file = run.track;
       recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc, headless);
       stack->add_tap(recorder.get());
@@ -182,8 +185,7 @@ struct SimRun::Impl {
     }
     const auto vc = stack->counters().vcu;
     log->info("run over at t = {:.2f} s: AS {}, {} lap(s), {} cone(s) hit, {} VCU commands, {} statuses", t,
-              to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent,
-              vc.statuses);
+              to_string(car->vcu().state()), card->laps_completed(), car->cones_hit(), vc.commands_sent, vc.statuses);
     if (!until_finished) return 0;
     return card->mission_succeeded() ? 0 : 1;
   }

@@ -12,8 +12,10 @@ double stop_zone(Mission m) {
   switch (m) {
     case Mission::Trackdrive:
     case Mission::Autocross:
-    case Mission::Skidpad: return 30.0;
-    default: return 100.0;
+    case Mission::Skidpad:
+      return 30.0;
+    default:
+      return 100.0;
   }
 }
 

@@ -31,8 +31,8 @@ namespace fsd {
 
 namespace {
 
-constexpr int kTelemetryEvery = 4;          // control cycles between dashboard snapshots (25 Hz at 100 Hz)
-constexpr std::size_t kMaxLinkFaults = 256;  // VCU link events kept for the report
+constexpr int kTelemetryEvery = 4;            // control cycles between dashboard snapshots (25 Hz at 100 Hz)
+constexpr std::size_t kMaxLinkFaults = 256;   // VCU link events kept for the report
 constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
 constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
 constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
@@ -144,9 +144,8 @@ struct Stack::Impl {
     gnss = std::make_unique<GnssDriver>(gnss_section().read(cfg), [this](const GnssSample& s) {
       if (gnss_pending.size() < kMaxGnssPending) gnss_pending.push_back(s);
     });
-    vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), opt.start, [this](const VcuLinkEvent& e) {
-      on_link_event(e);
-    });
+    vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), opt.start,
+                                       [this](const VcuLinkEvent& e) { on_link_event(e); });
     vcu->set_mission(opt.mission);
 
     control = opt.control ? *opt.control : read_control(cfg);
@@ -167,8 +166,8 @@ struct Stack::Impl {
             "run.perception_source = lidar_camera needs the camera's calibration: set drivers.camera.calibration "
             "(or run.perception_source = lidar)");
       const CameraStageConfig cc = read_camera_stage_config(cfg);
-      camera = std::make_unique<CameraStage>(opt.camera->calibration, load_cone_classifier_model(cc.classifier.model),
-                                             cc);
+      camera =
+          std::make_unique<CameraStage>(opt.camera->calibration, load_cone_classifier_model(cc.classifier.model), cc);
     }
     log->info("perception: {} (LiDAR mount x {:.2f} y {:.2f} z {:.2f} m)", run.perception_source, vlp_cfg.mount_x,
               vlp_cfg.mount_y, vlp_cfg.mount_z);
@@ -179,8 +178,12 @@ struct Stack::Impl {
   void on_link_event(const VcuLinkEvent& e) {
     switch (e.kind) {
       case VcuLinkEventKind::StatusRestored:
-      case VcuLinkEventKind::PortRestored: logger("vcu")->info("{} (gap {:.3f} s)", describe(e), e.gap); break;
-      default: logger("vcu")->warn("{}", describe(e)); break;
+      case VcuLinkEventKind::PortRestored:
+        logger("vcu")->info("{} (gap {:.3f} s)", describe(e), e.gap);
+        break;
+      default:
+        logger("vcu")->warn("{}", describe(e));
+        break;
     }
     std::lock_guard lock(link_m);
     if (link_faults.size() < kMaxLinkFaults) link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog"});
@@ -188,13 +191,17 @@ struct Stack::Impl {
 
   void decode(const RawFrame& f) {
     switch (f.channel) {
-      case RawChannel::Vlp16Data: lidar->on_data_packet(f.t, f.bytes); break;
+      case RawChannel::Vlp16Data:
+        lidar->on_data_packet(f.t, f.bytes);
+        break;
       case RawChannel::Vlp16Position: {
         PositionPacket p;
         if (position.parse(f.bytes, p) == PositionStatus::Ok) pps = p.pps;
         break;
       }
-      case RawChannel::Nmea: gnss->feed(f.bytes, f.t); break;
+      case RawChannel::Nmea:
+        gnss->feed(f.bytes, f.t);
+        break;
       case RawChannel::Camera:
         // Kept as the camera sent it (JPEG) for the dashboard; the camera stages decode what they use.
         last_jpeg = std::make_shared<const std::vector<std::uint8_t>>(f.bytes.begin(), f.bytes.end());
@@ -204,17 +211,26 @@ struct Stack::Impl {
           camera_recent.push_back({f.t - opt.camera->latency, last_jpeg});
         }
         break;
-      case RawChannel::VcuRx: vcu->on_bytes(f.t, f.bytes); break;
-      case RawChannel::VcuTx: break;  // what the stack sent: recorded, nothing to decode
+      case RawChannel::VcuRx:
+        vcu->on_bytes(f.t, f.bytes);
+        break;
+      case RawChannel::VcuTx:
+        break;  // what the stack sent: recorded, nothing to decode
       case RawChannel::TruthState:
-        if (auto s = decode_truth_state(f.bytes)) truth = *s;
-        else ++truth_rejected;
+        if (auto s = decode_truth_state(f.bytes))
+          truth = *s;
+        else
+          ++truth_rejected;
         break;
       case RawChannel::TruthCones:
-        if (auto c = decode_truth_cones(f.bytes)) truth_cones = std::move(*c);
-        else ++truth_rejected;
+        if (auto c = decode_truth_cones(f.bytes))
+          truth_cones = std::move(*c);
+        else
+          ++truth_rejected;
         break;
-      case RawChannel::TruthScan: truth_scan = true; break;
+      case RawChannel::TruthScan:
+        truth_scan = true;
+        break;
     }
   }
 
@@ -226,8 +242,7 @@ struct Stack::Impl {
     const std::uint64_t dropped = changed_keys->dropped();
     if (dropped != changes_dropped) {
       changes_dropped = dropped;
-      while (changed_keys->try_pop()) {
-      }
+      while (changed_keys->try_pop()) {}
       for (const auto& p : params->list()) any |= apply_control_param(control, p.entry->key, p.value);
     }
     while (auto key = changed_keys->try_pop())
@@ -405,8 +420,7 @@ struct Stack::Impl {
       // (drivers.vlp16.mount_*).
       if (last_scan) {
         s.scan = last_scan;
-        s.lidar_pose =
-            poses.at(last_scan_end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
+        s.lidar_pose = poses.at(last_scan_end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
       }
     }
     s.detections = last_detections;

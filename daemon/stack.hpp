@@ -84,8 +84,8 @@ struct StackCounters {
 // What one control cycle did.
 struct StackCycle {
   ControlOutput out;
-  CycleFigures figures;        // for /metrics
-  bool perceived = false;      // a perception frame ran this cycle
+  CycleFigures figures;    // for /metrics
+  bool perceived = false;  // a perception frame ran this cycle
 };
 
 class Stack {
@@ -123,12 +123,12 @@ class Stack {
   int laps() const;
   const Autopilot& autopilot() const;
   Autopilot& autopilot();
-  const std::vector<Cone>& cone_map() const;               // mapped cones, map frame
-  const std::optional<VehicleState>& state() const;        // what the autopilot was given last
-  AsState as_state() const;                                // as the VCU reports it
-  std::vector<FaultRecord> faults() const;                 // the VCU link's, then the supervisor's
+  const std::vector<Cone>& cone_map() const;         // mapped cones, map frame
+  const std::optional<VehicleState>& state() const;  // what the autopilot was given last
+  AsState as_state() const;                          // as the VCU reports it
+  std::vector<FaultRecord> faults() const;           // the VCU link's, then the supervisor's
   const std::map<std::string, LatencyStats>& latencies() const;
-  StackCounters counters() const;                          // any thread
+  StackCounters counters() const;  // any thread
 
  private:
   struct Impl;

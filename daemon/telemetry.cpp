@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "web/log_sink.hpp"
 #include "web/server.hpp"
@@ -25,8 +25,13 @@ nlohmann::json state_json(const TelemetrySnapshot& s) {
       {"lap_times", s.as.lap_times},
       {"control_mode", s.as.control_mode},
       {"finished", s.as.finished},
-      {"vehicle", {{"x", v.pose.x}, {"y", v.pose.y}, {"yaw", v.pose.yaw}, {"speed", v.speed()},
-                   {"yaw_rate", v.yaw_rate}, {"target_speed", s.target_speed}}},
+      {"vehicle",
+       {{"x", v.pose.x},
+        {"y", v.pose.y},
+        {"yaw", v.pose.yaw},
+        {"speed", v.speed()},
+        {"yaw_rate", v.yaw_rate},
+        {"target_speed", s.target_speed}}},
       {"faults", static_cast<int>(s.faults.size())},
   };
   if (s.truth) j["truth"] = {{"speed", s.truth->speed}, {"cones_hit", s.truth->cones_hit}};
@@ -40,7 +45,8 @@ Telemetry::Telemetry(web::WebServer& server, TelemetryRates rates, bool truth)
       ch_(web::add_standard_channels(server)),
       truth_ch_(truth ? std::optional(web::add_truth_channels(server)) : std::nullopt),
       rates_(rates),
-      published_(server.metrics().counter("fsd_telemetry_snapshots_total", "Snapshots the control loop handed to telemetry")),
+      published_(
+          server.metrics().counter("fsd_telemetry_snapshots_total", "Snapshots the control loop handed to telemetry")),
       skipped_(server.metrics().counter("fsd_telemetry_snapshots_skipped_total",
                                         "Snapshots replaced by a newer one before the telemetry thread took them")),
       thread_([this] { loop(); }) {

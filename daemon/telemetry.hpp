@@ -27,15 +27,15 @@ class WebServer;
 
 struct TelemetrySnapshot {
   Stamp t = 0;
-  VehicleState state;                                     // the stack's own estimate (what it drives on)
+  VehicleState state;  // the stack's own estimate (what it drives on)
   double target_speed = 0;
-  std::shared_ptr<const std::vector<Cone>> cone_map;      // map frame
-  std::shared_ptr<const ConeDetections> detections;       // vehicle frame
-  std::optional<Pose2> detections_pose;                    // the car's estimated pose at detections->stamp
+  std::shared_ptr<const std::vector<Cone>> cone_map;  // map frame
+  std::shared_ptr<const ConeDetections> detections;   // vehicle frame
+  std::optional<Pose2> detections_pose;               // the car's estimated pose at detections->stamp
   std::shared_ptr<const web::PathSet> paths;
-  std::shared_ptr<const Scan> scan;                       // sensor frame
+  std::shared_ptr<const Scan> scan;                              // sensor frame
   std::shared_ptr<const std::vector<std::uint8_t>> camera_jpeg;  // the newest camera frame as sent
-  Pose3 lidar_pose = Pose3::Identity();                   // map ← sensor at the scan
+  Pose3 lidar_pose = Pose3::Identity();                          // map ← sensor at the scan
   web::AsStatusView as;
   std::vector<web::FaultEvent> faults;
   // Sim runs only: the simulator's ground truth, published on /truth/* (never mixed into the channels above).
@@ -51,7 +51,7 @@ class Telemetry {
  public:
   // `truth`: also add the /truth/* channels (sim runs). The server must outlive the Telemetry.
   Telemetry(web::WebServer& server, TelemetryRates rates = {}, bool truth = false);
-  ~Telemetry();  // stops the thread
+  ~Telemetry();                              // stops the thread
   void publish(TelemetrySnapshot snapshot);  // never blocks
   void stop();
   const web::StandardChannels& channels() const { return ch_; }

@@ -28,6 +28,7 @@ std::optional<TruthStateFrame> decode_truth_state(std::span<const std::uint8_t> 
 
 std::vector<std::uint8_t> encode_truth_cones(const std::vector<Cone>& cones);
 // At most `max_cones` (a layout has a few hundred); nullopt for anything malformed.
-std::optional<std::vector<Cone>> decode_truth_cones(std::span<const std::uint8_t> bytes, std::size_t max_cones = 100000);
+std::optional<std::vector<Cone>> decode_truth_cones(std::span<const std::uint8_t> bytes,
+                                                    std::size_t max_cones = 100000);
 
 }  // namespace fsd

@@ -7,18 +7,19 @@
 namespace fsd {
 
 const ConfigSection<ConeMapConfig>& cone_map_section() {
-  static const auto s = ConfigSection<ConeMapConfig>("localization.cone_map")
-                            .number("association_gate", &ConeMapConfig::association_gate, 0.1, 5.0, "m",
-                                    "A detection this close to a mapped cone is the same cone.")
-                            .number("colour_conflict_gate", &ConeMapConfig::colour_conflict_gate, 0.05, 5.0, "m",
-                                    "A detection of another colour than the mapped cone's is that cone only this close.")
-                            .integer("min_observations", &ConeMapConfig::min_observations, 1, 100, "",
-                                     "Observations before a cone is reported (rejects one-off ghosts).")
-                            .integer("min_rejections", &ConeMapConfig::min_rejections, 1, 1000, "",
-                                     "Camera rejections before a mapped cone the camera rejected more often than it "
-                                     "verified is withheld (a distractor the LiDAR took for a cone).")
-                            .number("max_range", &ConeMapConfig::max_range, 1.0, 100.0, "m",
-                                    "Detections beyond this range are not mapped.");
+  static const auto s =
+      ConfigSection<ConeMapConfig>("localization.cone_map")
+          .number("association_gate", &ConeMapConfig::association_gate, 0.1, 5.0, "m",
+                  "A detection this close to a mapped cone is the same cone.")
+          .number("colour_conflict_gate", &ConeMapConfig::colour_conflict_gate, 0.05, 5.0, "m",
+                  "A detection of another colour than the mapped cone's is that cone only this close.")
+          .integer("min_observations", &ConeMapConfig::min_observations, 1, 100, "",
+                   "Observations before a cone is reported (rejects one-off ghosts).")
+          .integer("min_rejections", &ConeMapConfig::min_rejections, 1, 1000, "",
+                   "Camera rejections before a mapped cone the camera rejected more often than it "
+                   "verified is withheld (a distractor the LiDAR took for a cone).")
+          .number("max_range", &ConeMapConfig::max_range, 1.0, 100.0, "m",
+                  "Detections beyond this range are not mapped.");
   return s;
 }
 

@@ -18,10 +18,11 @@ namespace fsd {
 
 struct ConeMapConfig {
   double association_gate = 0.7;  // m: under the 1 m between a start line's cones, 7σ of 0.1 m detection noise
-  double colour_conflict_gate = 0.4;  // m: a detection of another colour than the mapped cone's is that cone only this close
-  int min_observations = 2;       // a cone is reported once seen this often
-  int min_rejections = 2;         // camera rejections before a mapped cone may be withheld
-  double max_range = 20.0;        // detections farther than this are ignored (m)
+  double colour_conflict_gate =
+      0.4;                   // m: a detection of another colour than the mapped cone's is that cone only this close
+  int min_observations = 2;  // a cone is reported once seen this often
+  int min_rejections = 2;    // camera rejections before a mapped cone may be withheld
+  double max_range = 20.0;   // detections farther than this are ignored (m)
 };
 const ConfigSection<ConeMapConfig>& cone_map_section();
 

@@ -44,8 +44,8 @@ class PoseHistory {
     if (poses_.empty()) return std::nullopt;
     if (t <= poses_.front().t) return poses_.front().pose;
     if (t >= poses_.back().t) return poses_.back().pose;
-    const auto hi = std::lower_bound(poses_.begin(), poses_.end(), t,
-                                     [](const Stamped& s, Stamp v) { return s.t < v; });
+    const auto hi =
+        std::lower_bound(poses_.begin(), poses_.end(), t, [](const Stamped& s, Stamp v) { return s.t < v; });
     const auto lo = hi - 1;
     const double u = (t - lo->t) / (hi->t - lo->t);
     const Pose2& a = lo->pose;

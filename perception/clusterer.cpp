@@ -144,7 +144,8 @@ std::vector<Cluster> Clusterer::cluster_grid(const std::vector<Point>& points, c
       for (std::int64_t xx = std::max<std::int64_t>(0, cx - reach); xx <= std::min(nx - 1, cx + reach); ++xx) {
         const std::int64_t d = yy * nx + xx;
         if (d <= c) continue;
-        const std::uint32_t b2 = cell_start_[static_cast<std::size_t>(d)], e2 = cell_start_[static_cast<std::size_t>(d) + 1];
+        const std::uint32_t b2 = cell_start_[static_cast<std::size_t>(d)],
+                            e2 = cell_start_[static_cast<std::size_t>(d) + 1];
         if (b2 == e2) continue;
         link_cells(b, e, b2, e2);
       }
@@ -191,7 +192,8 @@ std::vector<Cluster> Clusterer::cluster_pcl(const std::vector<Point>& points) co
     out.push_back(std::move(c));
   }
   // Same order as the grid's: by first point.
-  std::sort(out.begin(), out.end(), [](const Cluster& a, const Cluster& b) { return a.indices.front() < b.indices.front(); });
+  std::sort(out.begin(), out.end(),
+            [](const Cluster& a, const Cluster& b) { return a.indices.front() < b.indices.front(); });
   return out;
 }
 

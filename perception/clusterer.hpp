@@ -19,10 +19,10 @@
 namespace fsd {
 
 struct ClusterConfig {
-  std::string method = "grid";   // "grid" | "pcl_euclidean"
-  double tolerance = 0.2;        // m: under the 0.24 m between the bases of two cones 0.5 m apart
-  double range_factor = 0.01;    // m per m of range (grid only): ~3 azimuth steps of the VLP-16 at 10 Hz
-  double z_weight = 0.0;         // weight of the height difference in the distance (0: footprint only)
+  std::string method = "grid";  // "grid" | "pcl_euclidean"
+  double tolerance = 0.2;       // m: under the 0.24 m between the bases of two cones 0.5 m apart
+  double range_factor = 0.01;   // m per m of range (grid only): ~3 azimuth steps of the VLP-16 at 10 Hz
+  double z_weight = 0.0;        // weight of the height difference in the distance (0: footprint only)
   int min_points = 2;
   int max_points = 5000;
 };
@@ -37,7 +37,8 @@ class Clusterer {
   explicit Clusterer(const ClusterConfig& cfg = {}) : cfg_(cfg) {}
   // Clusters `points`; `sensor_xy` is the sensor's position in their frame (for the range-aware tolerance).
   // Clusters with fewer than min_points or more than max_points are dropped; `too_large` counts the latter.
-  std::vector<Cluster> cluster(const std::vector<Point>& points, const Vec2& sensor_xy, std::size_t* too_large = nullptr);
+  std::vector<Cluster> cluster(const std::vector<Point>& points, const Vec2& sensor_xy,
+                               std::size_t* too_large = nullptr);
   const ClusterConfig& config() const { return cfg_; }
 
  private:

@@ -13,10 +13,10 @@
 namespace fsd {
 
 struct ConeQualityConfig {
-  double confidence_range = 25.0;   // m where the range factor reaches far_confidence
+  double confidence_range = 25.0;  // m where the range factor reaches far_confidence
   double far_confidence = 0.3;
-  double sigma_base = 0.02;             // m
-  double sigma_radial_per_m = 0.003;    // m per m of range
+  double sigma_base = 0.02;           // m
+  double sigma_radial_per_m = 0.003;  // m per m of range
   double sigma_tangential_per_m = 0.002;
 };
 const ConfigSection<ConeQualityConfig>& cone_quality_section();  // "perception.lidar.quality"

@@ -46,14 +46,22 @@ const ConfigSection<ConeSizeConfig>& cone_size_section() {
 
 const char* to_string(ConeRejection r) {
   switch (r) {
-    case ConeRejection::None: return "cone";
-    case ConeRejection::TooSparse: return "too_sparse";
-    case ConeRejection::TooWide: return "too_wide";
-    case ConeRejection::TooTall: return "too_tall";
-    case ConeRejection::NotConeShaped: return "not_cone_shaped";
-    case ConeRejection::TooFlat: return "too_flat";
-    case ConeRejection::Floating: return "floating";
-    case ConeRejection::BesideTaller: return "beside_taller";
+    case ConeRejection::None:
+      return "cone";
+    case ConeRejection::TooSparse:
+      return "too_sparse";
+    case ConeRejection::TooWide:
+      return "too_wide";
+    case ConeRejection::TooTall:
+      return "too_tall";
+    case ConeRejection::NotConeShaped:
+      return "not_cone_shaped";
+    case ConeRejection::TooFlat:
+      return "too_flat";
+    case ConeRejection::Floating:
+      return "floating";
+    case ConeRejection::BesideTaller:
+      return "beside_taller";
   }
   return "?";
 }
@@ -151,9 +159,7 @@ ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const C
   constexpr double kSlice = 0.03;  // m: under the 2° laser spacing at 1 m
   const int slices = std::max(1, static_cast<int>(std::ceil((top - bottom) / kSlice)) + 1);
   std::vector<Slice> slice(static_cast<std::size_t>(slices));
-  const auto slice_of = [&](double h) {
-    return std::clamp(static_cast<int>((h - bottom) / kSlice), 0, slices - 1);
-  };
+  const auto slice_of = [&](double h) { return std::clamp(static_cast<int>((h - bottom) / kSlice), 0, slices - 1); };
   for (std::size_t k = 0; k < n; ++k) {
     Slice& sl = slice[static_cast<std::size_t>(slice_of(height[k]))];
     sl.lo = std::min(sl.lo, tangential[k]), sl.hi = std::max(sl.hi, tangential[k]);

@@ -34,8 +34,8 @@
 namespace fsd {
 
 struct ConeSizeConfig {
-  double small_width = 0.228, small_height = 0.325;  // m, FSG small cone (blue, yellow, small orange)
-  double big_width = 0.285, big_height = 0.505;      // m, big orange cone
+  double small_width = 0.228, small_height = 0.325;     // m, FSG small cone (blue, yellow, small orange)
+  double big_width = 0.285, big_height = 0.505;         // m, big orange cone
   double small_top_width = 0.05, big_top_width = 0.06;  // m, the narrow tips
   double width_margin = 0.08;     // m a cluster may exceed a big cone's base (range noise along the line of sight)
   double height_margin = 0.06;    // m a cluster's top may exceed a big cone's
@@ -44,21 +44,28 @@ struct ConeSizeConfig {
   double hit_margin = 0.025;      // m inside a cone's top (too flat) or above the ground threshold (floating)
   double beam_spacing_deg = 2.0;  // vertical angle between adjacent lasers (VLP-16: 2°)
   double lowest_beam_deg = -15.0, highest_beam_deg = 15.0;  // the sensor's laser fan (VLP-16: ±15°)
-  double azimuth_step_deg = 0.2;  // horizontal angle between firings (VLP-16 at 10 Hz: 0.2°)
-  double min_point_ratio = 0.2;   // share of a small cone's expected points a cluster must have
+  double azimuth_step_deg = 0.2;                            // horizontal angle between firings (VLP-16 at 10 Hz: 0.2°)
+  double min_point_ratio = 0.2;  // share of a small cone's expected points a cluster must have
   int min_points = 2;
-  double tall_clearance = 0.7;    // m around a cone free of points higher than a big cone; 0 = off
+  double tall_clearance = 0.7;  // m around a cone free of points higher than a big cone; 0 = off
 };
 const ConfigSection<ConeSizeConfig>& cone_size_section();  // "perception.lidar.size"
 
 enum class ConeRejection : std::uint8_t {
-  None = 0, TooSparse, TooWide, TooTall, NotConeShaped, TooFlat, Floating, BesideTaller
+  None = 0,
+  TooSparse,
+  TooWide,
+  TooTall,
+  NotConeShaped,
+  TooFlat,
+  Floating,
+  BesideTaller
 };
 const char* to_string(ConeRejection r);
 
 struct ConeMeasurement {
   ConeRejection rejection = ConeRejection::None;
-  ConeCandidate candidate;   // filled for every cluster (its measured size), a cone only when rejection is None
+  ConeCandidate candidate;     // filled for every cluster (its measured size), a cone only when rejection is None
   double expected_points = 0;  // what a small cone at that range returns over the accumulated frames
 };
 

@@ -5,14 +5,13 @@
 namespace fsd {
 
 const ConfigSection<AccumulationConfig>& accumulation_section() {
-  static const auto s =
-      ConfigSection<AccumulationConfig>("perception.lidar.accumulation")
-          .integer("frames", &AccumulationConfig::frames, 1, 20, "",
-                   "Frames accumulated (m, paper eq. 6-8), the current one included; 1 = none.")
-          .integer("max_points_per_frame", &AccumulationConfig::max_points_per_frame, 100, 1000000, "",
-                   "Obstacle points kept per frame (bounds memory and time).")
-          .integer("deskew_knots", &AccumulationConfig::deskew_knots, 1, 1000, "",
-                   "Pose samples per scan for the per-point motion compensation.");
+  static const auto s = ConfigSection<AccumulationConfig>("perception.lidar.accumulation")
+                            .integer("frames", &AccumulationConfig::frames, 1, 20, "",
+                                     "Frames accumulated (m, paper eq. 6-8), the current one included; 1 = none.")
+                            .integer("max_points_per_frame", &AccumulationConfig::max_points_per_frame, 100, 1000000,
+                                     "", "Obstacle points kept per frame (bounds memory and time).")
+                            .integer("deskew_knots", &AccumulationConfig::deskew_knots, 1, 1000, "",
+                                     "Pose samples per scan for the per-point motion compensation.");
   return s;
 }
 

@@ -13,9 +13,9 @@
 namespace fsd {
 
 struct AccumulationConfig {
-  int frames = 3;                     // m, the current frame included (1 = no accumulation)
-  int max_points_per_frame = 20000;   // obstacle points kept per frame (the rest of a frame is dropped, counted)
-  int deskew_knots = 10;              // pose samples per scan for the per-point motion compensation
+  int frames = 3;                    // m, the current frame included (1 = no accumulation)
+  int max_points_per_frame = 20000;  // obstacle points kept per frame (the rest of a frame is dropped, counted)
+  int deskew_knots = 10;             // pose samples per scan for the per-point motion compensation
 };
 const ConfigSection<AccumulationConfig>& accumulation_section();  // "perception.lidar.accumulation"
 

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Dense>
 #include <pcl/ModelCoefficients.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
 #include <pcl/sample_consensus/model_types.h>
 #include <pcl/segmentation/sac_segmentation.h>
+#include <Eigen/Dense>
 
 namespace fsd {
 
@@ -26,7 +26,8 @@ const ConfigSection<GroundConfig>& ground_section() {
                   "The plane's pitch/roll relative to the frame is at most this.")
           .number("height_min", &GroundConfig::height_min, -5.0, 5.0, "m",
                   "Lowest plane height h at the frame origin (vehicle frame: the ground is near 0).")
-          .number("height_max", &GroundConfig::height_max, -5.0, 5.0, "m", "Highest plane height h at the frame origin.")
+          .number("height_max", &GroundConfig::height_max, -5.0, 5.0, "m",
+                  "Highest plane height h at the frame origin.")
           .integer("iterations", &GroundConfig::iterations, 1, 100000, "", "RANSAC hypotheses per frame.")
           .number("seed_cell", &GroundConfig::seed_cell, 0.1, 10.0, "m",
                   "grid_lsq: grid cell whose lowest point is a RANSAC seed.")
@@ -137,7 +138,8 @@ GroundPlane GroundFitter::fit_grid_lsq(const std::vector<Point>& points) {
     if (q.z < cfg_.height_min - max_slope_ * r - cfg_.distance_threshold) continue;
     const int cx = std::min(nx - 1, static_cast<int>((q.x - x0) * inv));
     const int cy = std::min(ny - 1, static_cast<int>((q.y - y0) * inv));
-    int& slot = cell_lowest_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(cx)];
+    int& slot =
+        cell_lowest_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(cx)];
     if (slot < 0 || q.z < points[static_cast<std::size_t>(slot)].z) slot = static_cast<int>(i);
   }
   seeds_.clear();

@@ -28,22 +28,22 @@ struct GroundConfig {
   // Bounds of h, the plane's height at the frame origin: around 0 in the vehicle frame (origin on the ground);
   // `fsd detect` widens them to anything below the sensor.
   double height_min = -0.3, height_max = 0.3;
-  int iterations = 100;              // RANSAC hypotheses
-  double seed_cell = 1.0;            // m, grid cell of the "grid_lsq" seeds
-  int min_inliers = 30;              // fewer inliers: no plane found
+  int iterations = 100;    // RANSAC hypotheses
+  double seed_cell = 1.0;  // m, grid cell of the "grid_lsq" seeds
+  int min_inliers = 30;    // fewer inliers: no plane found
   // Grazing beams (ground_split.hpp): where the ±τ band is longer than grazing_band along a laser, a band point
   // grazing_drop (share of the range) short of its laser's neighbours within ±grazing_window_deg is an obstacle.
-  double grazing_band = 0.5;         // m; 0 = off
+  double grazing_band = 0.5;  // m; 0 = off
   double grazing_drop = 0.04;
   double grazing_window_deg = 4.0;
-  double grazing_margin = 3.0;       // m beyond the region of interest whose points serve as neighbours
+  double grazing_margin = 3.0;  // m beyond the region of interest whose points serve as neighbours
   // The plane is fitted to the points within fit_radius of the frame origin (the ground nearest the car, where a
   // plane holds best); beyond, the local corrections (ground_surface.hpp) follow the ground.
-  double fit_radius = 15.0;          // m
-  double local_cell = 4.0;           // m; 0 = the plane alone
-  double local_band = 0.25;          // m
+  double fit_radius = 15.0;  // m
+  double local_cell = 4.0;   // m; 0 = the plane alone
+  double local_band = 0.25;  // m
   int local_min_points = 10;
-  double local_min_extent = 1.0;     // m
+  double local_min_extent = 1.0;  // m
 };
 const ConfigSection<GroundConfig>& ground_section();  // "perception.lidar.ground"
 
@@ -59,7 +59,7 @@ class GroundFitter {
   GroundPlane fit_pcl_sac(const std::vector<Point>& points) const;
   bool admissible(double a, double b, double h) const;
   GroundConfig cfg_;
-  double max_slope_;      // tan(max tilt)
+  double max_slope_;  // tan(max tilt)
   std::mt19937 rng_;
   std::vector<int> cell_lowest_;  // per grid cell: index of its lowest point, -1 when empty
   std::vector<Eigen::Vector3f> seeds_;

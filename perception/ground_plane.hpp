@@ -9,9 +9,9 @@ namespace fsd {
 
 struct GroundPlane {
   double a = 0.0, b = 0.0, h = 0.0;
-  bool valid = false;         // found by the fit (else a fallback: the previous plane or the configured nominal one)
-  std::size_t inliers = 0;    // points within the inlier threshold
-  double rms = 0.0;           // RMS distance of the inliers from the plane, m
+  bool valid = false;       // found by the fit (else a fallback: the previous plane or the configured nominal one)
+  std::size_t inliers = 0;  // points within the inlier threshold
+  double rms = 0.0;         // RMS distance of the inliers from the plane, m
 
   double z_at(double x, double y) const { return a * x + b * y + h; }
   // Signed distance of a point from the plane, positive above (the paper's eq. 3 with the point-to-plane norm

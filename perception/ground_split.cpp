@@ -14,12 +14,15 @@ void GroundSplitter::classify(const std::vector<Point>& points, const GroundSurf
     const auto& q = points[i];
     const double d = ground.height_of(q.x, q.y, q.z);
     height_[i] = static_cast<float>(d);
-    kind_[i] = d < -threshold ? Kind::Below : d < threshold ? Kind::Ground : d <= max_height ? Kind::Obstacle : Kind::Above;
+    kind_[i] = d < -threshold    ? Kind::Below
+               : d < threshold   ? Kind::Ground
+               : d <= max_height ? Kind::Obstacle
+                                 : Kind::Above;
   }
 }
 
-std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
-                                         const GrazingBeams& g) {
+std::size_t GroundSplitter::mark_grazing(const std::vector<Point>& points, const GroundSurface& ground,
+                                         double threshold, const GrazingBeams& g) {
   const double sensor_h = ground.height_of(g.sensor.x(), g.sensor.y(), g.sensor.z());
   if (g.band <= 0 || sensor_h <= threshold) return 0;
   // The band is longer than g.band along the beam where sin(grazing angle) < threshold / band, i.e. beyond this

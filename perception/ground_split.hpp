@@ -46,7 +46,8 @@ class GroundSplitter {
   GroundSplitCounts split(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
                           double max_height, std::vector<Point>* ground_out, std::vector<Point>& obstacles,
                           const GrazingBeams* grazing = nullptr) {
-    return split(points, ground, threshold, max_height, ground_out, obstacles, grazing, [](const Point&) { return true; });
+    return split(points, ground, threshold, max_height, ground_out, obstacles, grazing,
+                 [](const Point&) { return true; });
   }
 
  private:
@@ -61,16 +62,20 @@ class GroundSplitter {
 
 template <class Keep>
 GroundSplitCounts GroundSplitter::split(const std::vector<Point>& points, const GroundSurface& ground, double threshold,
-                                        double max_height, std::vector<Point>* ground_out, std::vector<Point>& obstacles,
-                                        const GrazingBeams* grazing, Keep&& keep) {
+                                        double max_height, std::vector<Point>* ground_out,
+                                        std::vector<Point>& obstacles, const GrazingBeams* grazing, Keep&& keep) {
   GroundSplitCounts c;
   classify(points, ground, threshold, max_height);
   if (grazing) mark_grazing(points, ground, threshold, *grazing);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!keep(points[i])) continue;
     switch (kind_[i]) {
-      case Kind::Below: ++c.below; break;
-      case Kind::Above: ++c.above; break;
+      case Kind::Below:
+        ++c.below;
+        break;
+      case Kind::Above:
+        ++c.above;
+        break;
       case Kind::Ground:
         ++c.ground;
         if (ground_out) ground_out->push_back(points[i]);

@@ -12,7 +12,8 @@ void GroundSurface::fit_local(const std::vector<Point>& points, const LocalGroun
   nx_ = ny_ = 0;
   if (cfg.cell <= 0 || points.empty()) return;
   float xa = std::numeric_limits<float>::max(), ya = xa, xb = -xa, yb = -xa;
-  for (const auto& q : points) xa = std::min(xa, q.x), xb = std::max(xb, q.x), ya = std::min(ya, q.y), yb = std::max(yb, q.y);
+  for (const auto& q : points)
+    xa = std::min(xa, q.x), xb = std::max(xb, q.x), ya = std::min(ya, q.y), yb = std::max(yb, q.y);
   cell_ = cfg.cell;
   while ((xb - xa) / cell_ * (yb - ya) / cell_ > 65536.0) cell_ *= 2;
   x0_ = xa, y0_ = ya;

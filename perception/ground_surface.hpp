@@ -13,18 +13,20 @@
 namespace fsd {
 
 struct LocalGroundConfig {
-  double cell = 4.0;          // m; 0 = the plane alone
-  double band = 0.25;         // m around the plane searched for the local ground
-  double flat = 0.05;         // m: half-width of the flat layer (the ground threshold τ)
-  int min_points = 10;        // points in the layer
-  double min_extent = 1.0;    // m: the layer's horizontal spread (a cone's ring of points is 0.2 m)
+  double cell = 4.0;        // m; 0 = the plane alone
+  double band = 0.25;       // m around the plane searched for the local ground
+  double flat = 0.05;       // m: half-width of the flat layer (the ground threshold τ)
+  int min_points = 10;      // points in the layer
+  double min_extent = 1.0;  // m: the layer's horizontal spread (a cone's ring of points is 0.2 m)
 };
 
 class GroundSurface {
  public:
   GroundSurface() = default;
-  GroundSurface(const GroundPlane& plane) : plane_(plane), k_(plane.inv_norm()) {}  // NOLINT: a plane is a surface
-                                                                                   // without corrections
+  GroundSurface(const GroundPlane& plane)
+      : plane_(plane),
+        k_(plane.inv_norm()) {}  // NOLINT: a plane is a surface
+                                 // without corrections
 
   // Local corrections from `points` (the detector's frame) around the plane.
   void fit_local(const std::vector<Point>& points, const LocalGroundConfig& cfg);

@@ -7,7 +7,8 @@ namespace fsd {
 const ConfigSection<IntensityColourConfig>& intensity_colour_section() {
   static const auto s =
       ConfigSection<IntensityColourConfig>("perception.lidar.colour")
-          .boolean("enabled", &IntensityColourConfig::enabled, "Colour close cones from the LiDAR reflectivity pattern.")
+          .boolean("enabled", &IntensityColourConfig::enabled,
+                   "Colour close cones from the LiDAR reflectivity pattern.")
           .number("max_range", &IntensityColourConfig::max_range, 0.0, 50.0, "m", "Farther cones stay Unknown.")
           .number("stripe_low", &IntensityColourConfig::stripe_low, 0.0, 1.0, "",
                   "Lower edge of the stripe band, as a share of the small cone's height.")
@@ -80,15 +81,18 @@ IntensityColour IntensityColourClassifier::classify(const ConeCandidate& cone, c
   }
   for (const auto& q : cone.cloud) {
     const double f = ground.height_of(q.x, q.y, q.z) / small_height_;
-    if (f >= cfg_.stripe_low && f <= cfg_.stripe_high) stripe.push_back(q.intensity);
-    else if (f < cfg_.body_low || f > cfg_.body_high) body.push_back(q.intensity);
+    if (f >= cfg_.stripe_low && f <= cfg_.stripe_high)
+      stripe.push_back(q.intensity);
+    else if (f < cfg_.body_low || f > cfg_.body_high)
+      body.push_back(q.intensity);
   }
   const bool have_stripe = stripe.size() >= need, have_body = body.size() >= need;
   if (have_stripe && have_body) {
     const double s = upper_quartile(stripe), b = std::max(1.0, upper_quartile(body));
     const double contrast = s / b;
     if (contrast >= cfg_.bright_contrast)
-      return b <= cfg_.blue_body_max ? IntensityColour{ConeColour::Blue, 0.9} : IntensityColour{ConeColour::Orange, 0.7};
+      return b <= cfg_.blue_body_max ? IntensityColour{ConeColour::Blue, 0.9}
+                                     : IntensityColour{ConeColour::Orange, 0.7};
     if (contrast <= cfg_.dark_contrast) return {ConeColour::Yellow, 0.9};
     return out;
   }

@@ -17,21 +17,21 @@ namespace fsd {
 
 struct IntensityColourConfig {
   bool enabled = true;
-  double max_range = 8.0;           // m: farther cones stay Unknown (too few lasers cross them)
+  double max_range = 8.0;                        // m: farther cones stay Unknown (too few lasers cross them)
   double stripe_low = 0.42, stripe_high = 0.58;  // band of the small cone's height read as stripe (FSG: 0.38-0.62)
   double body_low = 0.32, body_high = 0.68;      // below / above: body
   // The big (orange) cone's two white stripes (FSG: 0.28-0.40 and 0.58-0.70 of its height), read shrunk by 0.02;
   // its body is the rest, 0.04 away from a stripe.
   double big_stripe1_low = 0.30, big_stripe1_high = 0.38, big_stripe2_low = 0.60, big_stripe2_high = 0.68;
   double big_bright_contrast = 1.35;  // white on orange is less contrast than white on blue
-  double bright_contrast = 1.8;     // stripe/body reflectivity above this: a white stripe (blue or orange cone)
-  double dark_contrast = 0.55;      // below this: a black stripe (yellow cone)
-  double blue_body_max = 35.0;      // body reflectivity (upper quartile) at most this: dark blue plastic
-  double blue_body_min = 12.0;      // with no stripe seen, a body darker than this is black (a tyre), not blue
-  double yellow_body_min = 62.0;    // at least this, with no stripe seen: yellow
-  double dark_stripe_max = 20.0;    // a stripe this dark with no body seen: black (yellow cone)
-  int min_band_points = 2;          // points needed in a band to use it (twice that for the body alone)
-  int min_points = 6;               // a smaller cluster is too little to read a colour from
+  double bright_contrast = 1.8;       // stripe/body reflectivity above this: a white stripe (blue or orange cone)
+  double dark_contrast = 0.55;        // below this: a black stripe (yellow cone)
+  double blue_body_max = 35.0;        // body reflectivity (upper quartile) at most this: dark blue plastic
+  double blue_body_min = 12.0;        // with no stripe seen, a body darker than this is black (a tyre), not blue
+  double yellow_body_min = 62.0;      // at least this, with no stripe seen: yellow
+  double dark_stripe_max = 20.0;      // a stripe this dark with no body seen: black (yellow cone)
+  int min_band_points = 2;            // points needed in a band to use it (twice that for the body alone)
+  int min_points = 6;                 // a smaller cluster is too little to read a colour from
 };
 const ConfigSection<IntensityColourConfig>& intensity_colour_section();  // "perception.lidar.colour"
 

@@ -132,9 +132,9 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   grazing.band = cfg_.ground.grazing_band;
   grazing.drop = cfg_.ground.grazing_drop;
   grazing.window = deg2rad(cfg_.ground.grazing_window_deg);
-  const auto split = splitter_.split(cropped_, surface, tau, cfg_.roi.max_height, &out.ground_points, obstacles_,
-                                     use_grazing ? &grazing : nullptr,
-                                     [this](const Point& q) { return roi_.in_box(q.x, q.y); });
+  const auto split =
+      splitter_.split(cropped_, surface, tau, cfg_.roi.max_height, &out.ground_points, obstacles_,
+                      use_grazing ? &grazing : nullptr, [this](const Point& q) { return roi_.in_box(q.x, q.y); });
   n.grazing = split.grazing;
   n.ground = split.ground;
   n.below_ground = split.below;
@@ -167,14 +167,29 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
       out.rejected.push_back({c.position, c.width, c.height, c.bottom, c.points, m.rejection});
     }
     switch (m.rejection) {
-      case ConeRejection::None: break;
-      case ConeRejection::TooSparse: ++n.too_sparse; continue;
-      case ConeRejection::TooWide: ++n.too_wide; continue;
-      case ConeRejection::TooTall: ++n.too_tall; continue;
-      case ConeRejection::NotConeShaped: ++n.not_cone_shaped; continue;
-      case ConeRejection::TooFlat: ++n.too_flat; continue;
-      case ConeRejection::Floating: ++n.floating; continue;
-      case ConeRejection::BesideTaller: ++n.beside_taller; continue;
+      case ConeRejection::None:
+        break;
+      case ConeRejection::TooSparse:
+        ++n.too_sparse;
+        continue;
+      case ConeRejection::TooWide:
+        ++n.too_wide;
+        continue;
+      case ConeRejection::TooTall:
+        ++n.too_tall;
+        continue;
+      case ConeRejection::NotConeShaped:
+        ++n.not_cone_shaped;
+        continue;
+      case ConeRejection::TooFlat:
+        ++n.too_flat;
+        continue;
+      case ConeRejection::Floating:
+        ++n.floating;
+        continue;
+      case ConeRejection::BesideTaller:
+        ++n.beside_taller;
+        continue;
     }
     const ConeCandidate& c = m.candidate;
     Cone cone;

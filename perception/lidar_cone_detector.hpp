@@ -42,25 +42,25 @@ LidarDetectorConfig read_lidar_detector_config(const Config& cfg);
 
 // What each stage kept and dropped in one frame (for /metrics: sum them over frames).
 struct LidarStageCounters {
-  std::uint64_t input = 0;          // points of the scan
-  std::uint64_t invalid = 0;        // non-finite coordinates
-  std::uint64_t outside_roi = 0;    // outside the box
-  std::uint64_t in_body = 0;        // on the car itself
-  std::uint64_t ground = 0;         // ground plane inliers (removed)
-  std::uint64_t below_ground = 0;   // more than τ below the plane (dropped)
-  std::uint64_t above_roi = 0;      // higher than the region above the ground (dropped)
-  std::uint64_t obstacles = 0;      // this frame's points kept for clustering
-  std::uint64_t grazing = 0;        // of them, found along grazing beams within the ground band
+  std::uint64_t input = 0;                 // points of the scan
+  std::uint64_t invalid = 0;               // non-finite coordinates
+  std::uint64_t outside_roi = 0;           // outside the box
+  std::uint64_t in_body = 0;               // on the car itself
+  std::uint64_t ground = 0;                // ground plane inliers (removed)
+  std::uint64_t below_ground = 0;          // more than τ below the plane (dropped)
+  std::uint64_t above_roi = 0;             // higher than the region above the ground (dropped)
+  std::uint64_t obstacles = 0;             // this frame's points kept for clustering
+  std::uint64_t grazing = 0;               // of them, found along grazing beams within the ground band
   std::uint64_t accumulation_dropped = 0;  // over the per-frame bound
-  std::uint64_t clustered = 0;      // points clustered (all accumulated frames)
-  std::uint64_t clusters = 0;       // clusters within the point bounds
+  std::uint64_t clustered = 0;             // points clustered (all accumulated frames)
+  std::uint64_t clusters = 0;              // clusters within the point bounds
   std::uint64_t clusters_too_large = 0;
   std::uint64_t too_sparse = 0, too_wide = 0, too_tall = 0, not_cone_shaped = 0, too_flat = 0, floating = 0;
   std::uint64_t beside_taller = 0;
   std::uint64_t cones = 0;
-  std::uint64_t coloured = 0;       // cones with a colour from the reflectivity
+  std::uint64_t coloured = 0;            // cones with a colour from the reflectivity
   std::uint64_t local_ground_cells = 0;  // grid cells whose ground was corrected from the plane
-  bool ground_fallback = false;     // no plane found: the previous (or nominal) plane was used
+  bool ground_fallback = false;          // no plane found: the previous (or nominal) plane was used
 };
 
 // A cluster the size filter rejected, for the dashboard and diagnostics.
@@ -72,14 +72,14 @@ struct RejectedCluster {
 };
 
 struct LidarDetection {
-  ConeDetections detections;             // vehicle frame at detections.stamp, the scan's last firing
+  ConeDetections detections;              // vehicle frame at detections.stamp, the scan's last firing
   std::vector<ConeCandidate> candidates;  // candidates[i] is detections.cones[i]
-  GroundPlane ground;                    // in the vehicle frame at that time (local corrections not included)
-  std::vector<Point> ground_points;      // this scan's ground points (vehicle frame, deskewed)
-  std::vector<Point> obstacle_points;    // the clustered cloud: this scan's and the accumulated obstacle points
+  GroundPlane ground;                     // in the vehicle frame at that time (local corrections not included)
+  std::vector<Point> ground_points;       // this scan's ground points (vehicle frame, deskewed)
+  std::vector<Point> obstacle_points;     // the clustered cloud: this scan's and the accumulated obstacle points
   std::vector<RejectedCluster> rejected;  // clusters within the point bounds that are not cones
-  int frames = 1;                        // frames in the clustered cloud
-  std::vector<Cone> camera_rejected;     // candidates the camera stage judged not to be cones (lidar_camera_detector)
+  int frames = 1;                         // frames in the clustered cloud
+  std::vector<Cone> camera_rejected;      // candidates the camera stage judged not to be cones (lidar_camera_detector)
   LidarStageCounters counters;
 };
 

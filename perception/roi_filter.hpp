@@ -27,8 +27,7 @@ class RoiFilter {
   explicit RoiFilter(const RoiConfig& cfg = {}) : cfg_(cfg) {}
 
   bool in_box(float x, float y, double margin = 0.0) const {
-    return x >= cfg_.x_min - margin && x <= cfg_.x_max + margin && y >= cfg_.y_min - margin &&
-           y <= cfg_.y_max + margin;
+    return x >= cfg_.x_min - margin && x <= cfg_.x_max + margin && y >= cfg_.y_min - margin && y <= cfg_.y_max + margin;
   }
   bool in_body(float x, float y) const {
     return x >= cfg_.body_x_min && x <= cfg_.body_x_max && y >= cfg_.body_y_min && y <= cfg_.body_y_max;

@@ -13,10 +13,10 @@
 namespace fsd {
 
 struct TruthPerceptionConfig {
-  double range = 20.0;          // m: the paper's 20 m ROI
-  double fov_deg = 360.0;       // full horizontal field of view centred on x (the VLP-16 sees all round)
-  double position_noise = 0.03; // m, σ per axis
-  double min_range = 1.0;       // m: cones under the nose are not seen
+  double range = 20.0;           // m: the paper's 20 m ROI
+  double fov_deg = 360.0;        // full horizontal field of view centred on x (the VLP-16 sees all round)
+  double position_noise = 0.03;  // m, σ per axis
+  double min_range = 1.0;        // m: cones under the nose are not seen
 };
 const ConfigSection<TruthPerceptionConfig>& truth_perception_section();
 

@@ -38,7 +38,8 @@ json quaternion() {
 }
 json pose() { return object("foxglove.Pose", {{"position", xyz("foxglove.Vector3")}, {"orientation", quaternion()}}); }
 json colour() {
-  return object("foxglove.Color", {{"r", num("red 0..1")}, {"g", num("green 0..1")}, {"b", num("blue 0..1")}, {"a", num("alpha 0..1")}});
+  return object("foxglove.Color",
+                {{"r", num("red 0..1")}, {"g", num("green 0..1")}, {"b", num("blue 0..1")}, {"a", num("alpha 0..1")}});
 }
 json with_schema(json schema, const std::string& description) {
   schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
@@ -47,7 +48,8 @@ json with_schema(json schema, const std::string& description) {
 }
 
 json scene_update() {
-  const json primitive_sized = object("foxglove.CubePrimitive", {{"pose", pose()}, {"size", xyz("foxglove.Vector3")}, {"color", colour()}});
+  const json primitive_sized =
+      object("foxglove.CubePrimitive", {{"pose", pose()}, {"size", xyz("foxglove.Vector3")}, {"color", colour()}});
   const json cylinder = object("foxglove.CylinderPrimitive", {{"pose", pose()},
                                                               {"size", xyz("foxglove.Vector3")},
                                                               {"bottom_scale", num("bottom face scale 0..1")},
@@ -68,31 +70,35 @@ json scene_update() {
                                                       {"colors", array_of(colour(), "per-vertex colours (unused)")},
                                                       {"indices", array_of(json{{"type", "integer"}}, "unused")}});
   const json unused = array_of(json{{"type", "object"}}, "not used by fsd");
-  const json entity = object("foxglove.SceneEntity",
-                             {{"timestamp", time_type()},
-                              {"frame_id", str("frame of reference: map")},
-                              {"id", str("entity id; replaces the previous entity of the same id")},
-                              {"lifetime", time_type("duration")},
-                              {"frame_locked", boolean("follow frame_id")},
-                              {"metadata", array_of(object("foxglove.KeyValuePair", {{"key", str("key")}, {"value", str("value")}}), "metadata")},
-                              {"arrows", array_of(arrow, "arrows")},
-                              {"cubes", array_of(primitive_sized, "boxes")},
-                              {"spheres", unused},
-                              {"cylinders", array_of(cylinder, "cylinders and cones")},
-                              {"lines", array_of(line, "line strips")},
-                              {"triangles", unused},
-                              {"texts", unused},
-                              {"models", unused}});
-  const json deletion = object("foxglove.SceneEntityDeletion", {{"timestamp", time_type()},
-                                                                {"type", integer("0 MATCHING_ID, 1 ALL")},
-                                                                {"id", str("entity id")}});
-  return object("foxglove.SceneUpdate", {{"deletions", array_of(deletion, "deletions")}, {"entities", array_of(entity, "entities")}});
+  const json entity =
+      object("foxglove.SceneEntity",
+             {{"timestamp", time_type()},
+              {"frame_id", str("frame of reference: map")},
+              {"id", str("entity id; replaces the previous entity of the same id")},
+              {"lifetime", time_type("duration")},
+              {"frame_locked", boolean("follow frame_id")},
+              {"metadata",
+               array_of(object("foxglove.KeyValuePair", {{"key", str("key")}, {"value", str("value")}}), "metadata")},
+              {"arrows", array_of(arrow, "arrows")},
+              {"cubes", array_of(primitive_sized, "boxes")},
+              {"spheres", unused},
+              {"cylinders", array_of(cylinder, "cylinders and cones")},
+              {"lines", array_of(line, "line strips")},
+              {"triangles", unused},
+              {"texts", unused},
+              {"models", unused}});
+  const json deletion =
+      object("foxglove.SceneEntityDeletion",
+             {{"timestamp", time_type()}, {"type", integer("0 MATCHING_ID, 1 ALL")}, {"id", str("entity id")}});
+  return object("foxglove.SceneUpdate",
+                {{"deletions", array_of(deletion, "deletions")}, {"entities", array_of(entity, "entities")}});
 }
 
 json point_cloud() {
-  const json field = object("foxglove.PackedElementField", {{"name", str("field name")},
-                                                            {"offset", integer("byte offset in a point")},
-                                                            {"type", integer("1 UINT8, 7 FLOAT32 (foxglove.NumericType)")}});
+  const json field =
+      object("foxglove.PackedElementField", {{"name", str("field name")},
+                                             {"offset", integer("byte offset in a point")},
+                                             {"type", integer("1 UINT8, 7 FLOAT32 (foxglove.NumericType)")}});
   return object("foxglove.PointCloud", {{"timestamp", time_type()},
                                         {"frame_id", str("map")},
                                         {"pose", pose()},
@@ -153,20 +159,21 @@ json vehicle_state() {
 }
 
 json truth_state() {
-  return object("fsd.TruthVehicleState", {{"timestamp", time_type()},
-                                          {"source", str("always \"simulator ground truth\"")},
-                                          {"x", num("m, true rear-axle centre in the map (local ENU)")},
-                                          {"y", num("m")},
-                                          {"yaw", num("rad, ENU")},
-                                          {"speed", num("m/s, true")},
-                                          {"vx", num("m/s, body frame at the CoG")},
-                                          {"vy", num("m/s, body frame at the CoG")},
-                                          {"yaw_rate", num("rad/s")},
-                                          {"lateral_acceleration", num("m/s², body frame, as an IMU at the CoG measures it")},
-                                          {"longitudinal_acceleration", num("m/s², body frame")},
-                                          {"sideslip", num("rad, at the CoG (0 below walking speed)")},
-                                          {"steering", num("rad, actual front wheel angle, left positive")},
-                                          {"cones_hit", integer("cones the car has knocked over")}});
+  return object("fsd.TruthVehicleState",
+                {{"timestamp", time_type()},
+                 {"source", str("always \"simulator ground truth\"")},
+                 {"x", num("m, true rear-axle centre in the map (local ENU)")},
+                 {"y", num("m")},
+                 {"yaw", num("rad, ENU")},
+                 {"speed", num("m/s, true")},
+                 {"vx", num("m/s, body frame at the CoG")},
+                 {"vy", num("m/s, body frame at the CoG")},
+                 {"yaw_rate", num("rad/s")},
+                 {"lateral_acceleration", num("m/s², body frame, as an IMU at the CoG measures it")},
+                 {"longitudinal_acceleration", num("m/s², body frame")},
+                 {"sideslip", num("rad, at the CoG (0 below walking speed)")},
+                 {"steering", num("rad, actual front wheel angle, left positive")},
+                 {"cones_hit", integer("cones the car has knocked over")}});
 }
 
 json as_status() {

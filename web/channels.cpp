@@ -44,28 +44,41 @@ json pose3(const Pose3& p) {
 
 json colour_of(ConeColour c, double alpha = 1.0) {
   switch (c) {
-    case ConeColour::Blue: return rgba(0.10, 0.35, 0.95, alpha);
-    case ConeColour::Yellow: return rgba(1.00, 0.85, 0.05, alpha);
-    case ConeColour::Orange: return rgba(1.00, 0.50, 0.00, alpha);
-    case ConeColour::BigOrange: return rgba(1.00, 0.35, 0.00, alpha);
-    case ConeColour::Red: return rgba(0.90, 0.10, 0.10, alpha);
-    case ConeColour::Unknown: break;
+    case ConeColour::Blue:
+      return rgba(0.10, 0.35, 0.95, alpha);
+    case ConeColour::Yellow:
+      return rgba(1.00, 0.85, 0.05, alpha);
+    case ConeColour::Orange:
+      return rgba(1.00, 0.50, 0.00, alpha);
+    case ConeColour::BigOrange:
+      return rgba(1.00, 0.35, 0.00, alpha);
+    case ConeColour::Red:
+      return rgba(0.90, 0.10, 0.10, alpha);
+    case ConeColour::Unknown:
+      break;
   }
   return rgba(0.60, 0.60, 0.60, alpha);
 }
 
 // An entity with every primitive list present, as Foxglove's own messages have them.
 json entity(Stamp t, const std::string& id, double lifetime_s = 0.0) {
-  return {{"timestamp", stamp(t)},   {"frame_id", kMapFrame}, {"id", id},
-          {"lifetime", duration(lifetime_s)}, {"frame_locked", false}, {"metadata", json::array()},
-          {"arrows", json::array()}, {"cubes", json::array()},    {"spheres", json::array()},
-          {"cylinders", json::array()}, {"lines", json::array()}, {"triangles", json::array()},
-          {"texts", json::array()},  {"models", json::array()}};
+  return {{"timestamp", stamp(t)},
+          {"frame_id", kMapFrame},
+          {"id", id},
+          {"lifetime", duration(lifetime_s)},
+          {"frame_locked", false},
+          {"metadata", json::array()},
+          {"arrows", json::array()},
+          {"cubes", json::array()},
+          {"spheres", json::array()},
+          {"cylinders", json::array()},
+          {"lines", json::array()},
+          {"triangles", json::array()},
+          {"texts", json::array()},
+          {"models", json::array()}};
 }
 
-std::string scene(const json& entities) {
-  return json{{"deletions", json::array()}, {"entities", entities}}.dump();
-}
+std::string scene(const json& entities) { return json{{"deletions", json::array()}, {"entities", entities}}.dump(); }
 
 json cone_cylinder(const Vec3& p, ConeColour c) {
   const bool big = c == ConeColour::BigOrange;
@@ -113,7 +126,8 @@ void put_point(std::uint8_t* out, const Point& p, bool ground) {
 
 StandardChannels add_standard_channels(WebServer& server) {
   std::vector<ChannelId> ids;
-  for (const auto& s : standard_channels()) ids.push_back(server.add_channel(s.topic, s.schema_name, s.schema, s.options));
+  for (const auto& s : standard_channels())
+    ids.push_back(server.add_channel(s.topic, s.schema_name, s.schema, s.options));
   StandardChannels c;
   c.cone_map = ids[0];
   c.detections = ids[1];
@@ -173,8 +187,10 @@ std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
 
 std::string paths_scene(Stamp t, const PathSet& paths, double min_spacing) {
   json lap1 = entity(t, "lap1_trajectory"), lap2 = entity(t, "lap2_tracking"), planned = entity(t, "planned_path");
-  lap1["lines"].push_back(line_strip(decimate(paths.lap1_trajectory, min_spacing), 0.10, rgba(0.2, 0.9, 0.3, 1.0), 0.02));
-  lap2["lines"].push_back(line_strip(decimate(paths.lap2_tracking, min_spacing), 0.10, rgba(0.95, 0.2, 0.9, 1.0), 0.04));
+  lap1["lines"].push_back(
+      line_strip(decimate(paths.lap1_trajectory, min_spacing), 0.10, rgba(0.2, 0.9, 0.3, 1.0), 0.02));
+  lap2["lines"].push_back(
+      line_strip(decimate(paths.lap2_tracking, min_spacing), 0.10, rgba(0.95, 0.2, 0.9, 1.0), 0.04));
   planned["lines"].push_back(line_strip(decimate(paths.planned, min_spacing), 0.14, rgba(0.1, 0.9, 0.95, 1.0), 0.06));
   return scene(json::array({lap1, lap2, planned}));
 }
@@ -184,9 +200,8 @@ std::string point_cloud(Stamp t, const Pose3& origin, std::span<const Point> gro
   constexpr std::size_t kStride = 16;
   const std::size_t total = ground.size() + non_ground.size();
   // Keep every k-th point of both sets so that their proportions stay.
-  const std::size_t step = total > options.max_points && options.max_points > 0
-                               ? (total + options.max_points - 1) / options.max_points
-                               : 1;
+  const std::size_t step =
+      total > options.max_points && options.max_points > 0 ? (total + options.max_points - 1) / options.max_points : 1;
   std::vector<std::uint8_t> data;
   data.reserve((total / step + 2) * kStride);
   for (const auto& [points, is_ground] : {std::pair{ground, true}, std::pair{non_ground, false}}) {
@@ -202,31 +217,31 @@ std::string point_cloud(Stamp t, const Pose3& origin, std::span<const Point> gro
                              {{"name", "z"}, {"offset", 8}, {"type", 7}},
                              {{"name", "intensity"}, {"offset", 12}, {"type", 1}},
                              {{"name", "ground"}, {"offset", 13}, {"type", 1}}});
-  return json{{"timestamp", stamp(t)},
-              {"frame_id", kMapFrame},
-              {"pose", pose3(origin)},
-              {"point_stride", kStride},
-              {"fields", std::move(fields)},
-              {"data", base64_encode(data)}}
+  return json{{"timestamp", stamp(t)},   {"frame_id", kMapFrame},       {"pose", pose3(origin)},
+              {"point_stride", kStride}, {"fields", std::move(fields)}, {"data", base64_encode(data)}}
       .dump();
 }
 
 std::string compressed_image(Stamp t, std::span<const std::uint8_t> data, const std::string& format,
                              const std::string& frame_id) {
-  return json{{"timestamp", stamp(t)}, {"frame_id", frame_id}, {"data", base64_encode(data)}, {"format", format}}.dump();
+  return json{{"timestamp", stamp(t)}, {"frame_id", frame_id}, {"data", base64_encode(data)}, {"format", format}}
+      .dump();
 }
 
 std::string image_annotations(Stamp t, const std::vector<ImageBox>& boxes) {
   json points = json::array(), texts = json::array();
   for (const auto& b : boxes) {
     const double x0 = b.x, y0 = b.y, x1 = b.x + b.width, y1 = b.y + b.height;
-    points.push_back({{"timestamp", stamp(t)},
-                      {"type", 2},
-                      {"points", json::array({{{"x", x0}, {"y", y0}}, {{"x", x1}, {"y", y0}}, {{"x", x1}, {"y", y1}}, {{"x", x0}, {"y", y1}}})},
-                      {"outline_color", colour_of(b.colour)},
-                      {"outline_colors", json::array()},
-                      {"fill_color", rgba(0, 0, 0, 0)},
-                      {"thickness", 2.0}});
+    points.push_back(
+        {{"timestamp", stamp(t)},
+         {"type", 2},
+         {"points",
+          json::array(
+              {{{"x", x0}, {"y", y0}}, {{"x", x1}, {"y", y0}}, {{"x", x1}, {"y", y1}}, {{"x", x0}, {"y", y1}}})},
+         {"outline_color", colour_of(b.colour)},
+         {"outline_colors", json::array()},
+         {"fill_color", rgba(0, 0, 0, 0)},
+         {"thickness", 2.0}});
     if (!b.label.empty())
       texts.push_back({{"timestamp", stamp(t)},
                        {"position", {{"x", x0}, {"y", y0 - 4}}},
@@ -348,7 +363,8 @@ std::string faults_json(Stamp t, const std::vector<FaultEvent>& faults, std::siz
     const auto& f = faults[i];
     list.push_back({{"t", f.t}, {"source", f.source}, {"what", f.what}, {"action", f.action}, {"active", f.active}});
   }
-  return json{{"timestamp", stamp(t)}, {"faults", std::move(list)}}.dump(-1, ' ', false, json::error_handler_t::replace);
+  return json{{"timestamp", stamp(t)}, {"faults", std::move(list)}}.dump(-1, ' ', false,
+                                                                         json::error_handler_t::replace);
 }
 
 std::string log_json(Stamp t, LogLevel level, const std::string& name, const std::string& message) {

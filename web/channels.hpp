@@ -18,20 +18,20 @@ namespace fsd::web {
 class WebServer;
 
 namespace topics {
-inline constexpr const char* kConeMap = "/map/cones";                    // foxglove.SceneUpdate, latched
-inline constexpr const char* kDetections = "/perception/cones";          // foxglove.SceneUpdate
-inline constexpr const char* kCar = "/vehicle/car";                      // foxglove.SceneUpdate
-inline constexpr const char* kPaths = "/planning/paths";                 // foxglove.SceneUpdate, latched
-inline constexpr const char* kPointCloud = "/lidar/points";              // foxglove.PointCloud
-inline constexpr const char* kCameraImage = "/camera/image";             // foxglove.CompressedImage
-inline constexpr const char* kCameraDetections = "/camera/detections";   // foxglove.ImageAnnotations
-inline constexpr const char* kVehicleState = "/vehicle/state";           // fsd.VehicleState
-inline constexpr const char* kAsStatus = "/as/status";                   // fsd.AsStatus, latched
-inline constexpr const char* kFaults = "/faults";                        // fsd.Faults, latched
-inline constexpr const char* kLog = "/log";                              // foxglove.Log
+inline constexpr const char* kConeMap = "/map/cones";                   // foxglove.SceneUpdate, latched
+inline constexpr const char* kDetections = "/perception/cones";         // foxglove.SceneUpdate
+inline constexpr const char* kCar = "/vehicle/car";                     // foxglove.SceneUpdate
+inline constexpr const char* kPaths = "/planning/paths";                // foxglove.SceneUpdate, latched
+inline constexpr const char* kPointCloud = "/lidar/points";             // foxglove.PointCloud
+inline constexpr const char* kCameraImage = "/camera/image";            // foxglove.CompressedImage
+inline constexpr const char* kCameraDetections = "/camera/detections";  // foxglove.ImageAnnotations
+inline constexpr const char* kVehicleState = "/vehicle/state";          // fsd.VehicleState
+inline constexpr const char* kAsStatus = "/as/status";                  // fsd.AsStatus, latched
+inline constexpr const char* kFaults = "/faults";                       // fsd.Faults, latched
+inline constexpr const char* kLog = "/log";                             // foxglove.Log
 // Simulator ground truth (sim runs only), kept apart from the stack's own estimates above.
-inline constexpr const char* kTruthCones = "/truth/cones";               // foxglove.SceneUpdate, latched
-inline constexpr const char* kTruthCar = "/truth/car";                   // foxglove.SceneUpdate
+inline constexpr const char* kTruthCones = "/truth/cones";                 // foxglove.SceneUpdate, latched
+inline constexpr const char* kTruthCar = "/truth/car";                     // foxglove.SceneUpdate
 inline constexpr const char* kTruthVehicleState = "/truth/vehicle_state";  // fsd.TruthVehicleState
 }  // namespace topics
 
@@ -45,8 +45,8 @@ struct ChannelSpec {
 std::vector<ChannelSpec> standard_channels();
 
 struct StandardChannels {
-  ChannelId cone_map = 0, detections = 0, car = 0, paths = 0, point_cloud = 0, camera_image = 0,
-            camera_detections = 0, vehicle_state = 0, as_status = 0, faults = 0, log = 0;
+  ChannelId cone_map = 0, detections = 0, car = 0, paths = 0, point_cloud = 0, camera_image = 0, camera_detections = 0,
+            vehicle_state = 0, as_status = 0, faults = 0, log = 0;
 };
 StandardChannels add_standard_channels(WebServer& server);
 
@@ -66,7 +66,7 @@ std::string detections_scene(Stamp t, const ConeDetections& detections, const Po
 
 struct CarShape {
   double length = 2.9, width = 1.4, height = 1.0;  // m
-  double rear_overhang = 0.6;                       // m behind the rear axle (the vehicle frame's origin)
+  double rear_overhang = 0.6;                      // m behind the rear axle (the vehicle frame's origin)
 };
 // The car as a box plus a heading arrow, entity "car".
 std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape = {});
@@ -95,7 +95,7 @@ std::string compressed_image(Stamp t, std::span<const std::uint8_t> data, const 
 struct ImageBox {
   double x = 0, y = 0, width = 0, height = 0;  // pixels, top-left origin
   ConeColour colour = ConeColour::Unknown;
-  std::string label;                          // e.g. "blue 0.93"
+  std::string label;  // e.g. "blue 0.93"
 };
 std::string image_annotations(Stamp t, const std::vector<ImageBox>& boxes);
 
@@ -105,7 +105,7 @@ std::string vehicle_state_json(const VehicleState& state, double target_speed);
 struct AsStatusView {
   AsState as_state = AsState::Off;
   Mission mission = Mission::None;
-  int lap = 0;                    // laps completed
+  int lap = 0;  // laps completed
   int laps_total = 0;
   std::vector<double> lap_times;  // s, completed laps
   double lap_time = 0;            // s, the lap in progress
@@ -140,12 +140,12 @@ std::string truth_car_scene(Stamp t, const Pose2& pose, const CarShape& shape = 
 
 struct TruthState {
   Stamp t = 0;
-  Pose2 pose;                          // rear-axle centre, map frame
-  double speed = 0, vx = 0, vy = 0;    // m/s (vx, vy in the body frame at the CoG)
-  double yaw_rate = 0;                 // rad/s
-  double ax = 0, ay = 0;               // m/s², body frame
-  double sideslip = 0;                 // rad
-  double steering = 0;                 // rad, actual front wheel angle
+  Pose2 pose;                        // rear-axle centre, map frame
+  double speed = 0, vx = 0, vy = 0;  // m/s (vx, vy in the body frame at the CoG)
+  double yaw_rate = 0;               // rad/s
+  double ax = 0, ay = 0;             // m/s², body frame
+  double sideslip = 0;               // rad
+  double steering = 0;               // rad, actual front wheel angle
   int cones_hit = 0;
 };
 std::string truth_state_json(const TruthState& s);

@@ -15,7 +15,8 @@ ClientState::SubscribeResult ClientState::subscribe(std::uint32_t subscription_i
   if (sub_of_channel_.count(channel)) return SubscribeResult::ChannelAlreadySubscribed;
   channel_of_sub_[subscription_id] = channel;
   sub_of_channel_[channel] = subscription_id;
-  if (channel >= 1 && channel <= kMaxChannels) subscribed_bits_[(channel - 1) / 64].fetch_or(1ull << ((channel - 1) % 64));
+  if (channel >= 1 && channel <= kMaxChannels)
+    subscribed_bits_[(channel - 1) / 64].fetch_or(1ull << ((channel - 1) % 64));
   return SubscribeResult::Ok;
 }
 
@@ -26,7 +27,8 @@ std::optional<ChannelId> ClientState::unsubscribe(std::uint32_t subscription_id)
   const ChannelId channel = it->second;
   channel_of_sub_.erase(it);
   sub_of_channel_.erase(channel);
-  if (channel >= 1 && channel <= kMaxChannels) subscribed_bits_[(channel - 1) / 64].fetch_and(~(1ull << ((channel - 1) % 64)));
+  if (channel >= 1 && channel <= kMaxChannels)
+    subscribed_bits_[(channel - 1) / 64].fetch_and(~(1ull << ((channel - 1) % 64)));
   std::erase_if(telemetry_, [&](const OutMessage& m) { return m.header_size && m.subscription_id == subscription_id; });
   return channel;
 }

@@ -8,7 +8,8 @@ const ConfigSection<WebConfig>& web_section() {
   static const auto s =
       ConfigSection<WebConfig>("web")
           .string("bind", &WebConfig::bind, {}, "Address the dashboard server listens on (0.0.0.0 = every interface).")
-          .integer("port", &WebConfig::port, 0, 65535, "", "TCP port of the dashboard: HTTP and Foxglove WebSocket (0 = any free port).")
+          .integer("port", &WebConfig::port, 0, 65535, "",
+                   "TCP port of the dashboard: HTTP and Foxglove WebSocket (0 = any free port).")
           .string("web_root", &WebConfig::web_root, {},
                   "Folder of the built dashboard; a relative path is tried from the working directory, then from the "
                   "source tree above the fsd binary (build/daemon/fsd).")
@@ -16,7 +17,8 @@ const ConfigSection<WebConfig>& web_section() {
                   "Bearer token that authorises parameter changes; empty disables tuning. The environment variable "
                   "FSD_WEB_TOKEN overrides it.")
           .integer("io_threads", &WebConfig::io_threads, 1, 2, "threads", "I/O threads of the web server.")
-          .integer("max_clients", &WebConfig::max_clients, 1, 256, "clients", "WebSocket clients connected at once; more are refused with 503.")
+          .integer("max_clients", &WebConfig::max_clients, 1, 256, "clients",
+                   "WebSocket clients connected at once; more are refused with 503.")
           .integer("max_frame_bytes", &WebConfig::max_frame_bytes, 1024, 16 * 1024 * 1024, "bytes",
                    "Largest incoming WebSocket message or HTTP request body; larger ones are refused.")
           .integer("client_send_queue", &WebConfig::client_send_queue, 4, 65536, "messages",

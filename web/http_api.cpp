@@ -69,7 +69,9 @@ void HttpApi::set_state_provider(std::function<json()> provider) {
 HttpResponse HttpApi::handle(const HttpRequest& req, const std::string& peer) {
   auto res = route(req, peer);
   const auto code = std::to_string(res.result_int() / 100) + "xx";
-  hub_.metrics().counter("fsd_web_http_requests_total", "HTTP requests answered, by status class", {{"code", code}}).inc();
+  hub_.metrics()
+      .counter("fsd_web_http_requests_total", "HTTP requests answered, by status class", {{"code", code}})
+      .inc();
   return res;
 }
 
@@ -79,14 +81,18 @@ HttpResponse HttpApi::route(const HttpRequest& req, const std::string& peer) {
   const auto method = req.method();
   const bool get = method == http::verb::get || method == http::verb::head;
 
-  if (path == "/healthz") return get ? make_response(req, http::status::ok, "text/plain; charset=utf-8", "ok\n")
-                                     : method_not_allowed(req, "GET, HEAD");
+  if (path == "/healthz")
+    return get ? make_response(req, http::status::ok, "text/plain; charset=utf-8", "ok\n")
+               : method_not_allowed(req, "GET, HEAD");
   if (path == "/metrics")
-    return get ? make_response(req, http::status::ok, "text/plain; version=0.0.4; charset=utf-8", hub_.metrics().render())
+    return get ? make_response(req, http::status::ok, "text/plain; version=0.0.4; charset=utf-8",
+                               hub_.metrics().render())
                : method_not_allowed(req, "GET, HEAD");
   if (path == "/api/state") return get ? api_state(req) : method_not_allowed(req, "GET, HEAD");
   if (path == "/api/params") {
-    if (get) return json_response(req, http::status::ok, {{"tuning_enabled", hub_.tuning_enabled()}, {"params", params_listing(hub_.params())}});
+    if (get)
+      return json_response(req, http::status::ok,
+                           {{"tuning_enabled", hub_.tuning_enabled()}, {"params", params_listing(hub_.params())}});
     if (method == http::verb::put) return api_params_put(req, peer);
     return method_not_allowed(req, "GET, HEAD, PUT");
   }
@@ -139,13 +145,15 @@ HttpResponse HttpApi::api_params_put(const HttpRequest& req, const std::string& 
   }
   const json body = json::parse(req.body(), nullptr, false);
   if (body.is_discarded() || !body.is_object() || body.empty())
-    return json_response(req, http::status::bad_request, {{"error", "the body must be a JSON object {\"key\": value, ...}"}});
+    return json_response(req, http::status::bad_request,
+                         {{"error", "the body must be a JSON object {\"key\": value, ...}"}});
   std::vector<std::pair<std::string, json>> changes;
   for (auto it = body.begin(); it != body.end(); ++it) changes.emplace_back(it.key(), it.value());
   const auto result = apply_parameters(hub_.params(), changes, "web " + peer + " (token ok)");
   if (!result.ok) {
     hub_.note_param_refusal();
-    return json_response(req, http::status::unprocessable_entity, {{"error", "nothing changed"}, {"errors", result.errors}});
+    return json_response(req, http::status::unprocessable_entity,
+                         {{"error", "nothing changed"}, {"errors", result.errors}});
   }
   hub_.note_param_changes(result.applied.size());
   return json_response(req, http::status::ok, {{"applied", result.applied}});
@@ -165,7 +173,8 @@ HttpResponse HttpApi::static_file(const HttpRequest& req, std::string_view path)
       return make_response(req, http::status::forbidden, "text/plain; charset=utf-8", "forbidden\n");
     case StaticFiles::Status::NotFound:
       return make_response(req, http::status::not_found, "text/plain; charset=utf-8", "not found\n");
-    case StaticFiles::Status::Ok: break;
+    case StaticFiles::Status::Ok:
+      break;
   }
   std::ifstream f(r.file, std::ios::binary);
   std::ostringstream ss;

@@ -29,14 +29,21 @@ Hub::Hub(ParamRegistry& params, std::string token, Metrics& metrics, HubLimits l
       peers_(std::make_shared<const PeerList>()),
       outbox_(limits.outbox),
       published_(metrics.counter("fsd_web_published_total", "Messages handed to the web server by publishers")),
-      outbox_full_(metrics.counter("fsd_web_outbox_dropped_total", "Messages dropped because the web I/O thread fell behind the publishers")),
-      dropped_(metrics.counter("fsd_web_messages_dropped_total", "Telemetry messages dropped because a client read too slowly")),
-      dropped_unknown_(metrics.counter("fsd_web_publish_unknown_channel_total", "Publishes to a channel id never added")),
-      protocol_errors_(metrics.counter("fsd_web_protocol_errors_total", "Client messages refused as malformed or not allowed")),
+      outbox_full_(metrics.counter("fsd_web_outbox_dropped_total",
+                                   "Messages dropped because the web I/O thread fell behind the publishers")),
+      dropped_(metrics.counter("fsd_web_messages_dropped_total",
+                               "Telemetry messages dropped because a client read too slowly")),
+      dropped_unknown_(
+          metrics.counter("fsd_web_publish_unknown_channel_total", "Publishes to a channel id never added")),
+      protocol_errors_(
+          metrics.counter("fsd_web_protocol_errors_total", "Client messages refused as malformed or not allowed")),
       param_changes_(metrics.counter("fsd_web_param_changes_total", "Parameter changes made over the web")),
-      param_refusals_(metrics.counter("fsd_web_param_refusals_total", "Parameter changes refused (no valid token or invalid value)")),
-      refused_clients_(metrics.counter("fsd_web_clients_refused_total", "WebSocket clients refused because max_clients were connected")) {
-  metrics.gauge_callback("fsd_web_clients", "Connected WebSocket clients", [this] { return static_cast<double>(peer_count()); });
+      param_refusals_(metrics.counter("fsd_web_param_refusals_total",
+                                      "Parameter changes refused (no valid token or invalid value)")),
+      refused_clients_(metrics.counter("fsd_web_clients_refused_total",
+                                       "WebSocket clients refused because max_clients were connected")) {
+  metrics.gauge_callback("fsd_web_clients", "Connected WebSocket clients",
+                         [this] { return static_cast<double>(peer_count()); });
   metrics.gauge_callback("fsd_web_send_queue_depth_max", "Deepest send queue of any client (messages)", [this] {
     std::size_t deepest = 0;
     for (const auto& p : *peers()) deepest = std::max(deepest, p->state->depth());
@@ -95,8 +102,10 @@ void Hub::publish(ChannelId channel, Stamp t, std::string payload) {
     dropped_unknown_.inc();
     return;
   }
-  if (outbox_.try_push({channel, ns, std::make_shared<const std::string>(std::move(payload))})) published_.inc();
-  else outbox_full_.inc();
+  if (outbox_.try_push({channel, ns, std::make_shared<const std::string>(std::move(payload))}))
+    published_.inc();
+  else
+    outbox_full_.inc();
 }
 
 void Hub::drain() {
@@ -204,7 +213,8 @@ void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
         send_status(peer, StatusLevel::Error,
                     "subscribe: channel " + std::to_string(s.channel_id) + " is already subscribed");
         continue;
-      case ClientState::SubscribeResult::Ok: break;
+      case ClientState::SubscribeResult::Ok:
+        break;
     }
     if (latched && peer.state->offer(s.channel_id, latched->ns, latched->payload)) peer.wake();
   }

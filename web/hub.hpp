@@ -35,10 +35,10 @@ struct ChannelOptions {
 // One connected WebSocket client as the hub sees it.
 struct Peer {
   std::shared_ptr<ClientState> state;
-  std::function<void()> wake;  // schedules the client's writer; called when a push reports the writer idle
+  std::function<void()> wake;             // schedules the client's writer; called when a push reports the writer idle
   std::atomic<bool> wake_pending{false};  // set during a drain pass; the pass then calls wake once
-  std::string address;         // "ip:port", for logs and the attribution of parameter changes
-  bool token_ok = false;       // the WebSocket URL carried the right ?token=
+  std::string address;                    // "ip:port", for logs and the attribution of parameter changes
+  bool token_ok = false;                  // the WebSocket URL carried the right ?token=
 };
 
 struct HubLimits {

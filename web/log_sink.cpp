@@ -15,18 +15,25 @@ namespace {
 LogLevel to_foxglove(spdlog::level::level_enum l) {
   switch (l) {
     case spdlog::level::trace:
-    case spdlog::level::debug: return LogLevel::Debug;
-    case spdlog::level::info: return LogLevel::Info;
-    case spdlog::level::warn: return LogLevel::Warning;
-    case spdlog::level::err: return LogLevel::Error;
-    case spdlog::level::critical: return LogLevel::Fatal;
-    default: return LogLevel::Unknown;
+    case spdlog::level::debug:
+      return LogLevel::Debug;
+    case spdlog::level::info:
+      return LogLevel::Info;
+    case spdlog::level::warn:
+      return LogLevel::Warning;
+    case spdlog::level::err:
+      return LogLevel::Error;
+    case spdlog::level::critical:
+      return LogLevel::Fatal;
+    default:
+      return LogLevel::Unknown;
   }
 }
 
 class WebLogSink final : public spdlog::sinks::base_sink<std::mutex> {
  public:
-  WebLogSink(WebServer& server, ChannelId channel, const Clock& clock) : server_(server), channel_(channel), clock_(clock) {}
+  WebLogSink(WebServer& server, ChannelId channel, const Clock& clock)
+      : server_(server), channel_(channel), clock_(clock) {}
 
  protected:
   void sink_it_(const spdlog::details::log_msg& msg) override {

@@ -23,10 +23,14 @@ bool valid_name(const std::string& s) {
 std::string escape(const std::string& s, bool quote) {
   std::string out;
   for (const char c : s) {
-    if (c == '\\') out += "\\\\";
-    else if (c == '\n') out += "\\n";
-    else if (quote && c == '"') out += "\\\"";
-    else out += c;
+    if (c == '\\')
+      out += "\\\\";
+    else if (c == '\n')
+      out += "\\n";
+    else if (quote && c == '"')
+      out += "\\\"";
+    else
+      out += c;
   }
   return out;
 }
@@ -35,7 +39,8 @@ std::string escape(const std::string& s, bool quote) {
 std::string label_body(const Labels& labels) {
   std::string out;
   for (const auto& [k, v] : labels) {
-    if (!valid_name(k) || k.find(':') != std::string::npos) throw std::logic_error("metrics: bad label name '" + k + "'");
+    if (!valid_name(k) || k.find(':') != std::string::npos)
+      throw std::logic_error("metrics: bad label name '" + k + "'");
     out += (out.empty() ? "" : ",") + k + "=\"" + escape(v, true) + "\"";
   }
   return out;

@@ -15,7 +15,8 @@ template <class T>
 class MpmcRing {
  public:
   explicit MpmcRing(std::size_t capacity)
-      : size_(std::bit_ceil(capacity < 2 ? std::size_t{2} : capacity)), mask_(size_ - 1),
+      : size_(std::bit_ceil(capacity < 2 ? std::size_t{2} : capacity)),
+        mask_(size_ - 1),
         cells_(std::make_unique<Cell[]>(size_)) {
     for (std::size_t i = 0; i < size_; ++i) cells_[i].seq.store(i, std::memory_order_relaxed);
   }

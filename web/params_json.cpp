@@ -21,9 +21,12 @@ std::unordered_map<std::string, ParamRegistry::Info> by_key(const ParamRegistry&
 
 json parameter_json(const ConfigEntry& entry, double value) {
   switch (entry.type) {
-    case ValueType::Boolean: return {{"name", entry.key}, {"value", value != 0.0}};
-    case ValueType::Integer: return {{"name", entry.key}, {"value", static_cast<long long>(value)}};
-    default: return {{"name", entry.key}, {"value", value}, {"type", "float64"}};
+    case ValueType::Boolean:
+      return {{"name", entry.key}, {"value", value != 0.0}};
+    case ValueType::Integer:
+      return {{"name", entry.key}, {"value", static_cast<long long>(value)}};
+    default:
+      return {{"name", entry.key}, {"value", value}, {"type", "float64"}};
   }
 }
 
@@ -38,8 +41,10 @@ json parameters_json(const ParamRegistry& params, const std::vector<std::string>
   const auto keyed = by_key(params);
   for (const auto& n : names) {
     const auto it = keyed.find(n);
-    if (it != keyed.end()) out.push_back(parameter_json(*it->second.entry, it->second.value));
-    else if (unknown) unknown->push_back(n);
+    if (it != keyed.end())
+      out.push_back(parameter_json(*it->second.entry, it->second.value));
+    else if (unknown)
+      unknown->push_back(n);
   }
   return out;
 }
@@ -65,12 +70,15 @@ std::optional<double> parameter_from_json(const ConfigEntry& entry, const json& 
   json candidate;
   switch (entry.type) {
     case ValueType::Boolean:
-      if (value.is_boolean()) candidate = value;
-      else if (value.is_number() && (value.get<double>() == 0.0 || value.get<double>() == 1.0)) candidate = value.get<double>() != 0.0;
+      if (value.is_boolean())
+        candidate = value;
+      else if (value.is_number() && (value.get<double>() == 0.0 || value.get<double>() == 1.0))
+        candidate = value.get<double>() != 0.0;
       break;
     case ValueType::Integer:
       // Foxglove sends whole numbers as float64 too; accept them when integral.
-      if (value.is_number_integer()) candidate = value;
+      if (value.is_number_integer())
+        candidate = value;
       else if (value.is_number_float() && std::isfinite(value.get<double>()) &&
                value.get<double>() == std::floor(value.get<double>()) && std::fabs(value.get<double>()) < 9.0e15)
         candidate = static_cast<long long>(value.get<double>());
@@ -78,11 +86,17 @@ std::optional<double> parameter_from_json(const ConfigEntry& entry, const json& 
     case ValueType::Number:
       if (value.is_number()) candidate = value;
       break;
-    case ValueType::String: break;
+    case ValueType::String:
+      break;
   }
   if (candidate.is_null()) {
-    error = "parameter '" + entry.key + "': expected " + (entry.type == ValueType::Boolean ? "a boolean" : entry.type == ValueType::Integer ? "an integer" : "a number") +
-            ", got " + (value.is_null() ? std::string("nothing (parameters cannot be unset)") : value.dump(-1, ' ', false, json::error_handler_t::replace));
+    error = "parameter '" + entry.key + "': expected " +
+            (entry.type == ValueType::Boolean   ? "a boolean"
+             : entry.type == ValueType::Integer ? "an integer"
+                                                : "a number") +
+            ", got " +
+            (value.is_null() ? std::string("nothing (parameters cannot be unset)")
+                             : value.dump(-1, ' ', false, json::error_handler_t::replace));
     return std::nullopt;
   }
   if (auto why = entry.check(candidate); !why.empty()) {
@@ -104,14 +118,18 @@ ApplyResult apply_parameters(ParamRegistry& params, const std::vector<std::pair<
       continue;
     }
     std::string error;
-    if (const auto v = parameter_from_json(*it->second.entry, value, error)) checked.emplace_back(key, *v);
-    else r.errors.push_back(error);
+    if (const auto v = parameter_from_json(*it->second.entry, value, error))
+      checked.emplace_back(key, *v);
+    else
+      r.errors.push_back(error);
   }
   if (!r.errors.empty()) return r;
   for (const auto& [key, v] : checked) {
     const auto res = params.set(key, v, who);
-    if (res.ok) r.applied.push_back(key);
-    else r.errors.push_back(res.error);
+    if (res.ok)
+      r.applied.push_back(key);
+    else
+      r.errors.push_back(res.error);
   }
   r.ok = r.errors.empty();
   return r;

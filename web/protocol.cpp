@@ -106,8 +106,8 @@ ParseResult parse_set_parameters(const json& msg) {
 
 }  // namespace
 
-std::string server_info(const std::string& name, const std::vector<std::string>& capabilities,
-                        const json& metadata, const std::string& session_id) {
+std::string server_info(const std::string& name, const std::vector<std::string>& capabilities, const json& metadata,
+                        const std::string& session_id) {
   return json{{"op", "serverInfo"},
               {"name", name},
               {"capabilities", capabilities},
@@ -193,7 +193,8 @@ ParseResult parse_client_message(std::string_view text) {
     return {UnsubscribeParameterUpdatesOp{std::move(*names)}, {}};
   }
   // Valid ops of the protocol whose capability this server does not declare.
-  if (op == "advertise" || op == "unadvertise") return fail("op '" + op + "' needs capability clientPublish, not offered");
+  if (op == "advertise" || op == "unadvertise")
+    return fail("op '" + op + "' needs capability clientPublish, not offered");
   if (op == "subscribeConnectionGraph" || op == "unsubscribeConnectionGraph")
     return fail("op '" + op + "' needs capability connectionGraph, not offered");
   if (op == "fetchAsset") return fail("op 'fetchAsset' needs capability assets, not offered");

@@ -28,7 +28,7 @@ struct ChannelInfo {
   std::string topic;
   std::string encoding = "json";
   std::string schema_name;
-  std::string schema;            // a JSON schema (text) for encoding "json"
+  std::string schema;  // a JSON schema (text) for encoding "json"
   std::string schema_encoding = "jsonschema";
 };
 
@@ -67,7 +67,7 @@ struct GetParametersOp {
 };
 struct ParameterAssignment {
   std::string name;
-  nlohmann::json value;            // null when the client asked to unset the parameter
+  nlohmann::json value;  // null when the client asked to unset the parameter
 };
 struct SetParametersOp {
   std::vector<ParameterAssignment> parameters;
@@ -80,8 +80,8 @@ struct SubscribeParameterUpdatesOp {
 struct UnsubscribeParameterUpdatesOp {
   std::vector<std::string> names;  // empty = all
 };
-using ClientOp = std::variant<SubscribeOp, UnsubscribeOp, GetParametersOp, SetParametersOp,
-                              SubscribeParameterUpdatesOp, UnsubscribeParameterUpdatesOp>;
+using ClientOp = std::variant<SubscribeOp, UnsubscribeOp, GetParametersOp, SetParametersOp, SubscribeParameterUpdatesOp,
+                              UnsubscribeParameterUpdatesOp>;
 
 struct ParseResult {
   std::optional<ClientOp> op;

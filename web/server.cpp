@@ -11,7 +11,7 @@ namespace fsd::web {
 namespace {
 constexpr auto kTimePeriod = std::chrono::milliseconds(100);  // Foxglove "time" messages, 10 Hz
 constexpr auto kDrainPeriod = std::chrono::milliseconds(2);   // publish → clients' queues
-}
+}  // namespace
 
 struct WebServer::Impl {
   Impl(const WebConfig& cfg, ParamRegistry& params, Clock& clk)

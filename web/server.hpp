@@ -46,7 +46,7 @@ class WebServer {
   void set_state_provider(std::function<nlohmann::json()> provider);
 
   Metrics& metrics();
-  std::uint16_t port() const;      // the bound port once started (useful with port 0)
+  std::uint16_t port() const;  // the bound port once started (useful with port 0)
   std::size_t client_count() const;
 
  private:

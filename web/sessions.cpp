@@ -86,7 +86,8 @@ ServerContext::ServerContext(const WebConfig& cfg, ParamRegistry& params)
       max_http_connections(4 * cfg.max_clients + 16),
       messages_sent(metrics.counter("fsd_web_messages_sent_total", "WebSocket messages written to clients")),
       bytes_sent(metrics.counter("fsd_web_bytes_sent_total", "WebSocket payload bytes written to clients")),
-      connections_refused(metrics.counter("fsd_web_connections_refused_total", "TCP connections closed at once because too many were open")) {
+      connections_refused(metrics.counter("fsd_web_connections_refused_total",
+                                          "TCP connections closed at once because too many were open")) {
   HubLimits limits;
   limits.max_clients = cfg.max_clients;
   limits.telemetry_queue = static_cast<std::size_t>(cfg.client_send_queue);
@@ -94,7 +95,8 @@ ServerContext::ServerContext(const WebConfig& cfg, ParamRegistry& params)
   hub = std::make_shared<Hub>(params, effective_token(cfg), metrics, limits, "fsd-daemon");
   hub->listen_to_params();
   api = std::make_unique<HttpApi>(*hub, StaticFiles(locate_web_root(cfg.web_root)), allowed_origins);
-  metrics.gauge_callback("fsd_web_http_connections", "Open HTTP connections", [this] { return static_cast<double>(http_connections.load()); });
+  metrics.gauge_callback("fsd_web_http_connections", "Open HTTP connections",
+                         [this] { return static_cast<double>(http_connections.load()); });
 }
 
 // ---------------------------------------------------------------------------------------------------- Listener
@@ -116,7 +118,9 @@ Listener::Listener(net::io_context& ioc, const tcp::endpoint& endpoint, std::sha
   port_ = acceptor_.local_endpoint().port();
 }
 
-void Listener::run() { net::dispatch(acceptor_.get_executor(), [self = shared_from_this()] { self->do_accept(); }); }
+void Listener::run() {
+  net::dispatch(acceptor_.get_executor(), [self = shared_from_this()] { self->do_accept(); });
+}
 
 void Listener::shutdown() {
   net::post(acceptor_.get_executor(), [self = shared_from_this()] {
@@ -166,7 +170,9 @@ HttpSession::~HttpSession() {
   ctx_->tracker.remove(this);
 }
 
-void HttpSession::run() { net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->do_read(); }); }
+void HttpSession::run() {
+  net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->do_read(); });
+}
 
 void HttpSession::shutdown() {
   net::post(stream_.get_executor(), [self = shared_from_this()] {
@@ -193,9 +199,10 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
     HttpRequest req;
     req.version(11);
     req.keep_alive(false);
-    auto res = json_response(req, ec == http::error::body_limit ? http::status::payload_too_large
-                                                                 : http::status::request_header_fields_too_large,
-                             {{"error", ec.message()}});
+    auto res = json_response(
+        req,
+        ec == http::error::body_limit ? http::status::payload_too_large : http::status::request_header_fields_too_large,
+        {{"error", ec.message()}});
     res.keep_alive(false);
     send(std::move(res));
     return;
@@ -286,18 +293,18 @@ WsSession::~WsSession() {
 void WsSession::run(HttpRequest req) {
   req_ = std::move(req);
   peer_->wake = [weak = weak_from_this()] {
-    if (auto self = weak.lock())
-      net::post(self->ws_.get_executor(), [self] { self->do_write(); });
+    if (auto self = weak.lock()) net::post(self->ws_.get_executor(), [self] { self->do_write(); });
   };
   auto timeouts = websocket::stream_base::timeout::suggested(beast::role_type::server);
   timeouts.handshake_timeout = std::chrono::seconds(10);
   timeouts.idle_timeout = std::chrono::seconds(ctx_->config.idle_timeout_s);
   timeouts.keep_alive_pings = true;  // a live client answers the pings, a dead one times out
   ws_.set_option(timeouts);
-  ws_.set_option(websocket::stream_base::decorator([protocol = std::string(offered_foxglove(req_))](websocket::response_type& res) {
-    res.set(http::field::sec_websocket_protocol, protocol);
-    res.set(http::field::server, "fsd");
-  }));
+  ws_.set_option(websocket::stream_base::decorator(
+      [protocol = std::string(offered_foxglove(req_))](websocket::response_type& res) {
+        res.set(http::field::sec_websocket_protocol, protocol);
+        res.set(http::field::server, "fsd");
+      }));
   // Beyond this Beast itself fails the connection (close code 1009); up to it we read and drop oversize
   // messages so that the client hears why.
   ws_.read_message_max(static_cast<std::uint64_t>(ctx_->config.max_frame_bytes) * 16);
@@ -409,9 +416,8 @@ void WsSession::violation(const std::string& what) {
 void WsSession::close_with(websocket::close_code code, const std::string& reason) {
   if (closing_ || finished_) return;
   closing_ = true;
-  ws_.async_close(websocket::close_reason(code, reason), [self = shared_from_this()](beast::error_code) {
-    self->finish();
-  });
+  ws_.async_close(websocket::close_reason(code, reason),
+                  [self = shared_from_this()](beast::error_code) { self->finish(); });
 }
 
 void WsSession::finish() {
@@ -419,7 +425,8 @@ void WsSession::finish() {
   finished_ = true;
   if (accepted_) {
     ctx_->hub->remove_peer(peer_.get());
-    logger("web")->info("client {} disconnected ({} telemetry messages dropped)", peer_->address, peer_->state->dropped());
+    logger("web")->info("client {} disconnected ({} telemetry messages dropped)", peer_->address,
+                        peer_->state->dropped());
   }
   peer_->state->close();
 }

@@ -1,9 +1,9 @@
 #include "web/static_files.hpp"
 
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <system_error>
-#include <unistd.h>
 
 #include "web/url.hpp"
 
@@ -48,7 +48,8 @@ StaticFiles::Result StaticFiles::resolve(std::string_view path) const {
   std::size_t start = 0;
   while (start <= rel.size()) {
     const auto slash = rel.find('/', start);
-    const auto seg = std::string_view(rel).substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+    const auto seg =
+        std::string_view(rel).substr(start, slash == std::string::npos ? std::string::npos : slash - start);
     if (seg == ".." || seg == ".") {
       r.status = Status::Forbidden;
       return r;

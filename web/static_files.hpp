@@ -15,9 +15,9 @@ class StaticFiles {
   enum class Status { Ok, NotFound, Forbidden, BadRequest };
   struct Result {
     Status status = Status::NotFound;
-    std::filesystem::path file;   // canonical path of the file when Ok
+    std::filesystem::path file;  // canonical path of the file when Ok
     std::string content_type;
-    bool immutable = false;       // content-hashed build asset: cacheable forever
+    bool immutable = false;  // content-hashed build asset: cacheable forever
   };
   // `path` is the request path without the query, still percent-encoded. "/" and folders map to index.html.
   Result resolve(std::string_view path) const;

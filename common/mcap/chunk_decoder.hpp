@@ -14,8 +14,7 @@ class ChunkDecoder {
  public:
   // The records of `chunk` in order into `out` (cleared first); "" on success, else what is wrong, and whether
   // it was the CRC (`*crc_mismatch`).
-  std::string decode(const Chunk& chunk, const ReaderOptions& options, std::vector<Record>& out,
-                     bool* crc_mismatch);
+  std::string decode(const Chunk& chunk, const ReaderOptions& options, std::vector<Record>& out, bool* crc_mismatch);
 
  private:
   ChunkDecompressor decompressor_;

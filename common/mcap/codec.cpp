@@ -357,21 +357,36 @@ Record parse(Opcode op, In& in) {
 
 const char* to_string(Opcode op) {
   switch (op) {
-    case Opcode::Header: return "Header";
-    case Opcode::Footer: return "Footer";
-    case Opcode::Schema: return "Schema";
-    case Opcode::Channel: return "Channel";
-    case Opcode::Message: return "Message";
-    case Opcode::Chunk: return "Chunk";
-    case Opcode::MessageIndex: return "MessageIndex";
-    case Opcode::ChunkIndex: return "ChunkIndex";
-    case Opcode::Attachment: return "Attachment";
-    case Opcode::AttachmentIndex: return "AttachmentIndex";
-    case Opcode::Statistics: return "Statistics";
-    case Opcode::Metadata: return "Metadata";
-    case Opcode::MetadataIndex: return "MetadataIndex";
-    case Opcode::SummaryOffset: return "SummaryOffset";
-    case Opcode::DataEnd: return "DataEnd";
+    case Opcode::Header:
+      return "Header";
+    case Opcode::Footer:
+      return "Footer";
+    case Opcode::Schema:
+      return "Schema";
+    case Opcode::Channel:
+      return "Channel";
+    case Opcode::Message:
+      return "Message";
+    case Opcode::Chunk:
+      return "Chunk";
+    case Opcode::MessageIndex:
+      return "MessageIndex";
+    case Opcode::ChunkIndex:
+      return "ChunkIndex";
+    case Opcode::Attachment:
+      return "Attachment";
+    case Opcode::AttachmentIndex:
+      return "AttachmentIndex";
+    case Opcode::Statistics:
+      return "Statistics";
+    case Opcode::Metadata:
+      return "Metadata";
+    case Opcode::MetadataIndex:
+      return "MetadataIndex";
+    case Opcode::SummaryOffset:
+      return "SummaryOffset";
+    case Opcode::DataEnd:
+      return "DataEnd";
   }
   return "Unknown";
 }

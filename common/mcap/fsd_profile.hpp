@@ -30,7 +30,7 @@ inline constexpr std::string_view kRecordingVersionKey = "fsd.recording_version"
 inline constexpr int kRecordingVersion = 1;
 inline constexpr std::string_view kConfigMetadata = "fsd.config";      // the run's configuration, key -> JSON value
 inline constexpr std::string_view kRecorderMetadata = "fsd.recorder";  // counters, e.g. "dropped" -> "12"
-inline constexpr std::string_view kRunMetadata = "fsd.run";            // how the Stack was built (daemon/recording_format)
+inline constexpr std::string_view kRunMetadata = "fsd.run";  // how the Stack was built (daemon/recording_format)
 
 inline constexpr std::string_view kRawEncoding = "fsd.raw";
 inline constexpr std::string_view kJsonEncoding = "json";

@@ -40,8 +40,8 @@ struct FileInfo {
   std::vector<Metadata> metadata;
   std::vector<AttachmentInfo> attachments;
   bool summary_present = false;
-  std::string summary_problem;                    // why it is absent
-  bool complete = false;                          // footer and closing magic read
+  std::string summary_problem;  // why it is absent
+  bool complete = false;        // footer and closing magic read
   std::optional<std::uint64_t> truncated_at;
   std::vector<Issue> issues;
 };

@@ -11,11 +11,16 @@ namespace fsd::mcap {
 
 const char* to_string(Issue::Kind k) {
   switch (k) {
-    case Issue::Kind::ChunkCrc: return "chunk_crc";
-    case Issue::Kind::ChunkDamaged: return "chunk_damaged";
-    case Issue::Kind::BadRecord: return "bad_record";
-    case Issue::Kind::DataCrc: return "data_crc";
-    case Issue::Kind::Truncated: return "truncated";
+    case Issue::Kind::ChunkCrc:
+      return "chunk_crc";
+    case Issue::Kind::ChunkDamaged:
+      return "chunk_damaged";
+    case Issue::Kind::BadRecord:
+      return "bad_record";
+    case Issue::Kind::DataCrc:
+      return "data_crc";
+    case Issue::Kind::Truncated:
+      return "truncated";
   }
   return "?";
 }
@@ -23,8 +28,10 @@ const char* to_string(Issue::Kind k) {
 void check_magic(std::span<const std::uint8_t> file) {
   if (file.empty()) throw McapError("empty file");
   const std::size_t n = std::min<std::size_t>(file.size(), 5);
-  if (std::memcmp(file.data(), kMagic.data(), n) != 0) throw McapError("not an MCAP file (it does not start with the MCAP magic)");
-  if (file.size() < kMagic.size()) throw McapError("not a complete MCAP file: only " + std::to_string(file.size()) + " bytes");
+  if (std::memcmp(file.data(), kMagic.data(), n) != 0)
+    throw McapError("not an MCAP file (it does not start with the MCAP magic)");
+  if (file.size() < kMagic.size())
+    throw McapError("not a complete MCAP file: only " + std::to_string(file.size()) + " bytes");
   const char version = static_cast<char>(file[5]);
   if (version != '0' || file[6] != '\r' || file[7] != '\n') {
     if (version > '0' && version <= '9' && file[6] == '\r' && file[7] == '\n')
@@ -34,8 +41,7 @@ void check_magic(std::span<const std::uint8_t> file) {
   }
 }
 
-LinearReader::LinearReader(std::span<const std::uint8_t> file, ReaderOptions options)
-    : file_(file), options_(options) {
+LinearReader::LinearReader(std::span<const std::uint8_t> file, ReaderOptions options) : file_(file), options_(options) {
   check_magic(file_);
   data_crc_ = crc32(file_.first(kMagic.size()));
   pos_ = kMagic.size();

@@ -36,11 +36,11 @@ class LinearReader {
   std::optional<RecordAt> next();
 
   const std::vector<Issue>& issues() const { return issues_; }
-  bool complete() const { return complete_; }                         // footer and closing magic read
+  bool complete() const { return complete_; }  // footer and closing magic read
   std::optional<std::uint64_t> truncated_at() const { return truncated_at_; }
-  std::uint64_t chunks_read() const { return chunks_read_; }          // intact chunks
-  std::uint64_t chunks_skipped() const { return chunks_skipped_; }    // damaged ones
-  std::uint64_t offset() const { return pos_; }                       // of the next record outside chunks
+  std::uint64_t chunks_read() const { return chunks_read_; }        // intact chunks
+  std::uint64_t chunks_skipped() const { return chunks_skipped_; }  // damaged ones
+  std::uint64_t offset() const { return pos_; }                     // of the next record outside chunks
   // Chunks seen (intact or not) by compression ("" is none).
   const std::map<std::string, std::uint64_t>& chunk_compressions() const { return compressions_; }
 

@@ -6,8 +6,8 @@
 namespace fsd::mcap {
 
 struct ReaderOptions {
-  bool strict = false;       // a damaged chunk or record refuses the file (McapError) instead of being skipped
-  bool verify_crcs = true;   // chunk, data section and summary CRCs (a stored 0 means "not computed")
+  bool strict = false;      // a damaged chunk or record refuses the file (McapError) instead of being skipped
+  bool verify_crcs = true;  // chunk, data section and summary CRCs (a stored 0 means "not computed")
   std::uint64_t max_chunk_size = 1ull << 30;  // uncompressed bytes; a chunk claiming more is treated as damaged
 };
 

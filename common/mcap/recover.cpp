@@ -61,8 +61,7 @@ RecoverReport recover(std::span<const std::uint8_t> in, ByteSink& out, WriterOpt
     }
   }
   // A file whose data end was read may still be cut off in its summary: read on to learn where.
-  while (reader.next()) {
-  }
+  while (reader.next()) {}
   writer.close();
   report.chunks_read = reader.chunks_read();
   report.chunks_lost = reader.chunks_skipped();

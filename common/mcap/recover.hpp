@@ -18,13 +18,13 @@ struct RecoverReport {
   std::uint64_t channels = 0;
   std::uint64_t metadata = 0;
   std::uint64_t attachments = 0;
-  std::uint64_t chunks_read = 0;              // intact chunks of the input
-  std::uint64_t chunks_lost = 0;              // damaged chunks skipped
-  std::uint64_t messages_without_channel = 0; // dropped: their channel's record was in a lost part
-  std::uint64_t channels_without_schema = 0;  // kept schema-less: their schema's record was lost
-  std::uint64_t bytes_lost = 0;               // after the point where the input is cut off
-  bool input_complete = false;                // the input had its footer (it may still have had damaged chunks)
-  std::vector<Issue> issues;                  // what the linear read of the input found
+  std::uint64_t chunks_read = 0;               // intact chunks of the input
+  std::uint64_t chunks_lost = 0;               // damaged chunks skipped
+  std::uint64_t messages_without_channel = 0;  // dropped: their channel's record was in a lost part
+  std::uint64_t channels_without_schema = 0;   // kept schema-less: their schema's record was lost
+  std::uint64_t bytes_lost = 0;                // after the point where the input is cut off
+  bool input_complete = false;                 // the input had its footer (it may still have had damaged chunks)
+  std::vector<Issue> issues;                   // what the linear read of the input found
 };
 
 // The input holds nothing to recover (not even a complete header).

@@ -15,8 +15,8 @@ constexpr std::size_t kFooterRecord = kRecordPrefix + 8 + 8 + 4;
 
 // The record at `at`, which must lie whole inside [at, end); nullopt (with *why) when it does not.
 std::optional<std::pair<std::uint8_t, std::span<const std::uint8_t>>> record_at(std::span<const std::uint8_t> file,
-                                                                                 std::uint64_t at, std::uint64_t end,
-                                                                                 std::string* why) {
+                                                                                std::uint64_t at, std::uint64_t end,
+                                                                                std::string* why) {
   if (at > end || end > file.size() || end - at < kRecordPrefix) {
     *why = "record at offset " + std::to_string(at) + " lies outside its section";
     return std::nullopt;
@@ -66,8 +66,9 @@ std::optional<Summary> read_summary(std::span<const std::uint8_t> file, const Re
     return std::nullopt;
   }
   if (options.verify_crcs && s.footer.summary_crc != 0) {
-    const auto covered = file.subspan(static_cast<std::size_t>(s.footer.summary_start),
-                                      footer_at + kRecordPrefix + 16 - static_cast<std::size_t>(s.footer.summary_start));
+    const auto covered =
+        file.subspan(static_cast<std::size_t>(s.footer.summary_start),
+                     footer_at + kRecordPrefix + 16 - static_cast<std::size_t>(s.footer.summary_start));
     if (crc32(covered) != s.footer.summary_crc) {
       *why = "summary CRC mismatch";
       return std::nullopt;
@@ -81,13 +82,20 @@ std::optional<Summary> read_summary(std::span<const std::uint8_t> file, const Re
       at += kRecordPrefix + rec->second.size();
       auto r = parse_record(rec->first, rec->second);
       if (!r) continue;
-      if (auto* x = std::get_if<Schema>(&*r)) s.schemas[x->id] = std::move(*x);
-      else if (auto* c = std::get_if<Channel>(&*r)) s.channels[c->id] = std::move(*c);
-      else if (auto* st = std::get_if<Statistics>(&*r)) s.statistics = std::move(*st);
-      else if (auto* ci = std::get_if<ChunkIndex>(&*r)) s.chunk_indexes.push_back(std::move(*ci));
-      else if (auto* ai = std::get_if<AttachmentIndex>(&*r)) s.attachment_indexes.push_back(std::move(*ai));
-      else if (auto* mi = std::get_if<MetadataIndex>(&*r)) s.metadata_indexes.push_back(std::move(*mi));
-      else if (auto* so = std::get_if<SummaryOffset>(&*r)) s.summary_offsets.push_back(*so);
+      if (auto* x = std::get_if<Schema>(&*r))
+        s.schemas[x->id] = std::move(*x);
+      else if (auto* c = std::get_if<Channel>(&*r))
+        s.channels[c->id] = std::move(*c);
+      else if (auto* st = std::get_if<Statistics>(&*r))
+        s.statistics = std::move(*st);
+      else if (auto* ci = std::get_if<ChunkIndex>(&*r))
+        s.chunk_indexes.push_back(std::move(*ci));
+      else if (auto* ai = std::get_if<AttachmentIndex>(&*r))
+        s.attachment_indexes.push_back(std::move(*ai));
+      else if (auto* mi = std::get_if<MetadataIndex>(&*r))
+        s.metadata_indexes.push_back(std::move(*mi));
+      else if (auto* so = std::get_if<SummaryOffset>(&*r))
+        s.summary_offsets.push_back(*so);
     }
   } catch (const FormatError& e) {
     *why = std::string("summary record at offset ") + std::to_string(at) + ": " + e.what();

@@ -32,8 +32,7 @@ struct Summary {
 // The summary of `file` (which passed check_magic), or nullopt with the reason in *why: no footer (cut off), no
 // summary section, a summary CRC mismatch, a record that does not fit. Never reads the data section beyond the
 // header.
-std::optional<Summary> read_summary(std::span<const std::uint8_t> file, const ReaderOptions& options,
-                                    std::string* why);
+std::optional<Summary> read_summary(std::span<const std::uint8_t> file, const ReaderOptions& options, std::string* why);
 
 class SummaryReader {
  public:

@@ -10,8 +10,7 @@ namespace fsd::mcap {
 
 std::string library_name() { return std::string("fsd-daemon ") + FSD_VERSION; }
 
-Writer::Writer(ByteSink& sink, WriterOptions options)
-    : sink_(sink), options_(std::move(options)) {
+Writer::Writer(ByteSink& sink, WriterOptions options) : sink_(sink), options_(std::move(options)) {
   if (options_.chunk_size == 0) throw McapError("chunk size must be at least 1 byte");
   emit(kMagic);
   emit_record(Header{options_.profile, options_.library});

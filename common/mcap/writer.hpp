@@ -25,11 +25,11 @@ namespace fsd::mcap {
 std::string library_name();
 
 struct WriterOptions {
-  std::string profile = "fsd";                 // Header.profile (common/mcap/fsd_profile.hpp: kProfile)
-  std::string library = library_name();        // Header.library
+  std::string profile = "fsd";           // Header.profile (common/mcap/fsd_profile.hpp: kProfile)
+  std::string library = library_name();  // Header.library
   Compression compression = Compression::Zstd;
-  std::uint64_t chunk_size = 1 << 20;          // a chunk is closed once its uncompressed records reach this (bytes)
-  int zstd_level = 3;                          // zstd's default: 0.9 % of a core at full sensor rate
+  std::uint64_t chunk_size = 1 << 20;  // a chunk is closed once its uncompressed records reach this (bytes)
+  int zstd_level = 3;                  // zstd's default: 0.9 % of a core at full sensor rate
 };
 
 class Writer {
@@ -65,8 +65,8 @@ class Writer {
   void close();
   bool closed() const { return closed_; }
 
-  std::uint64_t bytes_written() const { return offset_; }                // handed to the sink so far
-  std::uint64_t bytes_pending() const { return chunk_.size(); }         // in the open chunk, uncompressed
+  std::uint64_t bytes_written() const { return offset_; }        // handed to the sink so far
+  std::uint64_t bytes_pending() const { return chunk_.size(); }  // in the open chunk, uncompressed
   const Statistics& statistics() const { return stats_; }
 
  private:
@@ -81,16 +81,16 @@ class Writer {
   WriterOptions options_;
   std::unique_ptr<ZstdCompressor> zstd_;  // made with the first zstd chunk
   std::uint64_t offset_ = 0;
-  std::uint32_t data_crc_ = 0;     // of every byte before the DataEnd record
+  std::uint32_t data_crc_ = 0;  // of every byte before the DataEnd record
   bool in_data_section_ = true;
   bool closed_ = false;
-  std::string failure_;            // the sink's error, once it has failed
+  std::string failure_;  // the sink's error, once it has failed
 
   std::map<std::uint16_t, Schema> schemas_;
   std::map<std::uint16_t, Channel> channels_;
   std::map<std::uint16_t, std::uint32_t> next_sequence_;
 
-  Bytes chunk_;                    // the open chunk's uncompressed records
+  Bytes chunk_;  // the open chunk's uncompressed records
   Bytes compressed_;
   Timestamp chunk_start_ = 0, chunk_end_ = 0;
   std::map<std::uint16_t, MessageIndex> chunk_indexes_by_channel_;

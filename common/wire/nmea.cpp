@@ -70,11 +70,16 @@ std::uint8_t checksum(std::string_view payload) {
 
 const char* to_string(FrameError e) {
   switch (e) {
-    case FrameError::None: return "ok";
-    case FrameError::NoStart: return "no '$' at start";
-    case FrameError::MissingChecksum: return "missing checksum";
-    case FrameError::MalformedChecksum: return "malformed checksum";
-    case FrameError::ChecksumMismatch: return "checksum mismatch";
+    case FrameError::None:
+      return "ok";
+    case FrameError::NoStart:
+      return "no '$' at start";
+    case FrameError::MissingChecksum:
+      return "missing checksum";
+    case FrameError::MalformedChecksum:
+      return "malformed checksum";
+    case FrameError::ChecksumMismatch:
+      return "checksum mismatch";
   }
   return "?";
 }
@@ -144,9 +149,12 @@ std::optional<double> parse_decimal(std::string_view s) {
   // Validate the shape here so that from_chars sees nothing it would read differently (inf, nan, exponents).
   std::size_t digits = 0, dots = 0;
   for (char c : s) {
-    if (is_digit(c)) ++digits;
-    else if (c == '.') ++dots;
-    else return std::nullopt;
+    if (is_digit(c))
+      ++digits;
+    else if (c == '.')
+      ++dots;
+    else
+      return std::nullopt;
   }
   if (digits == 0 || dots > 1 || s.size() > 32) return std::nullopt;
   double v = 0.0;

@@ -22,10 +22,10 @@ std::uint8_t checksum(std::string_view payload);
 
 enum class FrameError : std::uint8_t {
   None = 0,
-  NoStart,           // the line does not begin with '$'
-  MissingChecksum,   // no '*HH' and the checksum is required
-  MalformedChecksum, // '*' not followed by exactly two hex digits
-  ChecksumMismatch,  // the two hex digits differ from the computed checksum
+  NoStart,            // the line does not begin with '$'
+  MissingChecksum,    // no '*HH' and the checksum is required
+  MalformedChecksum,  // '*' not followed by exactly two hex digits
+  ChecksumMismatch,   // the two hex digits differ from the computed checksum
 };
 const char* to_string(FrameError e);
 
@@ -80,7 +80,7 @@ std::optional<Date> parse_date(std::string_view s);
 // Fixed-point with `decimals` digits, e.g. format_fixed(-1.5, 2) = "-1.50"; with `plus` a '+' on non-negatives.
 std::string format_fixed(double v, int decimals, bool plus = false);
 struct Coordinate {
-  std::string value;   // ddmm.mmmm or dddmm.mmmm
+  std::string value;       // ddmm.mmmm or dddmm.mmmm
   std::string hemisphere;  // "N"/"S" or "E"/"W"
 };
 Coordinate format_latitude(double deg, int minute_decimals);

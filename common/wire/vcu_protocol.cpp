@@ -73,24 +73,36 @@ std::optional<VcuStatus> parse_status(std::span<const std::uint8_t> p) {
 
 std::string_view to_string(AsRequest r) {
   switch (r) {
-    case AsRequest::None: return "none";
-    case AsRequest::Ready: return "ready";
-    case AsRequest::Finished: return "finished";
-    case AsRequest::Emergency: return "emergency";
+    case AsRequest::None:
+      return "none";
+    case AsRequest::Ready:
+      return "ready";
+    case AsRequest::Finished:
+      return "finished";
+    case AsRequest::Emergency:
+      return "emergency";
   }
   return "?";
 }
 
 std::string_view to_string(Reject r) {
   switch (r) {
-    case Reject::BadCrc: return "bad_crc";
-    case Reject::Truncated: return "truncated";
-    case Reject::BadVersion: return "bad_version";
-    case Reject::Oversized: return "oversized";
-    case Reject::UnknownType: return "unknown_type";
-    case Reject::BadPayload: return "bad_payload";
-    case Reject::Replayed: return "replayed";
-    case Reject::OutOfOrder: return "out_of_order";
+    case Reject::BadCrc:
+      return "bad_crc";
+    case Reject::Truncated:
+      return "truncated";
+    case Reject::BadVersion:
+      return "bad_version";
+    case Reject::Oversized:
+      return "oversized";
+    case Reject::UnknownType:
+      return "unknown_type";
+    case Reject::BadPayload:
+      return "bad_payload";
+    case Reject::Replayed:
+      return "replayed";
+    case Reject::OutOfOrder:
+      return "out_of_order";
   }
   return "?";
 }

@@ -61,9 +61,9 @@ inline constexpr std::uint32_t kFaultRxErrors = 1u << 6;            // the VCU r
 
 // Daemon → VCU, sent at ≥ 50 Hz; every valid Command is also the heartbeat.
 struct Command {
-  double steering = 0;        // front wheel angle, rad, left positive
-  double target_speed = 0;    // m/s
-  bool brake_hard = false;    // maximum service braking
+  double steering = 0;      // front wheel angle, rad, left positive
+  double target_speed = 0;  // m/s
+  bool brake_hard = false;  // maximum service braking
   AsRequest as_request = AsRequest::None;
   Mission mission = Mission::None;
 };
@@ -142,7 +142,7 @@ struct DecoderConfig {
 class Decoder {
  public:
   struct Handlers {
-    std::function<void(const Command&, std::uint16_t seq)> on_command;  // null: Commands rejected UnknownType
+    std::function<void(const Command&, std::uint16_t seq)> on_command;   // null: Commands rejected UnknownType
     std::function<void(const VcuStatus&, std::uint16_t seq)> on_status;  // null: Status rejected UnknownType
     std::function<void(Reject, std::uint16_t seq)> on_reject;            // optional, for logging
   };

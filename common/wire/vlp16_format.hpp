@@ -31,10 +31,10 @@ inline constexpr std::uint8_t kReturnDual = 0x39;
 inline constexpr std::uint8_t kProductVlp16 = 0x22;
 inline constexpr std::uint8_t kProductEarlyFirmware = 0x21;  // early VLP-16 firmware reported the HDL-32E id
 
-inline constexpr double kDistanceUnit = 0.002;        // metres per count
+inline constexpr double kDistanceUnit = 0.002;  // metres per count
 inline constexpr double kAzimuthUnitDeg = 0.01;
-inline constexpr double kFiringPeriodUs = 2.304;      // between lasers of a sequence
-inline constexpr double kSequencePeriodUs = 55.296;   // between firing sequences (includes recharge)
+inline constexpr double kFiringPeriodUs = 2.304;     // between lasers of a sequence
+inline constexpr double kSequencePeriodUs = 55.296;  // between firing sequences (includes recharge)
 inline constexpr double kBlockPeriodUs = 2 * kSequencePeriodUs;
 inline constexpr double kPacketPeriodUs = kBlocks * kBlockPeriodUs;  // 1327.104 µs → 753.5 packets/s
 
@@ -52,10 +52,22 @@ struct LaserSpec {
   double elevation_deg;
   double vertical_offset_m;  // added to z of the point (ROS velodyne "vert_offset_correction")
 };
-inline constexpr std::array<LaserSpec, kLasers> kLaserTable{{
-    {-15, 0.0112}, {1, -0.0007}, {-13, 0.0097}, {3, -0.0022}, {-11, 0.0081}, {5, -0.0037}, {-9, 0.0066},
-    {7, -0.0051},  {-7, 0.0051}, {9, -0.0066},  {-5, 0.0037}, {11, -0.0081}, {-3, 0.0022}, {13, -0.0097},
-    {-1, 0.0007},  {15, -0.0112}}};
+inline constexpr std::array<LaserSpec, kLasers> kLaserTable{{{-15, 0.0112},
+                                                             {1, -0.0007},
+                                                             {-13, 0.0097},
+                                                             {3, -0.0022},
+                                                             {-11, 0.0081},
+                                                             {5, -0.0037},
+                                                             {-9, 0.0066},
+                                                             {7, -0.0051},
+                                                             {-7, 0.0051},
+                                                             {9, -0.0066},
+                                                             {-5, 0.0037},
+                                                             {11, -0.0081},
+                                                             {-3, 0.0022},
+                                                             {13, -0.0097},
+                                                             {-1, 0.0007},
+                                                             {15, -0.0112}}};
 
 // Ring index (0 = lowest beam) of a laser id, as ROS velodyne numbers rings.
 inline constexpr std::uint16_t ring_of_laser(std::size_t laser) {

@@ -15,7 +15,7 @@ using nlohmann::json;
 
 constexpr const char* kFormat = "fsd-camera-calibration";
 constexpr int kVersion = 1;
-constexpr double kMaxMountOffset = 10.0;    // m: anything farther is not on the car
+constexpr double kMaxMountOffset = 10.0;  // m: anything farther is not on the car
 constexpr int kMaxImageSide = 16384;
 
 using Reader = JsonFields<CalibrationError>;
@@ -56,7 +56,8 @@ CameraIntrinsics read_intrinsics(const Reader& r) {
   if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1)
     r.fail("K", "must be upper triangular with K[2][2] = 1: [[fx, s, cx], [0, fy, cy], [0, 0, 1]]");
   if (K(0, 2) < 0 || K(0, 2) > in.width || K(1, 2) < 0 || K(1, 2) > in.height)
-    r.fail("K", "principal point (" + std::to_string(K(0, 2)) + ", " + std::to_string(K(1, 2)) + ") lies outside the image");
+    r.fail("K",
+           "principal point (" + std::to_string(K(0, 2)) + ", " + std::to_string(K(1, 2)) + ") lies outside the image");
   if (r.has("distortion")) {
     in.distortion = r.numbers("distortion", r.at("distortion"));
     const std::size_t n = in.distortion.size();
@@ -134,7 +135,8 @@ json to_json(const CameraCalibration& c) {
   json j = {{"format", kFormat}, {"version", kVersion}};
   if (c.intrinsics) {
     const auto& in = *c.intrinsics;
-    j["intrinsics"] = {{"width", in.width}, {"height", in.height}, {"K", matrix_json(in.K)}, {"distortion", in.distortion}};
+    j["intrinsics"] = {
+        {"width", in.width}, {"height", in.height}, {"K", matrix_json(in.K)}, {"distortion", in.distortion}};
   }
   if (c.extrinsics) {
     const auto& m = *c.extrinsics;

@@ -18,10 +18,16 @@ constexpr int kFailuresBeforeReconnect = 3;
 cv::Mat to_bgr(const cv::Mat& image) {
   cv::Mat bgr;
   switch (image.type()) {
-    case CV_8UC3: return image;
-    case CV_8UC1: cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR); return bgr;
-    case CV_8UC4: cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR); return bgr;
-    default: return bgr;
+    case CV_8UC3:
+      return image;
+    case CV_8UC1:
+      cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+      return bgr;
+    case CV_8UC4:
+      cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+      return bgr;
+    default:
+      return bgr;
   }
 }
 }  // namespace
@@ -36,11 +42,13 @@ const ConfigSection<CameraDriverConfig>& camera_driver_section() {
           .integer("width", &C::width, 16, 8192, "px", "Image width requested from the device and expected.")
           .integer("height", &C::height, 16, 8192, "px", "Image height requested from the device and expected.")
           .number("fps", &C::fps, 1.0, 240.0, "Hz", "Frame rate requested from the device; playback rate of files.")
-          .string("fourcc", &C::fourcc, {"", "MJPG", "YUYV"}, "Pixel format requested from a V4L2 device; empty = default.")
+          .string("fourcc", &C::fourcc, {"", "MJPG", "YUYV"},
+                  "Pixel format requested from a V4L2 device; empty = default.")
           .string("calibration", &C::calibration, {},
                   "Camera calibration file (intrinsics, extrinsics, ground homography; docs/camera.md); empty = none.")
           .number("latency", &C::latency, 0.0, 1.0, "s", "Exposure-to-read delay subtracted from each frame's stamp.")
-          .number("reconnect_delay", &C::reconnect_delay, 0.01, 60.0, "s", "Wait between attempts to reopen a failed source.")
+          .number("reconnect_delay", &C::reconnect_delay, 0.01, 60.0, "s",
+                  "Wait between attempts to reopen a failed source.")
           .boolean("loop_file", &C::loop_file, "Start a video file over at its end instead of ending the stream.")
           .boolean("pace_file", &C::pace_file, "Play a video file at fps instead of as fast as it decodes.");
   return s;
@@ -92,7 +100,8 @@ bool CameraSource::open(cv::VideoCapture& cap) {
         ok = index ? cap.open(std::stoi(cfg_.source), cv::CAP_V4L2) : cap.open(cfg_.source, cv::CAP_V4L2);
         if (ok) {
           if (cfg_.fourcc.size() == 4)
-            cap.set(cv::CAP_PROP_FOURCC, cv::VideoWriter::fourcc(cfg_.fourcc[0], cfg_.fourcc[1], cfg_.fourcc[2], cfg_.fourcc[3]));
+            cap.set(cv::CAP_PROP_FOURCC,
+                    cv::VideoWriter::fourcc(cfg_.fourcc[0], cfg_.fourcc[1], cfg_.fourcc[2], cfg_.fourcc[3]));
           cap.set(cv::CAP_PROP_FRAME_WIDTH, cfg_.width);
           cap.set(cv::CAP_PROP_FRAME_HEIGHT, cfg_.height);
           cap.set(cv::CAP_PROP_FPS, cfg_.fps);
@@ -100,8 +109,12 @@ bool CameraSource::open(cv::VideoCapture& cap) {
         }
         break;
       }
-      case CameraSourceKind::Pipeline: ok = cap.open(cfg_.source, cv::CAP_GSTREAMER); break;
-      case CameraSourceKind::File: ok = cap.open(cfg_.source, cv::CAP_ANY); break;
+      case CameraSourceKind::Pipeline:
+        ok = cap.open(cfg_.source, cv::CAP_GSTREAMER);
+        break;
+      case CameraSourceKind::File:
+        ok = cap.open(cfg_.source, cv::CAP_ANY);
+        break;
     }
   } catch (const std::exception& e) {  // cv::Exception from a backend, std::out_of_range from stoi
     logger("camera")->warn("camera '{}': open failed: {}", cfg_.source, e.what());
@@ -209,8 +222,9 @@ void CameraSource::run() {
     f.bgr = image;
     if (f.bgr.cols != cfg_.width || f.bgr.rows != cfg_.height) {
       count(&CameraStats::size_mismatches);
-      if (!warned_size) log->warn("camera '{}': frames are {}×{}, configured {}×{}", cfg_.source, f.bgr.cols, f.bgr.rows,
-                                  cfg_.width, cfg_.height);
+      if (!warned_size)
+        log->warn("camera '{}': frames are {}×{}, configured {}×{}", cfg_.source, f.bgr.cols, f.bgr.rows, cfg_.width,
+                  cfg_.height);
       warned_size = true;
     }
     publish(std::move(f));

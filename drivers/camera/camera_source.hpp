@@ -27,17 +27,17 @@ class VideoCapture;
 namespace fsd {
 
 struct CameraDriverConfig {
-  bool enabled = false;                 // fsd run on the car opens the camera only when set
+  bool enabled = false;                // fsd run on the car opens the camera only when set
   std::string source = "/dev/video0";  // V4L2 device or index, GStreamer pipeline, or video file
   int width = 640;
   int height = 480;
   double fps = 20.0;
-  std::string fourcc = "MJPG";          // pixel format requested from a V4L2 device; "" = the device's default
-  std::string calibration;              // calibration file (docs/camera.md); "" = none
-  double latency = 0.0;                 // s from exposure to the read returning, subtracted from the stamp
-  double reconnect_delay = 1.0;         // s between attempts to (re)open a failed source
-  bool loop_file = false;               // a video file starts over at its end instead of ending the stream
-  bool pace_file = true;                // a video file plays at `fps` (else as fast as it decodes)
+  std::string fourcc = "MJPG";   // pixel format requested from a V4L2 device; "" = the device's default
+  std::string calibration;       // calibration file (docs/camera.md); "" = none
+  double latency = 0.0;          // s from exposure to the read returning, subtracted from the stamp
+  double reconnect_delay = 1.0;  // s between attempts to (re)open a failed source
+  bool loop_file = false;        // a video file starts over at its end instead of ending the stream
+  bool pace_file = true;         // a video file plays at `fps` (else as fast as it decodes)
 };
 
 const ConfigSection<CameraDriverConfig>& camera_driver_section();  // prefix "drivers.camera"
@@ -46,14 +46,14 @@ enum class CameraSourceKind { Device, Pipeline, File };
 CameraSourceKind classify_camera_source(const std::string& source);
 
 struct CameraStats {
-  std::uint64_t frames = 0;           // delivered to the slot
-  std::uint64_t dropped = 0;          // replaced in the slot before anyone took them
-  std::uint64_t read_failures = 0;    // reads that returned no image
+  std::uint64_t frames = 0;         // delivered to the slot
+  std::uint64_t dropped = 0;        // replaced in the slot before anyone took them
+  std::uint64_t read_failures = 0;  // reads that returned no image
   std::uint64_t open_failures = 0;
   std::uint64_t reconnects = 0;       // times a failing open source was released to be reopened
   std::uint64_t size_mismatches = 0;  // frames whose size differs from the configured one
   bool open = false;
-  bool finished = false;              // a video file reached its end
+  bool finished = false;  // a video file reached its end
 };
 
 class CameraSource {

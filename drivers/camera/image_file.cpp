@@ -40,7 +40,8 @@ bool is_frame_header(unsigned marker) {
 ImageHeader jpeg_header(std::span<const std::uint8_t> b, const std::string& origin) {
   std::size_t at = 2;
   while (true) {
-    if (at >= b.size() || b[at] != 0xFF) fail(origin, "corrupt JPEG: no frame header (SOF) before byte " + std::to_string(at));
+    if (at >= b.size() || b[at] != 0xFF)
+      fail(origin, "corrupt JPEG: no frame header (SOF) before byte " + std::to_string(at));
     while (at < b.size() && b[at] == 0xFF) ++at;  // fill bytes
     if (at >= b.size()) fail(origin, "truncated JPEG: ends inside a marker");
     const unsigned marker = b[at++];
@@ -75,9 +76,9 @@ ImageHeader read_image_header(std::span<const std::uint8_t> b, const std::string
     fail(origin, "image of " + std::to_string(h.width) + " x " + std::to_string(h.height) + " px has no pixels");
   if (h.width > kMaxImageSide || h.height > kMaxImageSide ||
       static_cast<std::int64_t>(h.width) * h.height > kMaxImagePixels)
-    fail(origin, "image of " + std::to_string(h.width) + " x " + std::to_string(h.height) + " px is too large (at most " +
-                     std::to_string(kMaxImageSide) + " px on a side and " + std::to_string(kMaxImagePixels / 1'000'000) +
-                     " MP)");
+    fail(origin, "image of " + std::to_string(h.width) + " x " + std::to_string(h.height) +
+                     " px is too large (at most " + std::to_string(kMaxImageSide) + " px on a side and " +
+                     std::to_string(kMaxImagePixels / 1'000'000) + " MP)");
   return h;
 }
 

@@ -19,7 +19,7 @@ class ImageFileError : public std::runtime_error {
 };
 
 inline constexpr std::size_t kMaxImageFileBytes = 64u << 20;
-inline constexpr int kMaxImageSide = 8192;                 // px
+inline constexpr int kMaxImageSide = 8192;                   // px
 inline constexpr std::int64_t kMaxImagePixels = 40'000'000;  // a 40 MP photo; more is not a crop of a cone
 
 enum class ImageFormat { Png, Jpeg };

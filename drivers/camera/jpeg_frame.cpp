@@ -29,8 +29,8 @@ Frame decode_jpeg_frame(std::span<const std::uint8_t> bytes, Stamp stamp, std::u
   if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8 || bytes[2] != 0xFF)
     throw CameraDataError("JPEG frame: no start-of-image marker (FF D8 FF); not a JPEG image");
   if (!ends_with_eoi(bytes))
-    throw CameraDataError("JPEG frame: no end-of-image marker (FF D9); truncated after " + std::to_string(bytes.size()) +
-                          " bytes");
+    throw CameraDataError("JPEG frame: no end-of-image marker (FF D9); truncated after " +
+                          std::to_string(bytes.size()) + " bytes");
   Frame f;
   f.stamp = stamp;
   f.seq = seq;

@@ -75,23 +75,27 @@ CsvCloud parse_csv_cloud(std::string_view text, const std::string& origin, const
       have_layout = true;
       double v = 0;
       const bool numeric = std::all_of(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(n),
-                                                         [&](std::string_view s) { return parse_number(s, v); });
+                                       [&](std::string_view s) { return parse_number(s, v); });
       if (!numeric) {
         // A header: columns by name.
         out.header = true;
         col.count = n;
         for (std::size_t k = 0; k < n; ++k) {
           const std::string name = lower(f[k]);
-          int* slot = name == "x" ? &col.x : name == "y" ? &col.y : name == "z" ? &col.z
-                    : (name == "intensity" || name == "reflectivity" || name == "i") ? &col.intensity
-                    : (name == "laser" || name == "ring") ? &col.laser
-                    : name == "t_us" ? &col.time : nullptr;
+          int* slot = name == "x"                                                      ? &col.x
+                      : name == "y"                                                    ? &col.y
+                      : name == "z"                                                    ? &col.z
+                      : (name == "intensity" || name == "reflectivity" || name == "i") ? &col.intensity
+                      : (name == "laser" || name == "ring")                            ? &col.laser
+                      : name == "t_us"                                                 ? &col.time
+                                                                                       : nullptr;
           if (!slot) continue;  // another column (lidar-dump's azimuth_deg, distance_m): ignored
           if (*slot >= 0) throw CloudError(where(origin, line_no) + "column '" + name + "' appears twice");
           *slot = static_cast<int>(k);
         }
         if (col.x < 0 || col.y < 0 || col.z < 0)
-          throw CloudError(where(origin, line_no) + "header needs columns x, y and z (found '" + std::string(line) + "')");
+          throw CloudError(where(origin, line_no) + "header needs columns x, y and z (found '" + std::string(line) +
+                           "')");
         continue;
       }
       if (n != 3 && n != 4)

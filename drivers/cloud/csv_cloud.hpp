@@ -22,16 +22,16 @@ class CloudError : public std::runtime_error {
 };
 
 struct CsvCloudLimits {
-  std::size_t max_points = 2'000'000;         // rows with a point (a VLP-16 revolution has ~29 k)
-  std::uintmax_t max_bytes = 256ull << 20;    // file size
-  double max_coordinate = 1000.0;             // m: farther rows are dropped as invalid
+  std::size_t max_points = 2'000'000;       // rows with a point (a VLP-16 revolution has ~29 k)
+  std::uintmax_t max_bytes = 256ull << 20;  // file size
+  double max_coordinate = 1000.0;           // m: farther rows are dropped as invalid
 };
 
 struct CsvCloud {
-  Scan scan;                  // points with distance and azimuth from the frame origin; ring and t when given
-  std::size_t rows = 0;       // data rows
-  std::size_t invalid = 0;    // rows dropped: a coordinate beyond max_coordinate (NaN, inf), an intensity beyond
-                              // ±1e6 or a time beyond ±1e15 µs
+  Scan scan;                // points with distance and azimuth from the frame origin; ring and t when given
+  std::size_t rows = 0;     // data rows
+  std::size_t invalid = 0;  // rows dropped: a coordinate beyond max_coordinate (NaN, inf), an intensity beyond
+                            // ±1e6 or a time beyond ±1e15 µs
   bool header = false;
   bool has_intensity = false, has_lasers = false, has_times = false;
 };

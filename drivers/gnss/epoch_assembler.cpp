@@ -20,12 +20,18 @@ void Epoch::add(const Sentence& s, Stamp t) {
   std::visit(
       [this](const auto& v) {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, GgaSentence>) gga = v;
-        else if constexpr (std::is_same_v<T, RmcSentence>) rmc = v;
-        else if constexpr (std::is_same_v<T, VtgSentence>) vtg = v;
-        else if constexpr (std::is_same_v<T, HdtSentence>) hdt = v;
-        else if constexpr (std::is_same_v<T, PashrSentence>) pashr = v;
-        else rot = v;
+        if constexpr (std::is_same_v<T, GgaSentence>)
+          gga = v;
+        else if constexpr (std::is_same_v<T, RmcSentence>)
+          rmc = v;
+        else if constexpr (std::is_same_v<T, VtgSentence>)
+          vtg = v;
+        else if constexpr (std::is_same_v<T, HdtSentence>)
+          hdt = v;
+        else if constexpr (std::is_same_v<T, PashrSentence>)
+          pashr = v;
+        else
+          rot = v;
       },
       s);
   last = type_of(s);
@@ -65,8 +71,10 @@ void EpochAssembler::add(const Sentence& s, Stamp receive_time) {
 }
 
 void EpochAssembler::close(bool by_ender) {
-  if (by_ender) misses_ = 0;
-  else if (ender_) ++misses_;
+  if (by_ender)
+    misses_ = 0;
+  else if (ender_)
+    ++misses_;
   last_closed_utc_ = open_.utc_s;
   const Epoch done = std::move(open_);
   open_ = Epoch{};

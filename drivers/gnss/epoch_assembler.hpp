@@ -33,7 +33,7 @@ struct Epoch {
   std::optional<HdtSentence> hdt;
   std::optional<PashrSentence> pashr;
   std::optional<RotSentence> rot;
-  unsigned types = 0;           // bit per SentenceType
+  unsigned types = 0;  // bit per SentenceType
   SentenceType last = SentenceType::GGA;
 
   bool has(SentenceType t) const { return (types >> static_cast<unsigned>(t)) & 1u; }

@@ -21,8 +21,8 @@ const ConfigSection<GnssConfig>& gnss_section() {
                   "Weakest GGA fix quality that counts as GNSS good.")
           .boolean("dead_reckoning_good", &GnssConfig::dead_reckoning_good,
                    "Count GGA quality 6 (INS dead reckoning) as GNSS good.", true)
-          .integer("min_satellites", &GnssConfig::min_satellites, 0, 99, "",
-                   "Fewest satellites in use for GNSS good.", true)
+          .integer("min_satellites", &GnssConfig::min_satellites, 0, 99, "", "Fewest satellites in use for GNSS good.",
+                   true)
           .number("max_hdop", &GnssConfig::max_hdop, 0.1, 99.0, "", "Largest HDOP for GNSS good.", true)
           .number("max_diff_age_s", &GnssConfig::max_diff_age_s, 0.0, 600.0, "s",
                   "Oldest differential corrections for GNSS good (when min_fix needs corrections).", true)
@@ -36,8 +36,7 @@ const ConfigSection<GnssConfig>& gnss_section() {
                   "Antenna phase centre above the ground below the rear axle (vehicle frame z).")
           .integer("max_line_length", &GnssConfig::max_line_length, 82, 4096, "characters",
                    "Longest accepted sentence from '$' to the checksum; longer lines are dropped and counted.")
-          .boolean("require_checksum", &GnssConfig::require_checksum,
-                   "Reject sentences without a '*HH' checksum.")
+          .boolean("require_checksum", &GnssConfig::require_checksum, "Reject sentences without a '*HH' checksum.")
           .string("emit_on", &GnssConfig::emit_on, {"auto", "GGA", "RMC", "VTG", "HDT", "PASHR", "ROT"},
                   "Sentence that ends a receiver epoch and triggers the sample; auto learns it as the last "
                   "sentence before the UTC time changes.")
@@ -48,14 +47,22 @@ const ConfigSection<GnssConfig>& gnss_section() {
 
 int fix_rank(int gga_quality) {
   switch (gga_quality) {
-    case 1: return 1;
-    case 6: return 1;  // dead reckoning: no better than a single-point fix unless accepted explicitly
-    case 2: return 2;
-    case 3: return 2;
-    case 9: return 2;  // WAAS/SBAS on some receivers
-    case 5: return 3;
-    case 4: return 4;
-    default: return 0;
+    case 1:
+      return 1;
+    case 6:
+      return 1;  // dead reckoning: no better than a single-point fix unless accepted explicitly
+    case 2:
+      return 2;
+    case 3:
+      return 2;
+    case 9:
+      return 2;  // WAAS/SBAS on some receivers
+    case 5:
+      return 3;
+    case 4:
+      return 4;
+    default:
+      return 0;
   }
 }
 

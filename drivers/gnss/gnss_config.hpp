@@ -22,19 +22,19 @@ struct GnssConfig {
   bool dead_reckoning_good = false;   // accept GGA quality 6 (INS coasting) regardless of min_fix
   int min_satellites = 5;
   double max_hdop = 2.0;
-  double max_diff_age_s = 3.0;        // checked when min_fix needs corrections and the receiver reports an age
-  bool require_heading = true;        // HDT or PASHR heading present in the epoch
+  double max_diff_age_s = 3.0;  // checked when min_fix needs corrections and the receiver reports an age
+  bool require_heading = true;  // HDT or PASHR heading present in the epoch
 
   // Antenna phase centre in the vehicle frame (x forward, y left, z up from the rear-axle centre on the ground).
   double antenna_x = 0.5;
   double antenna_y = 0.0;
   double antenna_z = 1.2;
 
-  int max_line_length = 120;          // characters from '$' to the checksum; longer lines are dropped
+  int max_line_length = 120;  // characters from '$' to the checksum; longer lines are dropped
   bool require_checksum = true;
   // Sentence type that ends a receiver epoch and triggers the sample; "auto" learns it from the stream.
   std::string emit_on = "auto";
-  double latency_s = 0.0;             // subtracted from the receive time of an epoch's first sentence
+  double latency_s = 0.0;  // subtracted from the receive time of an epoch's first sentence
 };
 
 const ConfigSection<GnssConfig>& gnss_section();

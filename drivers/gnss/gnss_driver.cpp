@@ -36,8 +36,10 @@ void fill_motion(const Epoch& e, GnssSample& s) {
     if (e.rmc->course_deg) s.course = enu_yaw_from_north_deg(*e.rmc->course_deg);
   }
   std::optional<double> heading;
-  if (e.hdt && e.hdt->heading_deg) heading = e.hdt->heading_deg;
-  else if (e.pashr && e.pashr->heading_deg) heading = e.pashr->heading_deg;
+  if (e.hdt && e.hdt->heading_deg)
+    heading = e.hdt->heading_deg;
+  else if (e.pashr && e.pashr->heading_deg)
+    heading = e.pashr->heading_deg;
   if (heading) {
     s.heading = enu_yaw_from_north_deg(*heading);
     s.heading_valid = true;
@@ -83,16 +85,28 @@ void GnssDriver::on_line(std::string_view line, Stamp t) {
   ++counters_.lines;
   const nmea::Unframed u = nmea::unframe(line, config_.require_checksum);
   switch (u.error) {
-    case nmea::FrameError::None: break;
-    case nmea::FrameError::MissingChecksum: ++counters_.missing_checksum; return;
-    default: ++counters_.bad_checksum; return;
+    case nmea::FrameError::None:
+      break;
+    case nmea::FrameError::MissingChecksum:
+      ++counters_.missing_checksum;
+      return;
+    default:
+      ++counters_.bad_checksum;
+      return;
   }
   const ParsedSentence p = parse_sentence(u.payload);
   switch (p.error) {
-    case SentenceError::None: break;
-    case SentenceError::Unsupported: ++counters_.unsupported; return;
-    case SentenceError::BadAddress: ++counters_.bad_address; return;
-    case SentenceError::Malformed: ++counters_.malformed; return;
+    case SentenceError::None:
+      break;
+    case SentenceError::Unsupported:
+      ++counters_.unsupported;
+      return;
+    case SentenceError::BadAddress:
+      ++counters_.bad_address;
+      return;
+    case SentenceError::Malformed:
+      ++counters_.malformed;
+      return;
   }
   ++counters_.sentences;
   assembler_.add(p.sentence, t);
@@ -130,8 +144,8 @@ void GnssDriver::on_epoch(const Epoch& e) {
                                  : (origin_ ? origin_->origin().h : 0.0);
     const Geodetic antenna = Geodetic::from_degrees(s.lat_deg, s.lon_deg, s.alt_m);
     // Antenna → rear axle in ENU; without a heading only the height of the lever arm is known.
-    const Vec3 lever_enu = s.heading_valid ? Vec3(rotation_zyx(s.heading, s.pitch, s.roll) * lever_)
-                                           : Vec3(0.0, 0.0, lever_.z());
+    const Vec3 lever_enu =
+        s.heading_valid ? Vec3(rotation_zyx(s.heading, s.pitch, s.roll) * lever_) : Vec3(0.0, 0.0, lever_.z());
     if (!origin_ && config_.use_first_fix && quality_ok && heading_ok && rmc_ok)
       origin_.emplace(LocalEnu(antenna).to_geodetic(-lever_enu));
     if (origin_) s.enu = origin_->to_enu(antenna) - lever_enu;

@@ -30,14 +30,14 @@
 namespace fsd {
 
 struct GnssCounters {
-  NmeaLineSplitter::Counters framing;   // bytes, garbage, overlong, truncated, bad characters
-  std::uint64_t lines = 0;              // complete lines handed to the checksum check
+  NmeaLineSplitter::Counters framing;  // bytes, garbage, overlong, truncated, bad characters
+  std::uint64_t lines = 0;             // complete lines handed to the checksum check
   std::uint64_t missing_checksum = 0;
-  std::uint64_t bad_checksum = 0;       // malformed or mismatching '*HH'
+  std::uint64_t bad_checksum = 0;  // malformed or mismatching '*HH'
   std::uint64_t bad_address = 0;
-  std::uint64_t unsupported = 0;        // valid sentences this driver does not use (GSV, ZDA, ...)
-  std::uint64_t malformed = 0;          // a field that cannot be what the sentence defines there
-  std::uint64_t sentences = 0;          // parsed and used
+  std::uint64_t unsupported = 0;  // valid sentences this driver does not use (GSV, ZDA, ...)
+  std::uint64_t malformed = 0;    // a field that cannot be what the sentence defines there
+  std::uint64_t sentences = 0;    // parsed and used
   std::uint64_t late_sentences = 0;
   std::uint64_t epochs_without_gga = 0;
   std::uint64_t samples = 0;

@@ -15,7 +15,7 @@ class NmeaLineSplitter {
  public:
   struct Counters {
     std::uint64_t bytes = 0;
-    std::uint64_t garbage_bytes = 0;        // outside any line
+    std::uint64_t garbage_bytes = 0;  // outside any line
     std::uint64_t overlong_lines = 0;
     std::uint64_t truncated_lines = 0;      // a new '$' arrived before the line ended
     std::uint64_t bad_character_lines = 0;  // contained a byte outside 0x20..0x7E
@@ -35,8 +35,10 @@ class NmeaLineSplitter {
         start_line(t);
       } else if (c == '\r' || c == '\n') {
         if (state_ == State::InLine) {
-          if (bad_char_) ++counters_.bad_character_lines;
-          else on_line(std::string_view(line_), line_stamp_);
+          if (bad_char_)
+            ++counters_.bad_character_lines;
+          else
+            on_line(std::string_view(line_), line_stamp_);
         }
         state_ = State::Idle;
       } else if (state_ == State::Idle) {

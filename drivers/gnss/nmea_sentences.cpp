@@ -162,10 +162,14 @@ const char* to_string(SentenceType t) {
 
 const char* to_string(SentenceError e) {
   switch (e) {
-    case SentenceError::None: return "ok";
-    case SentenceError::Unsupported: return "unsupported sentence";
-    case SentenceError::BadAddress: return "bad address";
-    case SentenceError::Malformed: return "malformed field";
+    case SentenceError::None:
+      return "ok";
+    case SentenceError::Unsupported:
+      return "unsupported sentence";
+    case SentenceError::BadAddress:
+      return "bad address";
+    case SentenceError::Malformed:
+      return "malformed field";
   }
   return "?";
 }
@@ -194,12 +198,18 @@ ParsedSentence parse_sentence(std::string_view payload) {
     if (!upper(c)) return {SentenceError::BadAddress, {}, {}};
   const std::string_view type = address.substr(2);
   ParsedSentence p;
-  if (type == "GGA") p = parse_gga(r);
-  else if (type == "RMC") p = parse_rmc(r);
-  else if (type == "VTG") p = parse_vtg(r);
-  else if (type == "HDT") p = parse_hdt(r);
-  else if (type == "ROT") p = parse_rot(r);
-  else return {SentenceError::Unsupported, {}, {}};
+  if (type == "GGA")
+    p = parse_gga(r);
+  else if (type == "RMC")
+    p = parse_rmc(r);
+  else if (type == "VTG")
+    p = parse_vtg(r);
+  else if (type == "HDT")
+    p = parse_hdt(r);
+  else if (type == "ROT")
+    p = parse_rot(r);
+  else
+    return {SentenceError::Unsupported, {}, {}};
   p.talker[0] = address[0];
   p.talker[1] = address[1];
   return p;

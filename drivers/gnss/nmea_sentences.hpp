@@ -24,44 +24,44 @@ inline constexpr int kSentenceTypes = 6;
 const char* to_string(SentenceType t);
 
 struct GgaSentence {
-  std::optional<double> utc_s;                 // seconds since UTC midnight
-  std::optional<double> lat_deg, lon_deg;      // empty without a fix
-  int quality = 0;                             // 0 invalid, 1 single, 2 DGPS, 3 PPS, 4 RTK fixed, 5 RTK float,
-                                               // 6 dead reckoning, 7 manual, 8 simulator
+  std::optional<double> utc_s;             // seconds since UTC midnight
+  std::optional<double> lat_deg, lon_deg;  // empty without a fix
+  int quality = 0;                         // 0 invalid, 1 single, 2 DGPS, 3 PPS, 4 RTK fixed, 5 RTK float,
+                                           // 6 dead reckoning, 7 manual, 8 simulator
   std::optional<int> satellites;
   std::optional<double> hdop;
-  std::optional<double> altitude_msl_m;        // antenna height above mean sea level (geoid)
-  std::optional<double> geoid_separation_m;    // geoid above the ellipsoid
-  std::optional<double> diff_age_s;            // age of differential corrections
+  std::optional<double> altitude_msl_m;      // antenna height above mean sea level (geoid)
+  std::optional<double> geoid_separation_m;  // geoid above the ellipsoid
+  std::optional<double> diff_age_s;          // age of differential corrections
   std::optional<int> station_id;
 };
 
 struct RmcSentence {
   std::optional<double> utc_s;
-  bool valid = false;                          // status A (valid) / V (void)
+  bool valid = false;  // status A (valid) / V (void)
   std::optional<double> lat_deg, lon_deg;
   std::optional<double> speed_knots;
-  std::optional<double> course_deg;            // true course over ground, clockwise from north
+  std::optional<double> course_deg;  // true course over ground, clockwise from north
   std::optional<nmea::Date> date;
-  char mode = 0;                               // NMEA 2.3 mode indicator (A, D, E, F, R, N, ...), 0 if absent
+  char mode = 0;  // NMEA 2.3 mode indicator (A, D, E, F, R, N, ...), 0 if absent
 };
 
 struct VtgSentence {
-  std::optional<double> course_deg;            // true course over ground
+  std::optional<double> course_deg;  // true course over ground
   std::optional<double> speed_knots;
   std::optional<double> speed_kmh;
-  char mode = 0;                               // N = not valid
+  char mode = 0;  // N = not valid
 };
 
 struct HdtSentence {
-  std::optional<double> heading_deg;           // true heading, clockwise from north; empty when unknown
+  std::optional<double> heading_deg;  // true heading, clockwise from north; empty when unknown
 };
 
 struct PashrSentence {
   std::optional<double> utc_s;
   std::optional<double> heading_deg;
-  std::optional<double> roll_deg;              // positive right side down
-  std::optional<double> pitch_deg;             // positive bow up
+  std::optional<double> roll_deg;   // positive right side down
+  std::optional<double> pitch_deg;  // positive bow up
   std::optional<double> heave_m;
   std::optional<double> roll_sigma_deg, pitch_sigma_deg, heading_sigma_deg;
   std::optional<int> gnss_quality;
@@ -69,7 +69,7 @@ struct PashrSentence {
 };
 
 struct RotSentence {
-  std::optional<double> rate_deg_per_min;      // negative = turning left
+  std::optional<double> rate_deg_per_min;  // negative = turning left
   bool valid = false;
 };
 

@@ -16,12 +16,12 @@ namespace fsd {
 class Clock;
 
 struct SerialPortConfig {
-  std::string device;              // e.g. /dev/ttyUSB0, a udev symlink, or a pty slave path
-  int baud = 115200;               // any rate; non-standard rates go through termios2 (BOTHER)
-  int reopen_interval_ms = 200;    // retry period while the device is missing
-  std::size_t write_queue = 64;    // pending writes; beyond this the oldest is dropped
-  std::size_t read_buffer = 512;   // bytes per read
-  int drain_timeout_ms = 100;      // stop() waits this long at most for queued writes to leave
+  std::string device;             // e.g. /dev/ttyUSB0, a udev symlink, or a pty slave path
+  int baud = 115200;              // any rate; non-standard rates go through termios2 (BOTHER)
+  int reopen_interval_ms = 200;   // retry period while the device is missing
+  std::size_t write_queue = 64;   // pending writes; beyond this the oldest is dropped
+  std::size_t read_buffer = 512;  // bytes per read
+  int drain_timeout_ms = 100;     // stop() waits this long at most for queued writes to leave
 };
 
 // A period without a usable device: from the error (or a failed first open) until the port is open again.
@@ -38,8 +38,8 @@ struct SerialCounters {
   std::uint64_t writes_dropped = 0;  // queue overflow, or written while the port was down
   std::uint64_t opens = 0;
   std::uint64_t open_failures = 0;
-  std::uint64_t errors = 0;          // read/write errors that closed the port
-  std::uint64_t gaps = 0;            // completed gaps
+  std::uint64_t errors = 0;  // read/write errors that closed the port
+  std::uint64_t gaps = 0;    // completed gaps
 };
 
 class SerialPort {
@@ -47,9 +47,9 @@ class SerialPort {
   // All handlers run on the port's I/O thread; keep them short.
   struct Handlers {
     std::function<void(std::span<const std::uint8_t>)> on_bytes;
-    std::function<void()> on_open;                                   // every (re)open, before the first read
-    std::function<void(Stamp t, const std::string& reason)> on_lost; // a gap starts
-    std::function<void(const SerialGap&)> on_gap;                    // a gap ended: the port is back
+    std::function<void()> on_open;                                    // every (re)open, before the first read
+    std::function<void(Stamp t, const std::string& reason)> on_lost;  // a gap starts
+    std::function<void(const SerialGap&)> on_gap;                     // a gap ended: the port is back
   };
 
   // `clock` stamps the gaps (the daemon's clock); without one, seconds since construction.

@@ -21,7 +21,8 @@ constexpr double kFixedPoint = 1 << kSubpixelBits;
 void fill(cv::Mat& img, const DisplayList& list, const DrawPolygon& p, const cv::Scalar& colour,
           cv::Point offset = {0, 0}) {
   if (offset == cv::Point(0, 0)) {
-    cv::fillConvexPoly(img, &list.points[static_cast<std::size_t>(p.first)], p.count, colour, cv::LINE_8, kSubpixelBits);
+    cv::fillConvexPoly(img, &list.points[static_cast<std::size_t>(p.first)], p.count, colour, cv::LINE_8,
+                       kSubpixelBits);
     return;
   }
   std::vector<cv::Point> pts(list.points.begin() + p.first, list.points.begin() + p.first + p.count);
@@ -152,7 +153,8 @@ std::vector<ProjectedCone> CameraModel::visible_cones(const Pose3& body_pose) co
     pc.base_pixel = base.z() > 0 ? view.project(base) : cv::Point2d(std::nan(""), std::nan(""));
     out.push_back(pc);
   }
-  std::sort(out.begin(), out.end(), [](const ProjectedCone& a, const ProjectedCone& b) { return a.distance > b.distance; });
+  std::sort(out.begin(), out.end(),
+            [](const ProjectedCone& a, const ProjectedCone& b) { return a.distance > b.distance; });
   return out;
 }
 

@@ -29,7 +29,7 @@ namespace fsd::sim {
 
 // Ground truth of one cone in an image, for training and evaluating image classifiers and for tests.
 struct ProjectedCone {
-  int index = -1;                 // into World::cones()
+  int index = -1;  // into World::cones()
   ConeColour colour = ConeColour::Unknown;
   bool big = false;
   bool knocked = false;

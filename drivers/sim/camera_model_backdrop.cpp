@@ -11,11 +11,11 @@
 namespace fsd::sim {
 
 namespace {
-constexpr double kMargin = 40.0;            // m of ground textured around the track's objects
-constexpr double kTexel = 0.1;              // m
-constexpr double kMaxTexels = 12e6;         // texels at most; coarser texels on huge tracks
-constexpr double kMaskCell = 0.2;           // m: sampling of World::ground_surface
-const cv::Vec3d kAsphalt(92, 94, 96);       // B, G, R
+constexpr double kMargin = 40.0;       // m of ground textured around the track's objects
+constexpr double kTexel = 0.1;         // m
+constexpr double kMaxTexels = 12e6;    // texels at most; coarser texels on huge tracks
+constexpr double kMaskCell = 0.2;      // m: sampling of World::ground_surface
+const cv::Vec3d kAsphalt(92, 94, 96);  // B, G, R
 const cv::Vec3d kGrass(48, 118, 72);
 const cv::Vec3d kSkyHorizon(215, 205, 195);
 const cv::Vec3d kSkyZenith(205, 150, 95);
@@ -94,7 +94,8 @@ Backdrop::Backdrop(const World& world, const CameraConfig& cfg, std::uint64_t se
   const cv::Mat grass_light = 1.0 + amp * (0.15 * big + 0.10 * mid + 0.12 * grain);
   std::array<cv::Mat, 3> channels;
   for (int c = 0; c < 3; ++c) {
-    cv::Mat mixed = asphalt_weight.mul(asphalt_light) * kAsphalt[c] + (1.0 - asphalt_weight).mul(grass_light) * kGrass[c];
+    cv::Mat mixed =
+        asphalt_weight.mul(asphalt_light) * kAsphalt[c] + (1.0 - asphalt_weight).mul(grass_light) * kGrass[c];
     mixed.convertTo(channels[static_cast<std::size_t>(c)], CV_8U);
   }
   cv::merge(channels.data(), channels.size(), texture_);
@@ -115,7 +116,8 @@ Backdrop::Backdrop(const World& world, const CameraConfig& cfg, std::uint64_t se
     for (int u = 0; u < cfg.width; ++u) {
       const double white = std::clamp(cloud[u] - 0.2, 0.0, 1.0) * 0.8 * s;
       const cv::Vec3d c = base * (1.0 - white) + cv::Vec3d(235, 235, 235) * white;
-      row[u] = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]), cv::saturate_cast<uchar>(c[2]));
+      row[u] =
+          cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]), cv::saturate_cast<uchar>(c[2]));
     }
   }
 }

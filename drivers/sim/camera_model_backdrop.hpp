@@ -21,10 +21,10 @@ class Backdrop {
 
  private:
   const World& world_;
-  cv::Mat texture_;        // CV_8UC3; texel (column j, row i) shows the map point (x0 + j·res, y0 + i·res)
+  cv::Mat texture_;  // CV_8UC3; texel (column j, row i) shows the map point (x0 + j·res, y0 + i·res)
   double x0_ = 0, y0_ = 0, res_ = 0.1;
-  cv::Scalar beyond_;      // colour of the ground outside the texture
-  cv::Mat sky_;            // CV_8UC3 gradient, the image's size
+  cv::Scalar beyond_;  // colour of the ground outside the texture
+  cv::Mat sky_;        // CV_8UC3 gradient, the image's size
 };
 
 }  // namespace fsd::sim

@@ -18,7 +18,8 @@ const ConfigSection<CameraConfig>& camera_section() {
           .number("fy", &C::fy, 0.0, 10000.0, "px", "Focal length along v; 0 = equal to fx.")
           .number("cx", &C::cx, -1.0, 4000.0, "px", "Principal point u; -1 = image centre.")
           .number("cy", &C::cy, -1.0, 4000.0, "px", "Principal point v; -1 = image centre.")
-          .number("x", &C::x, -5.0, 5.0, "m", "Mount position on the body frame (rear-axle centre on the ground): forward.")
+          .number("x", &C::x, -5.0, 5.0, "m",
+                  "Mount position on the body frame (rear-axle centre on the ground): forward.")
           .number("y", &C::y, -2.0, 2.0, "m", "Mount position: left.")
           .number("z", &C::z, 0.1, 3.0, "m", "Mount position: height above the ground.")
           .number("roll", &C::roll, -0.5, 0.5, "rad", "Mount roll (Z-Y-X).")
@@ -33,12 +34,14 @@ const ConfigSection<CameraConfig>& camera_section() {
           .number("gain_variation", &C::gain_variation, 0.0, 0.8, "", "Relative amplitude of the slow exposure drift.")
           .number("white_balance_variation", &C::white_balance_variation, 0.0, 0.3, "",
                   "Amplitude of the slow white balance drift.")
-          .number("lighting_period", &C::lighting_period, 0.5, 600.0, "s", "Time scale of the lighting drift and events.")
+          .number("lighting_period", &C::lighting_period, 0.5, 600.0, "s",
+                  "Time scale of the lighting drift and events.")
           .number("light_event_probability", &C::light_event_probability, 0.0, 1.0, "",
                   "Chance of a cloud shadow or bright spell in each lighting period.")
           .number("light_event_depth", &C::light_event_depth, 0.0, 0.9, "",
                   "Relative exposure drop of a cloud shadow (a bright spell raises it by half as much).")
-          .number("sun_azimuth", &C::sun_azimuth, -6.3, 6.3, "rad", "Sun direction in the map, counter-clockwise from +x.")
+          .number("sun_azimuth", &C::sun_azimuth, -6.3, 6.3, "rad",
+                  "Sun direction in the map, counter-clockwise from +x.")
           .number("sun_elevation", &C::sun_elevation, 0.05, 1.57, "rad", "Sun elevation above the horizon.")
           .integer("jpeg_quality", &C::jpeg_quality, 10, 100, "", "JPEG quality of the emitted frames (MJPEG camera).")
           .number("draw_distance", &C::draw_distance, 5.0, 300.0, "m", "Objects farther than this are not drawn.");

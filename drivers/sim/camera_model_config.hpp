@@ -12,33 +12,33 @@
 namespace fsd::sim {
 
 struct CameraConfig {
-  double rate = 20.0;          // frames per second
+  double rate = 20.0;  // frames per second
   int width = 640;
   int height = 480;
   // Intrinsics: fx/fy ≤ 0 derive a square pixel from the horizontal field of view; cx/cy < 0 put the principal
   // point at the image centre.
-  double hfov = 1.22;          // rad (70°)
+  double hfov = 1.22;  // rad (70°)
   double fx = 0.0, fy = 0.0;
   double cx = -1.0, cy = -1.0;
   // Mount on the vehicle body frame (rear-axle centre on the ground): on the main hoop, looking slightly down.
   double x = 0.5, y = 0.0, z = 1.05;
   double roll = 0.0, pitch = 0.10, yaw = 0.0;
-  double latency = 0.03;       // s from capture to the frame leaving the camera
-  double pixel_noise = 2.0;    // σ of the sensor noise, 8-bit levels
-  double blur = 0.6;           // σ of the optical blur, px (0 = none)
+  double latency = 0.03;     // s from capture to the frame leaving the camera
+  double pixel_noise = 2.0;  // σ of the sensor noise, 8-bit levels
+  double blur = 0.6;         // σ of the optical blur, px (0 = none)
   // Lighting: exposure gain and white balance (+ warmer/redder, − cooler/bluer) around their base values,
   // varying smoothly over lighting_period, with occasional cloud shadows and bright spells.
   double gain = 1.0;
   double white_balance = 0.0;
   double gain_variation = 0.2;
   double white_balance_variation = 0.05;
-  double lighting_period = 8.0;  // s
+  double lighting_period = 8.0;           // s
   double light_event_probability = 0.15;  // chance of a shadow or bright spell in each lighting period
   double light_event_depth = 0.35;        // relative exposure change of a shadow (a bright spell: half of it)
-  double sun_azimuth = 2.2;    // rad, map frame, counter-clockwise from +x
-  double sun_elevation = 0.8;  // rad above the horizon
+  double sun_azimuth = 2.2;               // rad, map frame, counter-clockwise from +x
+  double sun_elevation = 0.8;             // rad above the horizon
   int jpeg_quality = 85;
-  double draw_distance = 80.0; // m: farther objects are not drawn
+  double draw_distance = 80.0;  // m: farther objects are not drawn
 };
 
 const ConfigSection<CameraConfig>& camera_section();  // prefix "sim.camera"

@@ -11,8 +11,8 @@ namespace {
 constexpr std::uint64_t kGainStream = 0xCA3E6A1u;
 constexpr std::uint64_t kBalanceStream = 0xCA3E6A2u;
 constexpr std::uint64_t kEventStream = 0xCA3E6A3u;
-constexpr double kEventRamp = 0.15;      // fraction of a lighting period spent fading in or out
-constexpr double kBrightShare = 0.3;     // of the events, this share are bright spells, the rest shadows
+constexpr double kEventRamp = 0.15;   // fraction of a lighting period spent fading in or out
+constexpr double kBrightShare = 0.3;  // of the events, this share are bright spells, the rest shadows
 constexpr double kAmbient = 0.6;
 constexpr double kDiffuse = 0.55;
 

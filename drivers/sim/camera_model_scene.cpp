@@ -37,12 +37,17 @@ struct ConePaintColours {
 
 ConePaintColours cone_colours(ConeColour c) {
   switch (c) {
-    case ConeColour::Blue: return {kBlue, kWhite};
-    case ConeColour::Yellow: return {kYellow, kBlack};
+    case ConeColour::Blue:
+      return {kBlue, kWhite};
+    case ConeColour::Yellow:
+      return {kYellow, kBlack};
     case ConeColour::Orange:
-    case ConeColour::BigOrange: return {kOrange, kWhite};
-    case ConeColour::Red: return {kRed, kWhite};
-    case ConeColour::Unknown: break;
+    case ConeColour::BigOrange:
+      return {kOrange, kWhite};
+    case ConeColour::Red:
+      return {kRed, kWhite};
+    case ConeColour::Unknown:
+      break;
   }
   return {kGrey, kWhite};
 }
@@ -101,8 +106,9 @@ std::vector<Solid> distractor_solids(const World& world, int index) {
     case DistractorType::Tyre:
       s.h = d.width;
       if (d.standing) {  // axle horizontal along yaw, as World places it
-        s.to_map = frame * (Eigen::AngleAxisd(d.yaw, Vec3::UnitZ()) *
-                            Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY())).toRotationMatrix();
+        s.to_map =
+            frame * (Eigen::AngleAxisd(d.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY()))
+                        .toRotationMatrix();
         s.origin = base + world.ground_normal() * d.radius - s.to_map.col(2) * (d.width / 2);
       }
       s.add_band(0, s.h, kRubber);
@@ -129,7 +135,8 @@ std::vector<Solid> distractor_solids(const World& world, int index) {
       s.add_band(0, s.h, kPost);
       s.top_albedo = s.bottom_albedo = kPostCap;
       break;
-    case DistractorType::Fence: return {};
+    case DistractorType::Fence:
+      return {};
   }
   return {s};
 }
@@ -183,7 +190,8 @@ void SceneBuilder::build(const CameraView& view, const cv::Scalar& gains, bool w
     const Vec3 c = s.centre();
     if (with_shadows && view.may_see(c, s.bound_radius() * kShadowReach + 0.5))
       emit_solid_shadow(view, s, solid_objects[i], list);
-    if (view.may_see(c, s.bound_radius())) items.push_back({(c - view.position()).norm(), solid_objects[i], &s, nullptr});
+    if (view.may_see(c, s.bound_radius()))
+      items.push_back({(c - view.position()).norm(), solid_objects[i], &s, nullptr});
   }
   for (std::size_t j = 0; j < fences_.size(); ++j)
     for (const auto& p : fences_[j]) {
@@ -196,13 +204,15 @@ void SceneBuilder::build(const CameraView& view, const cv::Scalar& gains, bool w
 
   std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.depth > b.depth; });
   for (const auto& it : items) {
-    if (it.solid) emit_solid(view, *it.solid, gains, it.object, it.depth, list);
-    else emit_panel(view, *it.panel, gains, it.object, list);
+    if (it.solid)
+      emit_solid(view, *it.solid, gains, it.object, it.depth, list);
+    else
+      emit_panel(view, *it.panel, gains, it.object, list);
   }
 }
 
-void SceneBuilder::emit_solid(const CameraView& view, const Solid& s, const cv::Scalar& gains, int object,
-                              double depth, DisplayList& list) const {
+void SceneBuilder::emit_solid(const CameraView& view, const Solid& s, const cv::Scalar& gains, int object, double depth,
+                              DisplayList& list) const {
   const int n = facet_count(view.intrinsics().fx * std::max(s.r0, s.r1) / std::max(depth, 0.1));
   const Eigen::Matrix3d M = view.rotation() * s.to_map;  // body → camera
   const Vec3 o = view.to_camera(s.origin);

@@ -32,7 +32,7 @@ struct Solid {
   std::array<Band, 10> bands{};
   int band_count = 0;
   cv::Vec3d top_albedo, bottom_albedo;
-  double hole = 0.0;   // inner radius / outer radius of a ring (tyres); 0 = solid caps
+  double hole = 0.0;  // inner radius / outer radius of a ring (tyres); 0 = solid caps
   cv::Vec3d inner_albedo;
 
   void add_band(double z0, double z1, const cv::Vec3d& albedo);

@@ -12,7 +12,7 @@
 
 namespace fsd::sim {
 
-inline constexpr int kSubpixelBits = 4;   // fractional bits of the polygon vertices
+inline constexpr int kSubpixelBits = 4;     // fractional bits of the polygon vertices
 inline constexpr double kNearPlane = 0.05;  // m
 
 // A filled polygon: points[first, first + count) of its DisplayList, in fixed point.
@@ -42,10 +42,10 @@ class CameraView {
   const PinholeIntrinsics& intrinsics() const { return k_; }
   int width() const { return width_; }
   int height() const { return height_; }
-  const Vec3& position() const { return position_; }            // optical centre, map frame
-  const Eigen::Matrix3d& rotation() const { return R_; }        // optical ← map
+  const Vec3& position() const { return position_; }      // optical centre, map frame
+  const Eigen::Matrix3d& rotation() const { return R_; }  // optical ← map
   Vec3 to_camera(const Vec3& p_map) const { return R_ * p_map + t_; }
-  cv::Point2d project(const Vec3& p_cam) const;                  // p_cam.z() > 0
+  cv::Point2d project(const Vec3& p_cam) const;  // p_cam.z() > 0
 
   // Whether a sphere (map frame) may show in the image within the draw distance.
   bool may_see(const Vec3& centre_map, double radius) const;

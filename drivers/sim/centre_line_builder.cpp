@@ -70,8 +70,7 @@ void CentreLineBuilder::clothoid(double kappa0, double kappa1, double length) {
   }
 }
 
-std::vector<std::size_t> CentreLineBuilder::slalom(double half_period, int half_periods, double amplitude,
-                                                  int side) {
+std::vector<std::size_t> CentreLineBuilder::slalom(double half_period, int half_periods, double amplitude, int side) {
   // Local frame: x along the start heading, y = -side·A·(1 - cos(πx/d)); a whole number of steps per half
   // period puts a sample on each extreme x = k·d.
   const Pose2 e = end();
@@ -172,8 +171,10 @@ bool CentreLineBuilder::dubins_to(const Pose2& goal, double radius) {
   for (int k = 0; k < 3; ++k) {
     const double l = best->len[k] * radius;
     if (l < ds_) continue;  // a sliver of arc: the pieces either side join as they are
-    if (best->turn[k] == 0) straight(l);
-    else arc(radius, best->turn[k] * best->len[k]);
+    if (best->turn[k] == 0)
+      straight(l);
+    else
+      arc(radius, best->turn[k] * best->len[k]);
   }
   const Pose2 e = end();
   return (e.position() - goal.position()).norm() < 0.05 && std::fabs(wrap_angle(e.yaw - goal.yaw)) < 0.01;

@@ -16,12 +16,17 @@ const ConeShape& cone_shape(bool big) { return big ? kBigCone : kSmallCone; }
 
 ConePaint cone_paint(ConeColour colour) {
   switch (colour) {
-    case ConeColour::Blue: return {22.0, 95.0};     // dark blue plastic, white stripe
-    case ConeColour::Yellow: return {70.0, 8.0};    // bright yellow plastic, black stripe
+    case ConeColour::Blue:
+      return {22.0, 95.0};  // dark blue plastic, white stripe
+    case ConeColour::Yellow:
+      return {70.0, 8.0};  // bright yellow plastic, black stripe
     case ConeColour::Orange:
-    case ConeColour::BigOrange: return {55.0, 95.0};  // orange, white stripes
-    case ConeColour::Red: return {45.0, 95.0};      // FSAC red, white stripe
-    case ConeColour::Unknown: break;
+    case ConeColour::BigOrange:
+      return {55.0, 95.0};  // orange, white stripes
+    case ConeColour::Red:
+      return {45.0, 95.0};  // FSAC red, white stripe
+    case ConeColour::Unknown:
+      break;
   }
   return {40.0, 40.0};
 }
@@ -91,8 +96,7 @@ Eigen::Matrix3d lying_cone_rotation(const ConeShape& shape, double yaw) {
   // Tilting the axis from +z past horizontal by the half-angle θ (rotation about y by 90° + θ) makes the generator
   // on the +x side horizontal, at the lowest point of the body; yaw then turns the tip to its direction.
   const double half_angle = std::atan2(shape.base_radius - shape.top_radius, shape.height);
-  return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) *
-          Eigen::AngleAxisd(std::numbers::pi / 2 + half_angle, Vec3::UnitY()))
+  return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(std::numbers::pi / 2 + half_angle, Vec3::UnitY()))
       .toRotationMatrix();
 }
 

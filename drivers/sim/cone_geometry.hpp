@@ -43,9 +43,9 @@ ConePaint cone_paint(ConeColour colour);
 
 // A ray hit in the shape's frame.
 struct LocalHit {
-  double t;      // ray parameter (distance for a unit direction)
+  double t;  // ray parameter (distance for a unit direction)
   Vec3 point;
-  Vec3 normal;   // outward unit normal
+  Vec3 normal;  // outward unit normal
 };
 
 // Nearest intersection with t in (t_min, t_max) of o + t·d with the closed frustum: side x² + y² = ρ(z)²,

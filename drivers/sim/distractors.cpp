@@ -11,10 +11,14 @@ namespace fsd::sim {
 
 const char* to_string(DistractorType t) {
   switch (t) {
-    case DistractorType::Tyre: return "tyre";
-    case DistractorType::TyreStack: return "tyre_stack";
-    case DistractorType::Post: return "post";
-    case DistractorType::Fence: return "fence";
+    case DistractorType::Tyre:
+      return "tyre";
+    case DistractorType::TyreStack:
+      return "tyre_stack";
+    case DistractorType::Post:
+      return "post";
+    case DistractorType::Fence:
+      return "fence";
   }
   return "?";
 }
@@ -29,8 +33,8 @@ Vec2 Distractor::fence_end() const { return position + length * Vec2(std::cos(ya
 
 namespace {
 
-constexpr double kClearance = 0.5;      // m between two distractors
-constexpr double kFenceSampling = 0.25; // m between checked points along a fence
+constexpr double kClearance = 0.5;       // m between two distractors
+constexpr double kFenceSampling = 0.25;  // m between checked points along a fence
 constexpr int kAttempts = 300;
 
 class Placer {

@@ -27,7 +27,7 @@ struct Distractor {
 
   // Radius of the circle around `position` that holds the footprint (not for fences).
   double footprint_radius() const;
-  Vec2 fence_end() const;        // other end of a fence segment
+  Vec2 fence_end() const;  // other end of a fence segment
 };
 
 std::vector<Distractor> place_distractors(const TrackArea& area, const WorldConfig& cfg, std::uint64_t seed);

@@ -7,10 +7,14 @@ namespace fsd::sim {
 
 std::string_view to_string(FaultKind k) {
   switch (k) {
-    case FaultKind::Gnss: return "gnss";
-    case FaultKind::Lidar: return "lidar";
-    case FaultKind::VcuLink: return "vcu_link";
-    case FaultKind::PlannerStall: return "planner_stall";
+    case FaultKind::Gnss:
+      return "gnss";
+    case FaultKind::Lidar:
+      return "lidar";
+    case FaultKind::VcuLink:
+      return "vcu_link";
+    case FaultKind::PlannerStall:
+      return "planner_stall";
   }
   return "?";
 }
@@ -32,10 +36,9 @@ ConfigSection<S> trigger_section(const std::string& name, const std::string& wha
 }
 
 const ConfigSection<GnssFaultTrigger>& gnss_fault_section() {
-  static const auto s =
-      trigger_section<GnssFaultTrigger>("gnss", "the GNSS-INS outage", 10.0)
-          .string("mode", &GnssFaultTrigger::mode, {"no_fix", "silent"},
-                  "During the outage the receiver reports no fix (quality 0) or sends nothing.");
+  static const auto s = trigger_section<GnssFaultTrigger>("gnss", "the GNSS-INS outage", 10.0)
+                            .string("mode", &GnssFaultTrigger::mode, {"no_fix", "silent"},
+                                    "During the outage the receiver reports no fix (quality 0) or sends nothing.");
   return s;
 }
 const ConfigSection<FaultTrigger>& lidar_fault_section() {
@@ -55,10 +58,14 @@ const ConfigSection<FaultTrigger>& planner_stall_fault_section() {
 
 const FaultTrigger& FaultScheduleConfig::trigger(FaultKind k) const {
   switch (k) {
-    case FaultKind::Gnss: return gnss;
-    case FaultKind::Lidar: return lidar;
-    case FaultKind::VcuLink: return vcu_link;
-    case FaultKind::PlannerStall: return planner_stall;
+    case FaultKind::Gnss:
+      return gnss;
+    case FaultKind::Lidar:
+      return lidar;
+    case FaultKind::VcuLink:
+      return vcu_link;
+    case FaultKind::PlannerStall:
+      return planner_stall;
   }
   return gnss;
 }
@@ -79,8 +86,7 @@ FaultScheduleConfig read_fault_schedule(const Config& cfg) {
   return c;
 }
 
-FaultSchedule::FaultSchedule(const FaultScheduleConfig& config, const Track& track)
-    : config_(config), gates_(track) {}
+FaultSchedule::FaultSchedule(const FaultScheduleConfig& config, const Track& track) : config_(config), gates_(track) {}
 
 void FaultSchedule::on_truth(Stamp t, const Vec2& position) {
   if (!last_position_) {

@@ -46,7 +46,8 @@ const ConfigSection<GnssModelConfig>& gnss_model_section() {
           .number("antenna_y", &C::antenna_y, -10.0, 10.0, "m", "Antenna left of the rear-axle centre.")
           .number("antenna_z", &C::antenna_z, -10.0, 10.0, "m", "Antenna above the ground below the rear axle.")
           .string("mode", &C::mode, {"rtk", "single"}, "Solution: rtk (GGA quality 4) or single point (quality 1).")
-          .number("rtk_sigma_m", &C::rtk_sigma_m, 0.0, 1.0, "m", "RTK position noise per horizontal axis (1.5x vertical).")
+          .number("rtk_sigma_m", &C::rtk_sigma_m, 0.0, 1.0, "m",
+                  "RTK position noise per horizontal axis (1.5x vertical).")
           .number("single_sigma_m", &C::single_sigma_m, 0.0, 20.0, "m",
                   "Single-point white position noise per horizontal axis.")
           .number("single_bias_sigma_m", &C::single_bias_sigma_m, 0.0, 20.0, "m",
@@ -97,8 +98,9 @@ GnssModel::GnssModel(const GnssModelConfig& config, std::uint64_t seed)
   if (c_.talker.size() != 2) throw std::invalid_argument("sim.gnss.talker: two letters");
   const std::chrono::year_month_day d{std::chrono::year{c_.utc_year}, std::chrono::month{unsigned(c_.utc_month)},
                                       std::chrono::day{unsigned(c_.utc_day)}};
-  if (!d.ok()) throw std::invalid_argument("sim.gnss: no such date " + std::to_string(c_.utc_year) + "-" +
-                                           std::to_string(c_.utc_month) + "-" + std::to_string(c_.utc_day));
+  if (!d.ok())
+    throw std::invalid_argument("sim.gnss: no such date " + std::to_string(c_.utc_year) + "-" +
+                                std::to_string(c_.utc_month) + "-" + std::to_string(c_.utc_day));
   // Start the wander in its stationary distribution.
   for (int i = 0; i < 3; ++i) bias_[i] = c_.single_bias_sigma_m * (i == 2 ? kVerticalFactor : 1.0) * normal_(rng_);
 }
@@ -126,7 +128,8 @@ void GnssModel::set_outage(Stamp start, Duration duration, const std::string& mo
 }
 
 GnssModel::Fix GnssModel::fix_at(Stamp t) const {
-  const bool outage = c_.outage_start_s >= 0.0 && t >= c_.outage_start_s && t < c_.outage_start_s + c_.outage_duration_s;
+  const bool outage =
+      c_.outage_start_s >= 0.0 && t >= c_.outage_start_s && t < c_.outage_start_s + c_.outage_duration_s;
   if (outage && c_.outage_mode == "no_fix") return Fix::None;
   if (outage && c_.outage_mode == "single") return Fix::Single;
   return c_.mode == "rtk" ? Fix::Rtk : Fix::Single;
@@ -161,8 +164,8 @@ void GnssModel::emit_epoch(std::uint64_t k, const VehicleTruth& truth) {
   const Stamp te = static_cast<double>(k) / c_.rate_hz;
   ++stats_.epochs;
   const bool dropped = uniform_(rng_) < c_.dropout_probability;
-  const bool outage = c_.outage_start_s >= 0.0 && te >= c_.outage_start_s &&
-                      te < c_.outage_start_s + c_.outage_duration_s;
+  const bool outage =
+      c_.outage_start_s >= 0.0 && te >= c_.outage_start_s && te < c_.outage_start_s + c_.outage_duration_s;
   const Fix fix = fix_at(te);
   const Vec3 err = position_error(te, fix);
   const double n_heading = c_.heading_sigma_rad * normal_(rng_);
@@ -178,14 +181,13 @@ void GnssModel::emit_epoch(std::uint64_t k, const VehicleTruth& truth) {
   // Time and date of the epoch.
   const double utc = c_.utc_start_s + te;
   const double day = std::floor(utc / 86400.0);
-  const std::chrono::year_month_day date{
-      std::chrono::sys_days{std::chrono::year_month_day{std::chrono::year{c_.utc_year},
-                                                        std::chrono::month{unsigned(c_.utc_month)},
-                                                        std::chrono::day{unsigned(c_.utc_day)}}} +
-      std::chrono::days{static_cast<int>(day)}};
+  const std::chrono::year_month_day date{std::chrono::sys_days{std::chrono::year_month_day{
+                                             std::chrono::year{c_.utc_year}, std::chrono::month{unsigned(c_.utc_month)},
+                                             std::chrono::day{unsigned(c_.utc_day)}}} +
+                                         std::chrono::days{static_cast<int>(day)}};
   const std::string hhmmss = nmea::format_time_of_day(utc, 2);
-  const std::string ddmmyy = nmea::format_date(
-      {int(date.year()), int(unsigned(date.month())), int(unsigned(date.day()))});
+  const std::string ddmmyy =
+      nmea::format_date({int(date.year()), int(unsigned(date.month())), int(unsigned(date.day()))});
 
   // Antenna position on the globe.
   const Vec3 antenna = truth.body_pose3() * lever_ + err;
@@ -208,39 +210,42 @@ void GnssModel::emit_epoch(std::uint64_t k, const VehicleTruth& truth) {
   if (has_fix) {
     const bool rtk = fix == Fix::Rtk;
     const double age = 0.2 + std::fmod(te, c_.correction_interval_s);
-    out.push_back(nmea::build(t + "GGA", std::vector<std::string>{
-        hhmmss, lat.value, lat.hemisphere, lon.value, lon.hemisphere, std::to_string(quality),
-        two_digits(rtk ? c_.rtk_satellites : c_.single_satellites), format_fixed(rtk ? c_.rtk_hdop : c_.single_hdop, 2),
-        format_fixed(g.h - c_.geoid_separation_m, 3), "M", format_fixed(c_.geoid_separation_m, 3), "M",
-        rtk ? format_fixed(age, 1) : "", rtk ? "0000" : ""}));
-    out.push_back(nmea::build(t + "RMC", std::vector<std::string>{
-        hhmmss, "A", lat.value, lat.hemisphere, lon.value, lon.hemisphere, format_fixed(speed / kKnot, 3), course,
-        ddmmyy, "", "", mode}));
-    out.push_back(nmea::build(t + "VTG", std::vector<std::string>{
-        course, "T", "", "M", format_fixed(speed / kKnot, 3), "N", format_fixed(speed * 3.6, 3), "K", mode}));
+    out.push_back(nmea::build(
+        t + "GGA",
+        std::vector<std::string>{
+            hhmmss, lat.value, lat.hemisphere, lon.value, lon.hemisphere, std::to_string(quality),
+            two_digits(rtk ? c_.rtk_satellites : c_.single_satellites),
+            format_fixed(rtk ? c_.rtk_hdop : c_.single_hdop, 2), format_fixed(g.h - c_.geoid_separation_m, 3), "M",
+            format_fixed(c_.geoid_separation_m, 3), "M", rtk ? format_fixed(age, 1) : "", rtk ? "0000" : ""}));
+    out.push_back(nmea::build(
+        t + "RMC", std::vector<std::string>{hhmmss, "A", lat.value, lat.hemisphere, lon.value, lon.hemisphere,
+                                            format_fixed(speed / kKnot, 3), course, ddmmyy, "", "", mode}));
+    out.push_back(nmea::build(t + "VTG", std::vector<std::string>{course, "T", "", "M", format_fixed(speed / kKnot, 3),
+                                                                  "N", format_fixed(speed * 3.6, 3), "K", mode}));
   } else {
-    out.push_back(nmea::build(t + "GGA", std::vector<std::string>{hhmmss, "", "", "", "", "0", "00", "", "", "M", "",
-                                                                   "M", "", ""}));
-    out.push_back(nmea::build(t + "RMC", std::vector<std::string>{hhmmss, "V", "", "", "", "", "", "", ddmmyy, "",
-                                                                   "", "N"}));
+    out.push_back(nmea::build(
+        t + "GGA", std::vector<std::string>{hhmmss, "", "", "", "", "0", "00", "", "", "M", "", "M", "", ""}));
+    out.push_back(
+        nmea::build(t + "RMC", std::vector<std::string>{hhmmss, "V", "", "", "", "", "", "", ddmmyy, "", "", "N"}));
     out.push_back(nmea::build(t + "VTG", std::vector<std::string>{"", "T", "", "M", "", "N", "", "K", "N"}));
   }
   // The inertial part keeps heading, attitude and rate through a GNSS outage.
   out.push_back(nmea::build(t + "HDT", std::vector<std::string>{heading, "T"}));
-  out.push_back(nmea::build("PASHR", std::vector<std::string>{
-      nmea::format_time_of_day(utc, 3), heading, "T", format_fixed(rad2deg(truth.roll + n_roll), 3, true),
-      format_fixed(-rad2deg(truth.pitch + n_pitch), 3, true), "+0.000", format_fixed(rad2deg(c_.attitude_sigma_rad), 3),
-      format_fixed(rad2deg(c_.attitude_sigma_rad), 3), format_fixed(rad2deg(c_.heading_sigma_rad), 3),
-      std::to_string(quality), "1"}));
-  out.push_back(nmea::build(t + "ROT", std::vector<std::string>{
-      format_fixed(-rad2deg(truth.yaw_rate + n_rate) * 60.0, 3), "A"}));
+  out.push_back(nmea::build(
+      "PASHR", std::vector<std::string>{
+                   nmea::format_time_of_day(utc, 3), heading, "T", format_fixed(rad2deg(truth.roll + n_roll), 3, true),
+                   format_fixed(-rad2deg(truth.pitch + n_pitch), 3, true), "+0.000",
+                   format_fixed(rad2deg(c_.attitude_sigma_rad), 3), format_fixed(rad2deg(c_.attitude_sigma_rad), 3),
+                   format_fixed(rad2deg(c_.heading_sigma_rad), 3), std::to_string(quality), "1"}));
+  out.push_back(
+      nmea::build(t + "ROT", std::vector<std::string>{format_fixed(-rad2deg(truth.yaw_rate + n_rate) * 60.0, 3), "A"}));
   queue(te, std::move(out));
 }
 
 void GnssModel::queue(Stamp t_epoch, std::vector<std::string> sentences) {
   const double byte_time = 10.0 / c_.baud;
   Stamp t = std::max(t_epoch + c_.latency_s, line_free_);  // the line may still be busy with earlier output
-  if (t - (t_epoch + c_.latency_s) > kMaxSerialBacklog) {   // output buffer full: the receiver drops the epoch
+  if (t - (t_epoch + c_.latency_s) > kMaxSerialBacklog) {  // output buffer full: the receiver drops the epoch
     ++stats_.silent_epochs;
     return;
   }

@@ -35,50 +35,50 @@ struct GnssModelConfig {
   // Map origin on the globe: the Hockenheimring paddock (Formula Student Germany).
   double origin_lat_deg = 49.3278;
   double origin_lon_deg = 8.5658;
-  double origin_height_m = 150.0;       // above the WGS-84 ellipsoid (≈ 102 m above sea level)
-  double geoid_separation_m = 47.6;     // geoid above the ellipsoid there; GGA altitude = height - separation
-  double antenna_x = 0.5;               // antenna phase centre in the vehicle frame
+  double origin_height_m = 150.0;    // above the WGS-84 ellipsoid (≈ 102 m above sea level)
+  double geoid_separation_m = 47.6;  // geoid above the ellipsoid there; GGA altitude = height - separation
+  double antenna_x = 0.5;            // antenna phase centre in the vehicle frame
   double antenna_y = 0.0;
   double antenna_z = 1.2;
 
-  std::string mode = "rtk";             // rtk | single
-  double rtk_sigma_m = 0.02;            // per horizontal axis; vertical 1.5×
-  double single_sigma_m = 0.5;          // white part per horizontal axis
-  double single_bias_sigma_m = 1.4;     // wandering part per horizontal axis
+  std::string mode = "rtk";          // rtk | single
+  double rtk_sigma_m = 0.02;         // per horizontal axis; vertical 1.5×
+  double single_sigma_m = 0.5;       // white part per horizontal axis
+  double single_bias_sigma_m = 1.4;  // wandering part per horizontal axis
   double single_bias_tau_s = 30.0;
   int rtk_satellites = 18;
   int single_satellites = 9;
   double rtk_hdop = 0.7;
   double single_hdop = 1.3;
-  double correction_interval_s = 1.0;   // RTK corrections arrive this often: differential age saw-tooth
+  double correction_interval_s = 1.0;  // RTK corrections arrive this often: differential age saw-tooth
 
-  double heading_sigma_rad = 0.0017;    // ≈ 0.1°
-  double attitude_sigma_rad = 0.0009;   // roll and pitch, ≈ 0.05°
-  double yaw_rate_sigma_rad_s = 0.0017; // ≈ 0.1°/s
-  double velocity_sigma_m_s = 0.02;     // per horizontal axis
+  double heading_sigma_rad = 0.0017;     // ≈ 0.1°
+  double attitude_sigma_rad = 0.0009;    // roll and pitch, ≈ 0.05°
+  double yaw_rate_sigma_rad_s = 0.0017;  // ≈ 0.1°/s
+  double velocity_sigma_m_s = 0.02;      // per horizontal axis
 
   double latency_s = 0.01;
   int baud = 460800;
-  double dropout_probability = 0.0;     // per epoch
-  double outage_start_s = -1.0;         // negative: no outage
+  double dropout_probability = 0.0;  // per epoch
+  double outage_start_s = -1.0;      // negative: no outage
   double outage_duration_s = 0.0;
-  std::string outage_mode = "silent";   // silent | no_fix | single
+  std::string outage_mode = "silent";  // silent | no_fix | single
   double multipath_rate_hz = 0.0;
   double multipath_step_m = 1.5;
   double multipath_duration_s = 3.0;
-  double corrupt_probability = 0.0;     // per sentence
+  double corrupt_probability = 0.0;  // per sentence
 
   int utc_year = 2024, utc_month = 8, utc_day = 8;
-  double utc_start_s = 36000.0;         // UTC seconds of day at simulated time 0
+  double utc_start_s = 36000.0;  // UTC seconds of day at simulated time 0
   std::string talker = "GN";
 };
 
 const ConfigSection<GnssModelConfig>& gnss_model_section();
 
 struct GnssModelStats {
-  std::uint64_t epochs = 0;             // epochs computed
-  std::uint64_t silent_epochs = 0;      // dropped or in a silent outage
-  std::uint64_t sentences = 0;          // sent (or queued)
+  std::uint64_t epochs = 0;         // epochs computed
+  std::uint64_t silent_epochs = 0;  // dropped or in a silent outage
+  std::uint64_t sentences = 0;      // sent (or queued)
   std::uint64_t corrupted = 0;
   std::uint64_t multipath_events = 0;
 };
@@ -118,12 +118,12 @@ class GnssModel {
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};
-  Vec3 bias_ = Vec3::Zero();            // single-point wander, ENU
-  Vec2 multipath_ = Vec2::Zero();       // current multipath offset, ENU
+  Vec3 bias_ = Vec3::Zero();       // single-point wander, ENU
+  Vec2 multipath_ = Vec2::Zero();  // current multipath offset, ENU
   Stamp multipath_end_ = -1.0;
   std::uint64_t next_epoch_ = 0;
-  std::deque<Pending> pending_;         // bounded by latency and the 1 s serial backlog
-  Stamp line_free_ = 0.0;               // when the last queued byte has left
+  std::deque<Pending> pending_;  // bounded by latency and the 1 s serial backlog
+  Stamp line_free_ = 0.0;        // when the last queued byte has left
   GnssModelStats stats_;
 };
 

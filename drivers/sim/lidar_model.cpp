@@ -35,15 +35,17 @@ const ConfigSection<LidarConfig>& lidar_section() {
   using C = LidarConfig;
   static const auto s =
       ConfigSection<C>("sim.lidar")
-          .number("x", &C::x, -5.0, 5.0, "m", "Mount position on the body frame (rear-axle centre on the ground): forward.")
+          .number("x", &C::x, -5.0, 5.0, "m",
+                  "Mount position on the body frame (rear-axle centre on the ground): forward.")
           .number("y", &C::y, -2.0, 2.0, "m", "Mount position: left.")
           .number("z", &C::z, 0.05, 3.0, "m", "Mount position: height above the ground.")
           .number("roll", &C::roll, -0.5, 0.5, "rad", "Mount roll (Z-Y-X).")
           .number("pitch", &C::pitch, -0.5, 0.5, "rad", "Mount pitch, positive tilts the sensor's front down.")
           .number("yaw", &C::yaw, -3.15, 3.15, "rad", "Mount yaw.")
           .number("rotation_hz", &C::rotation_hz, 5.0, 20.0, "Hz", "Rotation rate (VLP-16: 300..1200 rpm).")
-          .number("range_noise", &C::range_noise, 0.0, 0.5, "m",
-                  "Range accuracy as a 2-sigma bound: normal noise with sigma = range_noise/2, truncated at ±range_noise.")
+          .number(
+              "range_noise", &C::range_noise, 0.0, 0.5, "m",
+              "Range accuracy as a 2-sigma bound: normal noise with sigma = range_noise/2, truncated at ±range_noise.")
           .number("dropout", &C::dropout, 0.0, 1.0, "", "Probability that a return is lost.")
           .number("max_range", &C::max_range, 1.0, 130.0, "m", "Farthest return (the wire format holds 131 m).")
           .number("min_range", &C::min_range, 0.0, 5.0, "m", "Nearest return.")
@@ -54,9 +56,7 @@ const ConfigSection<LidarConfig>& lidar_section() {
   return s;
 }
 
-Pose3 lidar_mount(const LidarConfig& cfg) {
-  return pose_zyx(Vec3(cfg.x, cfg.y, cfg.z), cfg.yaw, cfg.pitch, cfg.roll);
-}
+Pose3 lidar_mount(const LidarConfig& cfg) { return pose_zyx(Vec3(cfg.x, cfg.y, cfg.z), cfg.yaw, cfg.pitch, cfg.roll); }
 
 LidarModel::LidarModel(const LidarConfig& cfg, const World& world, std::uint64_t seed, Stamp start)
     : cfg_(cfg),
@@ -102,7 +102,8 @@ void LidarModel::build_packet(const std::function<Pose3(Stamp)>& body_pose_at) {
     const Stamp t_block = t0 + static_cast<double>(block) * vlp::kBlockPeriodUs * 1e-6;
     packet_[at] = vlp::kFlag0;
     packet_[at + 1] = vlp::kFlag1;
-    const auto az = static_cast<std::uint16_t>(std::lround(rad2deg(azimuth_rad(t_block)) / vlp::kAzimuthUnitDeg) % 36000);
+    const auto az =
+        static_cast<std::uint16_t>(std::lround(rad2deg(azimuth_rad(t_block)) / vlp::kAzimuthUnitDeg) % 36000);
     vlp::write_u16(packet_, at + 2, az);
     for (std::size_t seq = 0; seq < vlp::kSequencesPerBlock; ++seq) {
       const Stamp t_seq = t_block + static_cast<double>(seq) * vlp::kSequencePeriodUs * 1e-6;

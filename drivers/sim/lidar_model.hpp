@@ -37,11 +37,11 @@ struct LidarConfig {
   double x = 2.0, y = 0.0, z = 0.35;
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad, Z-Y-X
   double rotation_hz = 10.0;
-  double range_noise = 0.03;   // m, 2σ bound (see above)
-  double dropout = 0.0;        // probability that a return is lost
+  double range_noise = 0.03;  // m, 2σ bound (see above)
+  double dropout = 0.0;       // probability that a return is lost
   double max_range = 100.0;
   double min_range = 0.5;
-  double latency = 0.0;        // s from the last firing of a packet to its departure
+  double latency = 0.0;                   // s from the last firing of a packet to its departure
   std::string return_mode = "strongest";  // "strongest" (0x37) or "last" (0x38); one surface per ray: same points
   int product_id = wire::vlp16::kProductVlp16;
 };

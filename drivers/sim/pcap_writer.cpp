@@ -72,7 +72,7 @@ void PcapWriter::write(Stamp t, std::span<const std::uint8_t> payload, std::uint
   put_be16(udp, dst_port);  // the sensor sends from the port it sends to
   put_be16(udp + 2, dst_port);
   put_be16(udp + 4, static_cast<std::uint16_t>(kUdpHeader + payload.size()));
-  put_be16(udp + 6, 0);     // no checksum (allowed over IPv4), as the sensor does
+  put_be16(udp + 6, 0);  // no checksum (allowed over IPv4), as the sensor does
   std::copy(payload.begin(), payload.end(), udp + kUdpHeader);
 
   pcap_pkthdr hdr{};

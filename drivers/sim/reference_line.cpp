@@ -149,7 +149,8 @@ double ReferenceLine::distance(const Vec2& p) const {
   double best = std::numeric_limits<double>::infinity();
   const std::size_t n = centre_.size();
   const std::size_t segs = closed_ ? n : n - 1;
-  for (std::size_t i = 0; i < segs; ++i) best = std::min(best, point_segment_distance(p, centre_[i], centre_[(i + 1) % n]));
+  for (std::size_t i = 0; i < segs; ++i)
+    best = std::min(best, point_segment_distance(p, centre_[i], centre_[(i + 1) % n]));
   return best;
 }
 

@@ -13,8 +13,10 @@ TimingGates::TimingGates(const Track& track) {
     for (auto& g : groups)
       for (const auto& q : g)
         if (!group && (q - c.position).norm() < 6.0) group = &g;
-    if (group) group->push_back(c.position);
-    else groups.push_back({c.position});
+    if (group)
+      group->push_back(c.position);
+    else
+      groups.push_back({c.position});
   }
   for (const auto& g : groups) {
     Gate gate;

@@ -11,10 +11,14 @@ namespace fsd::sim {
 
 std::string_view to_string(LayoutKind k) {
   switch (k) {
-    case LayoutKind::Trackdrive: return "trackdrive";
-    case LayoutKind::Autocross: return "autocross";
-    case LayoutKind::Acceleration: return "acceleration";
-    case LayoutKind::Skidpad: return "skidpad";
+    case LayoutKind::Trackdrive:
+      return "trackdrive";
+    case LayoutKind::Autocross:
+      return "autocross";
+    case LayoutKind::Acceleration:
+      return "acceleration";
+    case LayoutKind::Skidpad:
+      return "skidpad";
   }
   return "trackdrive";
 }
@@ -45,7 +49,8 @@ void validate(const TrackGeneratorOptions& o) {
                    o.lap_max, o.braking_min, o.braking_max})
     require(finite(v), "options must be finite numbers");
   require(o.width_min >= 3.0, "track width " + num(o.width_min) + " m is below the rules' 3 m minimum");
-  require(o.width_max >= o.width_min, "width max " + num(o.width_max) + " m is below width min " + num(o.width_min) + " m");
+  require(o.width_max >= o.width_min,
+          "width max " + num(o.width_max) + " m is below width min " + num(o.width_min) + " m");
   require(o.width_max <= 8.0, "track width " + num(o.width_max) + " m is over the generator's 8 m maximum");
   require(o.spacing_max <= 5.0, "cone spacing " + num(o.spacing_max) + " m is over the rules' 5 m maximum");
   require(o.spacing_min >= 1.0, "cone spacing " + num(o.spacing_min) + " m is below the generator's 1 m minimum");
@@ -55,12 +60,12 @@ void validate(const TrackGeneratorOptions& o) {
   require(o.separation >= 1.0 && o.separation <= 10.0, "separation " + num(o.separation) + " m is outside 1–10 m");
   require(o.lap_min >= 200.0, "lap length " + num(o.lap_min) + " m is below the rules' 200 m");
   require(o.lap_max <= 500.0, "lap length " + num(o.lap_max) + " m is over the rules' 500 m");
-  require(o.lap_max - o.lap_min >= 20.0, "lap length range " + num(o.lap_min) + "–" + num(o.lap_max) +
-                                             " m is narrower than 20 m");
+  require(o.lap_max - o.lap_min >= 20.0,
+          "lap length range " + num(o.lap_min) + "–" + num(o.lap_max) + " m is narrower than 20 m");
   require(o.braking_min >= 10.0, "braking zone " + num(o.braking_min) + " m is shorter than 10 m");
   require(o.braking_max <= 100.0, "braking zone " + num(o.braking_max) + " m is over the rules' 100 m");
-  require(o.braking_max >= o.braking_min, "braking zone max " + num(o.braking_max) + " m is below min " +
-                                              num(o.braking_min) + " m");
+  require(o.braking_max >= o.braking_min,
+          "braking zone max " + num(o.braking_max) + " m is below min " + num(o.braking_min) + " m");
   const FeatureShares& s = o.shares;
   double sum = 0;
   for (double v : {s.straight, s.turn, s.hairpin, s.slalom, s.chicane, s.decreasing, s.straight_hairpin}) {
@@ -78,9 +83,15 @@ Track generate_track(const TrackGeneratorOptions& o) {
   Track t;
   switch (o.kind) {
     case LayoutKind::Trackdrive:
-    case LayoutKind::Autocross: t = detail::generate_loop(o); break;
-    case LayoutKind::Acceleration: t = detail::generate_acceleration(o); break;
-    case LayoutKind::Skidpad: t = detail::generate_skidpad(o); break;
+    case LayoutKind::Autocross:
+      t = detail::generate_loop(o);
+      break;
+    case LayoutKind::Acceleration:
+      t = detail::generate_acceleration(o);
+      break;
+    case LayoutKind::Skidpad:
+      t = detail::generate_skidpad(o);
+      break;
   }
   t.name = "generated_" + std::string(to_string(o.kind)) + (o.open ? "_open_" : "_") + std::to_string(o.seed);
   return t;

@@ -36,17 +36,17 @@ struct FeatureShares {
 struct TrackGeneratorOptions {
   LayoutKind kind = LayoutKind::Trackdrive;
   std::uint64_t seed = 1;
-  bool open = false;                // trackdrive/autocross: an open course (start and finish lines apart)
-  double width_min = 3.0;           // m; the rules' minimum, and 40 % of sampled layouts sit at width_min
+  bool open = false;       // trackdrive/autocross: an open course (start and finish lines apart)
+  double width_min = 3.0;  // m; the rules' minimum, and 40 % of sampled layouts sit at width_min
   double width_max = 5.0;
-  double spacing_min = 3.0;         // m: largest gap between neighbouring cones along a boundary;
-  double spacing_max = 5.0;         //    the rules allow at most 5 m; half the layouts sit at spacing_max
-  double turn_angle = 0.45;         // rad of boundary arc between cones in turns, so tight turns get denser cones
-  double separation = 2.0;          // m between the boundaries of two different parts of a loop
-  double lap_min = 200.0, lap_max = 500.0;        // m of centre line (the rules' trackdrive lap)
+  double spacing_min = 3.0;  // m: largest gap between neighbouring cones along a boundary;
+  double spacing_max = 5.0;  //    the rules allow at most 5 m; half the layouts sit at spacing_max
+  double turn_angle = 0.45;  // rad of boundary arc between cones in turns, so tight turns get denser cones
+  double separation = 2.0;   // m between the boundaries of two different parts of a loop
+  double lap_min = 200.0, lap_max = 500.0;         // m of centre line (the rules' trackdrive lap)
   double braking_min = 30.0, braking_max = 100.0;  // acceleration: m from the finish line to the closing row
   FeatureShares shares;
-  int max_attempts = 4000;          // candidate loops drawn before giving up
+  int max_attempts = 4000;  // candidate loops drawn before giving up
 };
 
 // Throws std::invalid_argument naming the option that is out of range.

@@ -10,16 +10,16 @@ namespace fsd::sim::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kAccelLength = 75.0;     // m, start line to finish line
-constexpr double kTimingHalfGap = 0.6;    // m either side of a timing line to its big orange cones
-constexpr double kRowGap = 1.2;           // m between the cones of a closing row (the car is 1.4 m wide)
+constexpr double kAccelLength = 75.0;   // m, start line to finish line
+constexpr double kTimingHalfGap = 0.6;  // m either side of a timing line to its big orange cones
+constexpr double kRowGap = 1.2;         // m between the cones of a closing row (the car is 1.4 m wide)
 
 // The skid pad (rules): circle centres 18.25 m apart, inner diameter 15.25 m, outer 21.25 m (a 3 m lane),
 // 16 cones on each inner and 13 on each outer circle; the timing line through both centres.
 constexpr double kSkidCentre = 9.125, kSkidInner = 7.625, kSkidOuter = 10.625;
 constexpr int kSkidInnerCones = 16, kSkidOuterCones = 13;
-constexpr double kSkidEntry = 15.0;       // m from car_start to the timing line (the shared EPFL files)
-constexpr double kSkidLane = 1.5;         // m: half the entry and exit lane
+constexpr double kSkidEntry = 15.0;  // m from car_start to the timing line (the shared EPFL files)
+constexpr double kSkidLane = 1.5;    // m: half the entry and exit lane
 
 // Maps layout coordinates (x along the start heading from car_start, y to its left) to the map.
 struct Frame {

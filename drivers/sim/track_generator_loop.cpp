@@ -16,18 +16,18 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
-constexpr double kHairpinOuterMin = 4.5;   // m: the rules' 9 m outside diameter
-constexpr double kTurnOuterMax = 25.0;     // m: the rules' 50 m constant-turn diameter
-constexpr double kStraightMax = 80.0;      // m: the rules' longest straight
+constexpr double kHairpinOuterMin = 4.5;               // m: the rules' 9 m outside diameter
+constexpr double kTurnOuterMax = 25.0;                 // m: the rules' 50 m constant-turn diameter
+constexpr double kStraightMax = 80.0;                  // m: the rules' longest straight
 constexpr double kSlalomMin = 7.5, kSlalomMax = 12.0;  // m between slalom cones (the rules)
-constexpr double kStartLine = 6.0;         // m from car_start to the start line (the shared EPFL files)
-constexpr double kLapMargin = 5.0;         // m inside the lap range: the chords between cones are shorter
-constexpr double kStraightCurvature = 0.02;  // 1/m: straighter than half the widest turn counts as straight
-constexpr double kTimingHalfGap = 0.6;     // m either side of a timing line to its big orange cones
-constexpr double kTimingOutside = 0.5;     // m outside the boundary line (as the EPFL files place them)
-constexpr double kMinConeGap = 1.0;        // m: the densest spacing in tight turns
-constexpr double kRunOff = 30.0;           // m of free straight after an open course's finish (the stop zone)
-constexpr double kBehindOpen = 4.0;        // m of boundary behind the car on an open course
+constexpr double kStartLine = 6.0;                     // m from car_start to the start line (the shared EPFL files)
+constexpr double kLapMargin = 5.0;                     // m inside the lap range: the chords between cones are shorter
+constexpr double kStraightCurvature = 0.02;            // 1/m: straighter than half the widest turn counts as straight
+constexpr double kTimingHalfGap = 0.6;                 // m either side of a timing line to its big orange cones
+constexpr double kTimingOutside = 0.5;                 // m outside the boundary line (as the EPFL files place them)
+constexpr double kMinConeGap = 1.0;                    // m: the densest spacing in tight turns
+constexpr double kRunOff = 30.0;     // m of free straight after an open course's finish (the stop zone)
+constexpr double kBehindOpen = 4.0;  // m of boundary behind the car on an open course
 
 enum class Feature { Straight, Turn, Hairpin, Slalom, Chicane, Decreasing, StraightHairpin };
 
@@ -56,13 +56,14 @@ double slalom_min_spacing(double width, double rc_min) {
 }
 
 Feature pick_feature(Rng& rng, const FeatureShares& sh, bool after_straight, bool slalom_ok) {
-  const std::array<std::pair<Feature, double>, 7> w = {{{Feature::Straight, after_straight ? 0.0 : sh.straight},
-                                                        {Feature::Turn, sh.turn},
-                                                        {Feature::Hairpin, sh.hairpin},
-                                                        {Feature::Slalom, slalom_ok ? sh.slalom : 0.0},
-                                                        {Feature::Chicane, sh.chicane},
-                                                        {Feature::Decreasing, sh.decreasing},
-                                                        {Feature::StraightHairpin, after_straight ? 0.0 : sh.straight_hairpin}}};
+  const std::array<std::pair<Feature, double>, 7> w = {
+      {{Feature::Straight, after_straight ? 0.0 : sh.straight},
+       {Feature::Turn, sh.turn},
+       {Feature::Hairpin, sh.hairpin},
+       {Feature::Slalom, slalom_ok ? sh.slalom : 0.0},
+       {Feature::Chicane, sh.chicane},
+       {Feature::Decreasing, sh.decreasing},
+       {Feature::StraightHairpin, after_straight ? 0.0 : sh.straight_hairpin}}};
   double sum = 0;
   for (const auto& [f, v] : w) sum += v;
   double r = rng.uniform() * sum;
@@ -81,7 +82,7 @@ std::optional<Candidate> draw(const TrackGeneratorOptions& o, const Layout& lay,
   const double total_turn = o.open ? dir * rng.uniform(0.5, 1.5) * kPi : dir * 2.0 * kPi;
   const Vec2 fwd(std::cos(lay.yaw0), std::sin(lay.yaw0));
   const double behind = o.open ? kBehindOpen : rng.uniform(8.0, 25.0);  // start straight behind car_start
-  const double ahead = rng.uniform(kStartLine + 6.0, 40.0);              // and ahead of it
+  const double ahead = rng.uniform(kStartLine + 6.0, 40.0);             // and ahead of it
   const Pose2 before{-behind * fwd.x(), -behind * fwd.y(), lay.yaw0};
   const double turn_lo = std::max(rc_min, 6.0), turn_hi = std::max(turn_lo, kTurnOuterMax - 0.5 * w);
   const double slalom_lo = slalom_min_spacing(w, rc_min);
@@ -91,7 +92,7 @@ std::optional<Candidate> draw(const TrackGeneratorOptions& o, const Layout& lay,
   CentreLineBuilder b(o.open ? before : Pose2{0, 0, lay.yaw0});
   b.straight(o.open ? behind + ahead : ahead);
   c.start_s = o.open ? behind : 0.0;
-  double cum = 0;                   // signed turning so far
+  double cum = 0;  // signed turning so far
   bool after_straight = true;
   double last_straight = ahead;
   auto target_at = [&](double s) { return total_turn * s / length; };
@@ -190,8 +191,10 @@ bool acceptable(const Candidate& c, const TrackGeneratorOptions& o, const Layout
     for (std::size_t k = 1; k <= (closed ? n : n - 1); ++k) {
       const std::size_t i = closed ? (first_bent + k) % n : k;
       const std::size_t prev = closed ? (i + n - 1) % n : i - 1;
-      if (std::fabs(line[i].kappa) < kStraightCurvature) run += (line[i].p - line[prev].p).norm();
-      else run = 0;
+      if (std::fabs(line[i].kappa) < kStraightCurvature)
+        run += (line[i].p - line[prev].p).norm();
+      else
+        run = 0;
       // The open course's run-off is no straight of the track.
       if (run > kStraightMax && (closed || line[i].s <= c.end_s)) return false;
     }
@@ -225,7 +228,8 @@ Track cones_of(const Candidate& c, const TrackGeneratorOptions& o, const Layout&
   std::vector<Vec2> left(n), right(n);
   std::vector<double> sp_left(n), sp_right(n);
   auto spacing = [&](double kappa) {
-    return std::fabs(kappa) < 1e-9 ? lay.spacing : std::clamp(o.turn_angle / std::fabs(kappa), kMinConeGap, lay.spacing);
+    return std::fabs(kappa) < 1e-9 ? lay.spacing
+                                   : std::clamp(o.turn_angle / std::fabs(kappa), kMinConeGap, lay.spacing);
   };
   for (std::size_t i = 0; i < n; ++i) {
     const CentreSample& s = c.line[i];
@@ -251,8 +255,8 @@ Track cones_of(const Candidate& c, const TrackGeneratorOptions& o, const Layout&
   auto timing_line = [&](double s_line) {
     for (double ds : {-kTimingHalfGap, kTimingHalfGap}) {
       const double q = s_line + ds;
-      const auto it = std::lower_bound(c.line.begin(), c.line.end(), q,
-                                       [](const CentreSample& a, double v) { return a.s < v; });
+      const auto it =
+          std::lower_bound(c.line.begin(), c.line.end(), q, [](const CentreSample& a, double v) { return a.s < v; });
       const CentreSample& s = it == c.line.end() ? c.line.back() : *it;
       const Vec2 normal(-std::sin(s.heading), std::cos(s.heading));
       const Vec2 p = s.p + (q - s.s) * Vec2(std::cos(s.heading), std::sin(s.heading));

@@ -41,8 +41,8 @@ const ConfigSection<VcuStandinConfig>& vcu_standin_section() {
 VcuStandin::VcuStandin(VcuStandinConfig cfg, ByteSink status_sink)
     : cfg_(cfg),
       sink_(std::move(status_sink)),
-      decoder_(vcu::Decoder::Handlers{[this](const vcu::Command& c, std::uint16_t) { on_command(feed_t_, c); },
-                                      nullptr, nullptr}),
+      decoder_(vcu::Decoder::Handlers{[this](const vcu::Command& c, std::uint16_t) { on_command(feed_t_, c); }, nullptr,
+                                      nullptr}),
       rng_(static_cast<std::uint64_t>(cfg.seed)) {
   if (cfg_.res_go_at_s >= 0 && cfg_.res_go_at_s < cfg_.ready_to_drive_s)
     logger("sim")->warn("sim.vcu.res_go_at_s = {} s is before ready_to_drive_s = {} s: that go will be ignored",
@@ -147,7 +147,9 @@ void VcuStandin::enter(Stamp t, AsState to, std::string why, std::uint32_t cause
 void VcuStandin::update_output() {
   out_ = ActuatorOutput{};
   switch (state_) {
-    case AsState::Off: held_steering_ = 0; break;
+    case AsState::Off:
+      held_steering_ = 0;
+      break;
     case AsState::Ready:
       out_.max_brake = true;  // FS rules: service brake engaged in AS Ready
       break;

@@ -54,9 +54,9 @@ struct AsTransition {
 };
 
 struct VcuStandinCounters {
-  std::uint64_t commands = 0;       // valid Commands received
+  std::uint64_t commands = 0;  // valid Commands received
   std::uint64_t statuses_sent = 0;
-  std::uint64_t go_ignored = 0;     // RES go pressed outside Ready or before ready_to_drive_s
+  std::uint64_t go_ignored = 0;  // RES go pressed outside Ready or before ready_to_drive_s
   wire::vcu::DecoderCounters rx;
 };
 

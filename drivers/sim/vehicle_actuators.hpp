@@ -11,11 +11,11 @@ namespace fsd::sim {
 
 // What the VCU receives from the autonomy and its own AS state machine.
 struct ActuatorCommand {
-  double steering = 0;        // requested front wheel angle, rad, left positive
-  double target_speed = 0;    // m/s: the VCU's own speed controller turns it into motor torque / brake
-  bool max_brake = false;     // controlled stop: full service braking
-  bool ebs = false;           // emergency brake system: full braking, motor torque off
-  bool drive_enabled = false; // motor torque allowed only when true (AS Driving)
+  double steering = 0;         // requested front wheel angle, rad, left positive
+  double target_speed = 0;     // m/s: the VCU's own speed controller turns it into motor torque / brake
+  bool max_brake = false;      // controlled stop: full service braking
+  bool ebs = false;            // emergency brake system: full braking, motor torque off
+  bool drive_enabled = false;  // motor torque allowed only when true (AS Driving)
 };
 
 // Front wheel angle actuator: the request is clamped to the angle limit, delayed by the dead time, and the wheel

@@ -6,9 +6,9 @@
 
 namespace fsd::sim {
 
-double drag_force(const VehicleParams& p, double speed);        // N, opposing motion
-double downforce(const VehicleParams& p, double speed);         // N, total on both axles
-double rolling_resistance_force(const VehicleParams& p);        // N, magnitude while rolling
+double drag_force(const VehicleParams& p, double speed);  // N, opposing motion
+double downforce(const VehicleParams& p, double speed);   // N, total on both axles
+double rolling_resistance_force(const VehicleParams& p);  // N, magnitude while rolling
 
 struct AxleLoads {
   double front = 0, rear = 0;  // N, never negative

@@ -13,12 +13,12 @@ namespace {
 
 using State = VehicleModel::State;
 
-constexpr double kMaxSubstep = 0.005;  // s: RK4 is well inside its stability limit for the tyre modes here
+constexpr double kMaxSubstep = 0.005;          // s: RK4 is well inside its stability limit for the tyre modes here
 constexpr double kKinematicRelaxation = 0.02;  // s: how fast the kinematic model pulls vy and yaw rate onto it
 
 State operator+(const State& a, const State& b) {
-  return {a.x + b.x, a.y + b.y, a.yaw + b.yaw, a.vx + b.vx, a.vy + b.vy, a.yaw_rate + b.yaw_rate,
-          a.distance + b.distance};
+  return {
+      a.x + b.x, a.y + b.y, a.yaw + b.yaw, a.vx + b.vx, a.vy + b.vy, a.yaw_rate + b.yaw_rate, a.distance + b.distance};
 }
 State operator*(double k, const State& a) {
   return {k * a.x, k * a.y, k * a.yaw, k * a.vx, k * a.vy, k * a.yaw_rate, k * a.distance};
@@ -33,8 +33,8 @@ struct Inputs {
 
 struct Derivative {
   State d;
-  double drive_applied = 0;  // N at the ground after the tyre limit
-  double brake_applied = 0;  // N at the ground after the tyre limit
+  double drive_applied = 0;         // N at the ground after the tyre limit
+  double brake_applied = 0;         // N at the ground after the tyre limit
   double kinematic_resistance = 0;  // N, brakes and rolling resistance of the kinematic model's share
 };
 
@@ -121,11 +121,11 @@ Derivative kinematic_model(const VehicleParams& p, const State& s, const Inputs&
   // kinematic model does not explain, so that on its own path the model is exactly kinematic.
   const double force = mode == Resistance::Included ? longitudinal : propulsion;
   out.d.vx = force / p.mass + s.yaw_rate * (s.vy - vy_kin);
-  const double lateral_wanted = p.cog_to_rear_axle * out.d.vx * curvature +
-                                (vy_kin - s.vy) / kKinematicRelaxation + s.yaw_rate * s.vx;
+  const double lateral_wanted =
+      p.cog_to_rear_axle * out.d.vx * curvature + (vy_kin - s.vy) / kKinematicRelaxation + s.yaw_rate * s.vx;
   out.d.vy = std::clamp(lateral_wanted, -lateral_grip, lateral_grip) - s.yaw_rate * s.vx;
-  out.d.yaw_rate = out.d.vx * curvature +
-                   std::clamp((yaw_rate_kin - s.yaw_rate) / kKinematicRelaxation, -yaw_grip, yaw_grip);
+  out.d.yaw_rate =
+      out.d.vx * curvature + std::clamp((yaw_rate_kin - s.yaw_rate) / kKinematicRelaxation, -yaw_grip, yaw_grip);
   return out;
 }
 

@@ -16,7 +16,8 @@ const ConfigSection<VehicleParams>& vehicle_section() {
           .number("cog_to_rear_axle", &P::cog_to_rear_axle, 0.3, 1.5, "m",
                   "Longitudinal distance from the rear axle forward to the CoG.")
           .number("wheel_radius", &P::wheel_radius, 0.15, 0.35, "m", "Loaded rolling radius of the wheels.")
-          .number("body_length", &P::body_length, 1.8, 4.0, "m", "Body outline length, nose to tail, for cone contacts.")
+          .number("body_length", &P::body_length, 1.8, 4.0, "m",
+                  "Body outline length, nose to tail, for cone contacts.")
           .number("body_width", &P::body_width, 0.8, 2.0, "m", "Body outline width over the tyres, for cone contacts.")
           .number("rear_overhang", &P::rear_overhang, 0.0, 1.5, "m", "Body outline behind the rear axle.")
           .number("mu", &P::mu, 0.2, 2.5, "", "Tyre-road friction coefficient (peak of the magic formula).")
@@ -51,7 +52,8 @@ const ConfigSection<VehicleParams>& vehicle_section() {
           .number("load_transfer_time_constant", &P::load_transfer_time_constant, 0.0, 0.5, "s",
                   "Lag of the load transfer and body attitude behind the accelerations.")
           .number("steer_dead_time", &P::steer_dead_time, 0.0, 0.5, "s", "Steering actuator dead time.")
-          .number("steer_max_rate", &P::steer_max_rate, 0.1, 10.0, "rad/s", "Steering actuator rate limit (wheel angle).")
+          .number("steer_max_rate", &P::steer_max_rate, 0.1, 10.0, "rad/s",
+                  "Steering actuator rate limit (wheel angle).")
           .number("steer_max_angle", &P::steer_max_angle, 0.1, 0.6, "rad", "Largest front wheel angle.")
           .number("speed_kp", &P::speed_kp, 0.0, 20.0, "1/s", "VCU speed controller: proportional gain.")
           .number("speed_ki", &P::speed_ki, 0.0, 20.0, "1/s²", "VCU speed controller: integral gain.")
@@ -69,14 +71,46 @@ const ConfigSection<VehicleParams>& vehicle_section() {
 }
 
 std::string validate(const VehicleParams& p) {
-  const double fields[] = {p.mass, p.yaw_inertia, p.wheelbase, p.track_width, p.cog_height, p.cog_to_rear_axle,
-                           p.wheel_radius, p.body_length, p.body_width, p.rear_overhang, p.mu, p.tyre_front_b,
-                           p.tyre_front_c, p.tyre_front_e, p.tyre_rear_b, p.tyre_rear_c, p.tyre_rear_e,
-                           p.rolling_resistance, p.motor_max_torque, p.motor_max_power, p.drivetrain_efficiency,
-                           p.max_speed, p.brake_max_force, p.brake_front_share, p.air_density, p.drag_area,
-                           p.downforce_area, p.aero_front_share, p.roll_stiffness, p.pitch_stiffness,
-                           p.load_transfer_time_constant, p.steer_dead_time, p.steer_max_rate, p.steer_max_angle,
-                           p.speed_kp, p.speed_ki, p.speed_integral_limit, p.speed_integral_band, p.stop_hold_speed, p.kinematic_speed,
+  const double fields[] = {p.mass,
+                           p.yaw_inertia,
+                           p.wheelbase,
+                           p.track_width,
+                           p.cog_height,
+                           p.cog_to_rear_axle,
+                           p.wheel_radius,
+                           p.body_length,
+                           p.body_width,
+                           p.rear_overhang,
+                           p.mu,
+                           p.tyre_front_b,
+                           p.tyre_front_c,
+                           p.tyre_front_e,
+                           p.tyre_rear_b,
+                           p.tyre_rear_c,
+                           p.tyre_rear_e,
+                           p.rolling_resistance,
+                           p.motor_max_torque,
+                           p.motor_max_power,
+                           p.drivetrain_efficiency,
+                           p.max_speed,
+                           p.brake_max_force,
+                           p.brake_front_share,
+                           p.air_density,
+                           p.drag_area,
+                           p.downforce_area,
+                           p.aero_front_share,
+                           p.roll_stiffness,
+                           p.pitch_stiffness,
+                           p.load_transfer_time_constant,
+                           p.steer_dead_time,
+                           p.steer_max_rate,
+                           p.steer_max_angle,
+                           p.speed_kp,
+                           p.speed_ki,
+                           p.speed_integral_limit,
+                           p.speed_integral_band,
+                           p.stop_hold_speed,
+                           p.kinematic_speed,
                            p.dynamic_speed};
   for (double f : fields)
     if (!std::isfinite(f)) return "a vehicle parameter is not a finite number";

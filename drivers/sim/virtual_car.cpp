@@ -106,8 +106,9 @@ void VirtualCar::log_new_hits() {
   for (const auto& c : world_.cones())
     if (c.knocked && c.hit_time == v.t) fresh.push_back(&c);
   for (const WorldCone* c : fresh)
-    logger("sim")->info("cone hit at {:.2f} s: {} cone at ({:.2f}, {:.2f}); car at ({:.2f}, {:.2f}) heading {:.2f} rad, {:.1f} m/s",
-                        v.t, to_string(c->colour), c->base.x(), c->base.y(), v.pose.x, v.pose.y, v.pose.yaw, v.speed());
+    logger("sim")->info(
+        "cone hit at {:.2f} s: {} cone at ({:.2f}, {:.2f}); car at ({:.2f}, {:.2f}) heading {:.2f} rad, {:.1f} m/s",
+        v.t, to_string(c->colour), c->base.x(), c->base.y(), v.pose.x, v.pose.y, v.pose.yaw, v.speed());
 }
 
 void VirtualCar::advance_to(Stamp t) {
@@ -133,10 +134,14 @@ void VirtualCar::advance_to(Stamp t) {
       }
     }
     if (lidar_ && sinks_.lidar)
-      lidar_->advance_to(t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
+      lidar_->advance_to(
+          t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
     if (camera_ && sinks_.camera)
-      camera_->advance_to(t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.camera);
-    if (gnss_ && sinks_.gnss) gnss_->advance_to(t1, [this](Stamp ts) { return truth_at(ts); }, sinks_.gnss);
+      camera_->advance_to(
+          t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.camera);
+    if (gnss_ && sinks_.gnss)
+      gnss_->advance_to(
+          t1, [this](Stamp ts) { return truth_at(ts); }, sinks_.gnss);
   }
 }
 

@@ -23,7 +23,7 @@ namespace fsd::sim {
 
 struct SimRunConfig {
   double physics_rate_hz = 400.0;
-  bool lidar = true;   // the VLP-16 model (costly: off when only truth perception is used)
+  bool lidar = true;  // the VLP-16 model (costly: off when only truth perception is used)
   bool gnss = true;
   bool camera = true;  // the camera model (rendering + JPEG: costly)
 };
@@ -74,7 +74,7 @@ class VirtualCar {
 
  private:
   VehicleTruth truth_at(Stamp t) const;  // interpolated between the last two physics steps
-  void log_new_hits();                     // one line per cone knocked over in the last physics step
+  void log_new_hits();                   // one line per cone knocked over in the last physics step
 
   VirtualCarSettings s_;
   World world_;

@@ -9,23 +9,31 @@ namespace {
 // Layers by the top of their bodies above the ground (m) and their grid cells (m), found by benchmark.
 constexpr std::array<double, 2> kLayerTop{0.4, std::numeric_limits<double>::infinity()};
 constexpr std::array<double, 2> kLayerCell{1.0, 4.0};
-constexpr double kPanelPiece = 2.0;        // m: fences enter the grid in short pieces
-constexpr double kTyreReflectivity = 6.0;  // black rubber
-constexpr double kPostReflectivity = 60.0; // painted post
+constexpr double kPanelPiece = 2.0;         // m: fences enter the grid in short pieces
+constexpr double kTyreReflectivity = 6.0;   // black rubber
+constexpr double kPostReflectivity = 60.0;  // painted post
 constexpr double kFenceReflectivity = 30.0;
 constexpr double kRayEpsilon = 1e-9;
 }  // namespace
 
 const char* to_string(Surface s) {
   switch (s) {
-    case Surface::None: return "none";
-    case Surface::Ground: return "ground";
-    case Surface::Grass: return "grass";
-    case Surface::ConeBody: return "cone_body";
-    case Surface::ConeStripe: return "cone_stripe";
-    case Surface::Tyre: return "tyre";
-    case Surface::Post: return "post";
-    case Surface::Fence: return "fence";
+    case Surface::None:
+      return "none";
+    case Surface::Ground:
+      return "ground";
+    case Surface::Grass:
+      return "grass";
+    case Surface::ConeBody:
+      return "cone_body";
+    case Surface::ConeStripe:
+      return "cone_stripe";
+    case Surface::Tyre:
+      return "tyre";
+    case Surface::Post:
+      return "post";
+    case Surface::Fence:
+      return "fence";
   }
   return "?";
 }
@@ -90,9 +98,9 @@ void World::add_distractor_bodies(int index) {
       b.a = b.b = d.radius;
       if (d.standing) {
         // Axle horizontal along yaw: the cylinder's axis runs from one sidewall to the other.
-        const Eigen::Matrix3d to_map =
-            ground_frame_ * (Eigen::AngleAxisd(d.yaw, Vec3::UnitZ()) *
-                             Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY())).toRotationMatrix();
+        const Eigen::Matrix3d to_map = ground_frame_ * (Eigen::AngleAxisd(d.yaw, Vec3::UnitZ()) *
+                                                        Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY()))
+                                                           .toRotationMatrix();
         b.to_local = to_map.transpose();
         b.origin = base + ground_.normal() * d.radius - to_map.col(2) * (d.width / 2);
         b.h = d.width;
@@ -196,26 +204,28 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double
     if (h0 > layer.max_height) t_begin = hd < 0.0 ? (layer.max_height - h0) / hd : kInf;
     if (hd > 0.0) t_end = std::min(t_end, (layer.max_height - h0) / hd);
     if (t_begin > t_end) continue;
-    layer.grid.traverse(origin.head<2>(), dir.head<2>(), t_begin, t_end, [&](std::span<const std::uint32_t> items, double t_exit) {
-      for (const auto idx : items) {
-        const Body& b = bodies_[idx];
-        // Bounding sphere first.
-        const Vec3 v = b.centre - origin;
-        const double tc = v.dot(dir);
-        if (v.squaredNorm() - tc * tc > b.bound_radius * b.bound_radius) continue;
-        if (tc + b.bound_radius < kRayEpsilon || tc - b.bound_radius > best_t) continue;
-        const Vec3 o = b.to_local * (origin - b.origin);
-        const Vec3 d = b.to_local * dir;
-        const auto hit = b.shape == Body::Shape::Panel ? intersect_panel(o, d, b.a, b.h, kRayEpsilon, best_t)
-                                                       : intersect_frustum(o, d, b.a, b.b, b.h, kRayEpsilon, best_t);
-        if (hit) {
-          best = *hit;
-          best_t = hit->t;
-          best_body = &b;
-        }
-      }
-      return best_body != nullptr && best_t <= t_exit;
-    });
+    layer.grid.traverse(origin.head<2>(), dir.head<2>(), t_begin, t_end,
+                        [&](std::span<const std::uint32_t> items, double t_exit) {
+                          for (const auto idx : items) {
+                            const Body& b = bodies_[idx];
+                            // Bounding sphere first.
+                            const Vec3 v = b.centre - origin;
+                            const double tc = v.dot(dir);
+                            if (v.squaredNorm() - tc * tc > b.bound_radius * b.bound_radius) continue;
+                            if (tc + b.bound_radius < kRayEpsilon || tc - b.bound_radius > best_t) continue;
+                            const Vec3 o = b.to_local * (origin - b.origin);
+                            const Vec3 d = b.to_local * dir;
+                            const auto hit = b.shape == Body::Shape::Panel
+                                                 ? intersect_panel(o, d, b.a, b.h, kRayEpsilon, best_t)
+                                                 : intersect_frustum(o, d, b.a, b.b, b.h, kRayEpsilon, best_t);
+                            if (hit) {
+                              best = *hit;
+                              best_t = hit->t;
+                              best_body = &b;
+                            }
+                          }
+                          return best_body != nullptr && best_t <= t_exit;
+                        });
   }
   if (best_body) return describe_hit(*best_body, best, origin, dir);
   if (t_ground > max_range) return std::nullopt;

@@ -33,20 +33,20 @@ struct RayHit {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // outward unit normal of the surface hit
   Surface surface = Surface::None;
-  double reflectivity = 0;      // VLP-16 calibrated reflectivity of the material, 0..255
-  int cone = -1;                // index into World::cones() when a cone was hit
-  int distractor = -1;          // index into World::distractors() when a distractor was hit
+  double reflectivity = 0;  // VLP-16 calibrated reflectivity of the material, 0..255
+  int cone = -1;            // index into World::cones() when a cone was hit
+  int distractor = -1;      // index into World::distractors() when a distractor was hit
 };
 
 struct WorldCone {
-  Vec3 base = Vec3::Zero();     // centre of the base on the ground, map frame
+  Vec3 base = Vec3::Zero();  // centre of the base on the ground, map frame
   ConeColour colour = ConeColour::Unknown;
   ConeRole role = ConeRole::Unknown;
-  bool big = false;             // big orange (timing) cone
+  bool big = false;  // big orange (timing) cone
   double height = 0, base_width = 0;
   bool knocked = false;
   Stamp hit_time = 0;
-  double fall_yaw = 0;          // direction the tip points once knocked
+  double fall_yaw = 0;  // direction the tip points once knocked
 };
 
 class World {
@@ -114,7 +114,7 @@ class World {
   Eigen::Matrix3d ground_frame_;  // rotation: ground-aligned (z = ground normal) → map
   std::vector<WorldCone> cones_;
   std::vector<Distractor> distractors_;
-  std::vector<Body> bodies_;      // cones first (body i is cone i), then distractors
+  std::vector<Body> bodies_;  // cones first (body i is cone i), then distractors
   std::array<Layer, 2> layers_;
   int hits_ = 0;
 };

@@ -6,7 +6,8 @@ const ConfigSection<WorldConfig>& world_section() {
   using C = WorldConfig;
   static const auto s =
       ConfigSection<C>("sim.world")
-          .number("ground_slope_x", &C::ground_slope_x, -0.15, 0.15, "m/m", "Ground slope along map x: z = sx·x + sy·y.")
+          .number("ground_slope_x", &C::ground_slope_x, -0.15, 0.15, "m/m",
+                  "Ground slope along map x: z = sx·x + sy·y.")
           .number("ground_slope_y", &C::ground_slope_y, -0.15, 0.15, "m/m", "Ground slope along map y.")
           .number("ground_reflectivity", &C::ground_reflectivity, 0.0, 255.0, "",
                   "LiDAR reflectivity of the track surface (VLP-16 scale: 0..100 diffuse, 101..255 retro-reflective).")
@@ -26,10 +27,13 @@ const ConfigSection<WorldConfig>& world_section() {
                   "Greatest distance of a tyre, post or stack from the boundary it is placed next to.")
           .boolean("fence", &C::fence, "Fence segments along the outside of the track.")
           .integer("fence_segments", &C::fence_segments, 0, 50, "", "Number of straight fence segments.")
-          .number("fence_length", &C::fence_length, 2.0, 100.0, "m", "Length of a fence segment (shortened to fit bends).")
+          .number("fence_length", &C::fence_length, 2.0, 100.0, "m",
+                  "Length of a fence segment (shortened to fit bends).")
           .number("fence_height", &C::fence_height, 0.5, 3.0, "m", "Height of the fence.")
-          .number("fence_offset_min", &C::fence_offset_min, 1.0, 50.0, "m", "Least distance of the fence from the track.")
-          .number("fence_offset_max", &C::fence_offset_max, 1.0, 50.0, "m", "Greatest distance of the fence from the track.");
+          .number("fence_offset_min", &C::fence_offset_min, 1.0, 50.0, "m",
+                  "Least distance of the fence from the track.")
+          .number("fence_offset_max", &C::fence_offset_max, 1.0, 50.0, "m",
+                  "Greatest distance of the fence from the track.");
   return s;
 }
 

@@ -12,7 +12,7 @@ struct WorldConfig {
   double ground_texture = 4.0;        // amplitude of the smooth reflectivity/brightness noise on the ground
   // Grass beyond this distance from the track boundaries (the infield too).
   bool grass_edges = true;
-  double grass_offset = 3.5;          // m from the nearest boundary; must exceed half the track width
+  double grass_offset = 3.5;  // m from the nearest boundary; must exceed half the track width
   double grass_reflectivity = 45.0;
   // Objects outside the track that a LiDAR alone takes for cones, placed by the seed.
   bool distractors = true;

@@ -23,7 +23,8 @@ void UniformGrid::build(const std::vector<Eigen::AlignedBox2d>& boxes, const std
     const int iy0 = std::clamp(static_cast<int>(std::floor((b.min().y() - y0_) / cell_)), 0, ny_ - 1);
     const int iy1 = std::clamp(static_cast<int>(std::floor((b.max().y() - y0_) / cell_)), 0, ny_ - 1);
     for (int iy = iy0; iy <= iy1; ++iy)
-      for (int ix = ix0; ix <= ix1; ++ix) f(static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix));
+      for (int ix = ix0; ix <= ix1; ++ix)
+        f(static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix));
   };
   // Two passes: count per cell, then fill (compressed rows).
   std::vector<std::uint32_t> count(cells + 1, 0);

@@ -8,7 +8,7 @@
 namespace fsd::sim {
 
 namespace {
-constexpr double kGrassEdgeJitter = 0.8;   // m: the grass edge wanders this much around grass_offset
+constexpr double kGrassEdgeJitter = 0.8;  // m: the grass edge wanders this much around grass_offset
 constexpr double kGrassEdgeWavelength = 4.0;
 constexpr std::uint64_t kTextureStream = 0x7E27u;
 constexpr std::uint64_t kGrassStream = 0x62A55u;
@@ -43,12 +43,14 @@ Ground::Ground(const WorldConfig& cfg, const TrackArea& area, std::uint64_t seed
     const int iy1 = std::min(ny_ - 1, static_cast<int>((std::max(s.a.y(), s.b.y()) + reach - y0_) / cell_));
     for (int iy = iy0; iy <= iy1; ++iy) {
       for (int ix = ix0; ix <= ix1; ++ix) {
-        auto& flag = asphalt_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)];
+        auto& flag =
+            asphalt_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)];
         if (flag) continue;
         const Vec2 c(x0_ + (ix + 0.5) * cell_, y0_ + (iy + 0.5) * cell_);
         const double d = (closest_point_on_segment(c, s.a, s.b) - c).norm();
         if (d > reach) continue;
-        const double edge = cfg.grass_offset + kGrassEdgeJitter * value_noise(edge_seed, c.x(), c.y(), kGrassEdgeWavelength);
+        const double edge =
+            cfg.grass_offset + kGrassEdgeJitter * value_noise(edge_seed, c.x(), c.y(), kGrassEdgeWavelength);
         if (d < edge) flag = 1;
       }
     }
@@ -71,7 +73,8 @@ double Ground::reflectivity(double x, double y, Surface surface_there) const {
   const std::uint64_t s = hash64(seed_, kTextureStream);
   // Smooth patches of a couple of metres with a 10 cm grain on top.
   const double grain = 2.0 * unit_double(lattice_hash(s, static_cast<std::int64_t>(std::floor(x * 10.0)),
-                                                      static_cast<std::int64_t>(std::floor(y * 10.0)))) - 1.0;
+                                                      static_cast<std::int64_t>(std::floor(y * 10.0)))) -
+                       1.0;
   const double n = 0.6 * value_noise(s, x, y, 2.0) + 0.4 * grain;
   return std::clamp(base + texture_ * n, 0.0, 255.0);
 }

@@ -20,7 +20,7 @@ class Ground {
   double slope_y() const { return sy_; }
   double height(double x, double y) const { return sx_ * x + sy_ * y; }
   Vec3 normal() const { return normal_; }
-  Surface surface(double x, double y) const;   // Ground (asphalt) or Grass
+  Surface surface(double x, double y) const;  // Ground (asphalt) or Grass
   double reflectivity(double x, double y) const { return reflectivity(x, y, surface(x, y)); }
   double reflectivity(double x, double y, Surface surface_there) const;
 

@@ -24,8 +24,10 @@ TrackArea::TrackArea(const Track& track, double max_gap) {
     return best;
   };
   for (const auto& c : track.cones) {
-    if (c.role == ConeRole::Left) sides_.push_back(Side::Left);
-    else if (c.role == ConeRole::Right) sides_.push_back(Side::Right);
+    if (c.role == ConeRole::Left)
+      sides_.push_back(Side::Left);
+    else if (c.role == ConeRole::Right)
+      sides_.push_back(Side::Right);
     else
       sides_.push_back(nearest_with_role(c.position, ConeRole::Left) <= nearest_with_role(c.position, ConeRole::Right)
                            ? Side::Left

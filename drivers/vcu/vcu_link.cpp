@@ -92,8 +92,12 @@ void VcuLink::event(const VcuLinkEvent& e) {
   auto log = logger("vcu");
   switch (e.kind) {
     case VcuLinkEventKind::StatusRestored:
-    case VcuLinkEventKind::PortRestored: log->info("{}: {} (gap {:.3f} s)", to_string(e.kind), e.what, e.gap); break;
-    default: log->warn("{}: {}", to_string(e.kind), e.what); break;
+    case VcuLinkEventKind::PortRestored:
+      log->info("{}: {} (gap {:.3f} s)", to_string(e.kind), e.what, e.gap);
+      break;
+    default:
+      log->warn("{}: {}", to_string(e.kind), e.what);
+      break;
   }
   if (h_.on_event) h_.on_event(e);
 }

@@ -10,11 +10,16 @@ using wire::vcu::AsRequest;
 
 std::string_view to_string(VcuLinkEventKind k) {
   switch (k) {
-    case VcuLinkEventKind::StatusTimeout: return "status_timeout";
-    case VcuLinkEventKind::StatusRestored: return "status_restored";
-    case VcuLinkEventKind::CommandStale: return "command_stale";
-    case VcuLinkEventKind::PortLost: return "port_lost";
-    case VcuLinkEventKind::PortRestored: return "port_restored";
+    case VcuLinkEventKind::StatusTimeout:
+      return "status_timeout";
+    case VcuLinkEventKind::StatusRestored:
+      return "status_restored";
+    case VcuLinkEventKind::CommandStale:
+      return "command_stale";
+    case VcuLinkEventKind::PortLost:
+      return "port_lost";
+    case VcuLinkEventKind::PortRestored:
+      return "port_restored";
   }
   return "?";
 }
@@ -28,21 +33,21 @@ std::string describe(const VcuLinkEvent& e) {
 VcuSession::VcuSession(const VcuLinkConfig& cfg, Stamp start, EventHandler on_event)
     : cfg_(cfg),
       on_event_(std::move(on_event)),
-      decoder_(wire::vcu::Decoder::Handlers{
-          nullptr,
-          // Runs inside on_bytes() with m_ held.
-          [this](const VcuStatus& s, std::uint16_t) {
-            status_ = s;
-            status_->stamp = rx_now_;
-            ++counters_.statuses;
-            if (timed_out_) {
-              timed_out_ = false;
-              pending_.push_back({VcuLinkEventKind::StatusRestored, rx_now_, rx_now_ - last_status_at_,
-                                  "VCU status frames back"});
-            }
-            last_status_at_ = rx_now_;
-          },
-          nullptr}),
+      decoder_(wire::vcu::Decoder::Handlers{nullptr,
+                                            // Runs inside on_bytes() with m_ held.
+                                            [this](const VcuStatus& s, std::uint16_t) {
+                                              status_ = s;
+                                              status_->stamp = rx_now_;
+                                              ++counters_.statuses;
+                                              if (timed_out_) {
+                                                timed_out_ = false;
+                                                pending_.push_back({VcuLinkEventKind::StatusRestored, rx_now_,
+                                                                    rx_now_ - last_status_at_,
+                                                                    "VCU status frames back"});
+                                              }
+                                              last_status_at_ = rx_now_;
+                                            },
+                                            nullptr}),
       last_status_at_(start),
       schedule_(cfg.rate_hz, start) {}
 

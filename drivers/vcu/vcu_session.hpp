@@ -72,7 +72,7 @@ class VcuSession {
   void on_stream_reset();
 
   std::optional<VcuStatus> status() const;  // stamped with its arrival time
-  bool status_ok() const;                    // a Status arrived and no timeout since
+  bool status_ok() const;                   // a Status arrived and no timeout since
   VcuSessionCounters counters() const;
   const VcuLinkConfig& config() const { return cfg_; }
 

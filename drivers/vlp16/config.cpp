@@ -8,7 +8,8 @@ const ConfigSection<Vlp16Config>& vlp16_section() {
   static const auto s =
       ConfigSection<Vlp16Config>("drivers.vlp16")
           .string("address", &Vlp16Config::address, {}, "Local IPv4/IPv6 address the VLP-16 UDP sockets bind to.")
-          .integer("data_port", &Vlp16Config::data_port, 1, 65535, "", "UDP port of the data packets (sensor default 2368).")
+          .integer("data_port", &Vlp16Config::data_port, 1, 65535, "",
+                   "UDP port of the data packets (sensor default 2368).")
           .integer("position_port", &Vlp16Config::position_port, 1, 65535, "",
                    "UDP port of the position (GPS/PPS) packets (sensor default 8308).")
           .integer("receive_buffer_bytes", &Vlp16Config::receive_buffer_bytes, 65536, 1 << 30, "B",
@@ -17,14 +18,16 @@ const ConfigSection<Vlp16Config>& vlp16_section() {
                   "Azimuth (sensor convention, clockwise from +x) where one frame ends and the next begins.")
           .number("min_range", &Vlp16Config::min_range, 0.0, 100.0, "m", "Returns closer than this are dropped.")
           .number("max_range", &Vlp16Config::max_range, 1.0, 200.0, "m", "Returns farther than this are dropped.")
-          .string("laser_table", &Vlp16Config::laser_table, {},
-                  "Laser calibration CSV (laser_id,vert_angle_deg,vert_offset_correction_m[,firing_order_in_sequence]); "
-                  "empty = the VLP-16 manual's table built in.")
+          .string(
+              "laser_table", &Vlp16Config::laser_table, {},
+              "Laser calibration CSV (laser_id,vert_angle_deg,vert_offset_correction_m[,firing_order_in_sequence]); "
+              "empty = the VLP-16 manual's table built in.")
           .number("mount_x", &Vlp16Config::mount_x, -5.0, 5.0, "m", "Sensor origin ahead of the rear-axle centre.")
           .number("mount_y", &Vlp16Config::mount_y, -2.0, 2.0, "m", "Sensor origin left of the rear-axle centre.")
           .number("mount_z", &Vlp16Config::mount_z, 0.0, 3.0, "m", "Sensor origin above the ground.")
           .number("mount_roll", &Vlp16Config::mount_roll, -0.5, 0.5, "rad", "Mount roll (Z-Y-X).")
-          .number("mount_pitch", &Vlp16Config::mount_pitch, -0.5, 0.5, "rad", "Mount pitch, nose down positive (Z-Y-X).")
+          .number("mount_pitch", &Vlp16Config::mount_pitch, -0.5, 0.5, "rad",
+                  "Mount pitch, nose down positive (Z-Y-X).")
           .number("mount_yaw", &Vlp16Config::mount_yaw, -3.15, 3.15, "rad", "Mount yaw (Z-Y-X).");
   return s;
 }

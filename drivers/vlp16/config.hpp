@@ -8,19 +8,19 @@
 namespace fsd {
 
 struct Vlp16Config {
-  std::string address = "0.0.0.0";        // local address the UDP sockets bind to
+  std::string address = "0.0.0.0";  // local address the UDP sockets bind to
   int data_port = 2368;
   int position_port = 8308;
-  int receive_buffer_bytes = 4 << 20;     // SO_RCVBUF; ~2.6 s of data packets
-  double frame_cut_deg = 0.0;             // a frame ends when the azimuth crosses this angle
-  double min_range = 0.5;                 // m; closer returns are dropped (sensor's blind zone, own car)
-  double max_range = 130.0;               // m; farther returns are dropped
-  std::string laser_table;                // CSV like ../shared/data/vlp16/vlp16_lasers.csv; "" = built-in table
+  int receive_buffer_bytes = 4 << 20;  // SO_RCVBUF; ~2.6 s of data packets
+  double frame_cut_deg = 0.0;          // a frame ends when the azimuth crosses this angle
+  double min_range = 0.5;              // m; closer returns are dropped (sensor's blind zone, own car)
+  double max_range = 130.0;            // m; farther returns are dropped
+  std::string laser_table;             // CSV like ../shared/data/vlp16/vlp16_lasers.csv; "" = built-in table
   // Mount on the vehicle body frame (rear-axle centre on the ground, x forward, z up): what the stack places the
   // points with. The default is the virtual car's (sim.lidar), on the nose ahead of the front wheels.
-  double mount_x = 2.0, mount_y = 0.0, mount_z = 0.35;  // m
+  double mount_x = 2.0, mount_y = 0.0, mount_z = 0.35;          // m
   double mount_roll = 0.0, mount_pitch = 0.0, mount_yaw = 0.0;  // rad, Z-Y-X
-  Pose3 body_from_sensor() const;  // body ← sensor
+  Pose3 body_from_sensor() const;                               // body ← sensor
 };
 
 const ConfigSection<Vlp16Config>& vlp16_section();

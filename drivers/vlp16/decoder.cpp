@@ -11,12 +11,18 @@ namespace w = wire::vlp16;
 
 std::string_view to_string(PacketStatus s) {
   switch (s) {
-    case PacketStatus::Ok: return "ok";
-    case PacketStatus::WrongSize: return "wrong size";
-    case PacketStatus::BadFlag: return "bad block flag";
-    case PacketStatus::BadAzimuth: return "azimuth out of range";
-    case PacketStatus::UnknownReturnMode: return "unknown return mode";
-    case PacketStatus::UnknownProduct: return "unknown product id";
+    case PacketStatus::Ok:
+      return "ok";
+    case PacketStatus::WrongSize:
+      return "wrong size";
+    case PacketStatus::BadFlag:
+      return "bad block flag";
+    case PacketStatus::BadAzimuth:
+      return "azimuth out of range";
+    case PacketStatus::UnknownReturnMode:
+      return "unknown return mode";
+    case PacketStatus::UnknownProduct:
+      return "unknown product id";
   }
   return "?";
 }
@@ -85,12 +91,23 @@ PacketStatus PacketDecoder::check(std::span<const std::uint8_t> p, PacketHeader&
 
 void PacketDecoder::count_rejection(PacketStatus s) {
   switch (s) {
-    case PacketStatus::Ok: break;
-    case PacketStatus::WrongSize: ++counters_.wrong_size; break;
-    case PacketStatus::BadFlag: ++counters_.bad_flag; break;
-    case PacketStatus::BadAzimuth: ++counters_.bad_azimuth; break;
-    case PacketStatus::UnknownReturnMode: ++counters_.unknown_return_mode; break;
-    case PacketStatus::UnknownProduct: ++counters_.unknown_product; break;
+    case PacketStatus::Ok:
+      break;
+    case PacketStatus::WrongSize:
+      ++counters_.wrong_size;
+      break;
+    case PacketStatus::BadFlag:
+      ++counters_.bad_flag;
+      break;
+    case PacketStatus::BadAzimuth:
+      ++counters_.bad_azimuth;
+      break;
+    case PacketStatus::UnknownReturnMode:
+      ++counters_.unknown_return_mode;
+      break;
+    case PacketStatus::UnknownProduct:
+      ++counters_.unknown_product;
+      break;
   }
 }
 
@@ -117,7 +134,8 @@ PacketStatus PacketDecoder::decode(std::span<const std::uint8_t> p, std::vector<
     const int az = azimuth_counts(p, block);
     // Rotation during this firing = azimuth of the next firing minus this one, modulo the 360° wrap; the last
     // firing of the packet reuses the previous firing's step.
-    if (f + 1 < firings) step_counts = (azimuth_counts(p, block + blocks_per_firing) - az + kAzimuthCounts) % kAzimuthCounts;
+    if (f + 1 < firings)
+      step_counts = (azimuth_counts(p, block + blocks_per_firing) - az + kAzimuthCounts) % kAzimuthCounts;
     // Division rather than × 0.01: whole and hundredth degrees come out exact (frames cut at 90.00° cut there).
     const double base_deg = az / kCountsPerDeg;
     const double step_deg = step_counts / kCountsPerDeg;

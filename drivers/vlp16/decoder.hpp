@@ -28,29 +28,29 @@ struct Vlp16Return {
   double firing_offset_us = 0;  // from the first firing of the packet
   double azimuth_deg = 0;       // [0, 360), clockwise seen from above, 0 = +x; interpolated per firing
   double distance_m = 0;
-  double x = 0, y = 0, z = 0;   // m
-  std::uint8_t laser = 0;       // channel 0..15 in the firing sequence
-  std::uint8_t intensity = 0;   // calibrated reflectivity 0..255
-  std::uint16_t ring = 0;       // 0 = lowest beam
+  double x = 0, y = 0, z = 0;  // m
+  std::uint8_t laser = 0;      // channel 0..15 in the firing sequence
+  std::uint8_t intensity = 0;  // calibrated reflectivity 0..255
+  std::uint16_t ring = 0;      // 0 = lowest beam
   ReturnKind kind = ReturnKind::Strongest;
 };
 
 // The fixed fields of a packet that passed validation.
 struct PacketHeader {
-  std::uint32_t timestamp_us = 0;   // µs past the hour of the first firing
-  std::uint8_t return_mode = 0;     // 0x37, 0x38, 0x39
-  std::uint8_t product = 0;         // 0x22 or 0x21
+  std::uint32_t timestamp_us = 0;  // µs past the hour of the first firing
+  std::uint8_t return_mode = 0;    // 0x37, 0x38, 0x39
+  std::uint8_t product = 0;        // 0x22 or 0x21
   bool dual() const;
-  double duration_us() const;       // time covered by the packet's firings (12 or 6 × 110.592 µs)
+  double duration_us() const;  // time covered by the packet's firings (12 or 6 × 110.592 µs)
 };
 
 struct DecodeCounters {
-  std::uint64_t packets = 0;            // accepted
+  std::uint64_t packets = 0;  // accepted
   std::uint64_t wrong_size = 0, bad_flag = 0, bad_azimuth = 0, unknown_return_mode = 0, unknown_product = 0;
-  std::uint64_t returns = 0;            // emitted
-  std::uint64_t no_return = 0;          // distance 0
-  std::uint64_t out_of_range = 0;       // outside [min_range, max_range]
-  std::uint64_t dual_duplicates = 0;    // strongest == last, emitted once
+  std::uint64_t returns = 0;          // emitted
+  std::uint64_t no_return = 0;        // distance 0
+  std::uint64_t out_of_range = 0;     // outside [min_range, max_range]
+  std::uint64_t dual_duplicates = 0;  // strongest == last, emitted once
   std::uint64_t rejected() const { return wrong_size + bad_flag + bad_azimuth + unknown_return_mode + unknown_product; }
 };
 

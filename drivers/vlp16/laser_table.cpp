@@ -80,8 +80,8 @@ LaserTable LaserTable::from_csv(const std::filesystem::path& file) {
   const auto header = split_commas(line);
   for (std::size_t c = 0; c < header.size(); ++c) {
     const auto h = header[c];
-    int* col = h == "laser_id" ? &col_id
-               : h == "vert_angle_deg" ? &col_angle
+    int* col = h == "laser_id"                   ? &col_id
+               : h == "vert_angle_deg"           ? &col_angle
                : h == "vert_offset_correction_m" ? &col_offset
                : h == "firing_order_in_sequence" ? &col_slot
                                                  : nullptr;
@@ -99,11 +99,13 @@ LaserTable LaserTable::from_csv(const std::filesystem::path& file) {
     if (trim(line).empty()) continue;
     const auto cells = split_commas(line);
     if (cells.size() != header.size())
-      throw fail(line_no, "expected " + std::to_string(header.size()) + " columns, got " + std::to_string(cells.size()));
+      throw fail(line_no,
+                 "expected " + std::to_string(header.size()) + " columns, got " + std::to_string(cells.size()));
     const auto number = [&](int col, const char* name) {
       const auto v = parse_number(cells[static_cast<std::size_t>(col)]);
-      if (!v) throw fail(line_no, std::string(name) + " is not a number: '" +
-                                      std::string(cells[static_cast<std::size_t>(col)]) + "'");
+      if (!v)
+        throw fail(line_no,
+                   std::string(name) + " is not a number: '" + std::string(cells[static_cast<std::size_t>(col)]) + "'");
       return *v;
     };
     const double id = number(col_id, "laser_id");

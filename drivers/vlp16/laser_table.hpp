@@ -18,11 +18,11 @@ class LaserTableError : public std::runtime_error {
 };
 
 struct LaserCalibration {
-  double elevation = 0;         // rad, positive up
+  double elevation = 0;  // rad, positive up
   double cos_elevation = 1, sin_elevation = 0;
-  double vertical_offset = 0;   // m, added to z
-  std::uint8_t firing_slot = 0; // position in the firing sequence: fires at slot × 2.304 µs
-  std::uint16_t ring = 0;       // rank of the elevation, 0 = lowest beam
+  double vertical_offset = 0;    // m, added to z
+  std::uint8_t firing_slot = 0;  // position in the firing sequence: fires at slot × 2.304 µs
+  std::uint16_t ring = 0;        // rank of the elevation, 0 = lowest beam
 };
 
 class LaserTable {

@@ -20,11 +20,11 @@ struct PcapDumpSummary {
   PcapCounters pcap;
   DecodeCounters decode;
   PositionCounters position;
-  std::uint64_t frames = 0;          // completed frames plus the partial last one
-  std::uint64_t lost_packets = 0;    // estimated from gaps in the sensor timestamps
+  std::uint64_t frames = 0;                 // completed frames plus the partial last one
+  std::uint64_t lost_packets = 0;           // estimated from gaps in the sensor timestamps
   Stamp first_firing = 0, last_firing = 0;  // capture-clock times of the first and last return (0 when none)
   PpsState last_pps = PpsState::Absent;
-  std::string last_nmea;             // last valid $GPRMC seen
+  std::string last_nmea;  // last valid $GPRMC seen
 };
 
 // Data packets on config.data_port, position packets on config.position_port; the capture timestamps act as

@@ -20,19 +20,19 @@ class PcapError : public std::runtime_error {
 };
 
 struct UdpDatagram {
-  Stamp capture_time = 0;     // capture timestamp, s since the Unix epoch (ns resolution when the file has it)
+  Stamp capture_time = 0;  // capture timestamp, s since the Unix epoch (ns resolution when the file has it)
   std::uint16_t src_port = 0, dst_port = 0;
   std::span<const std::uint8_t> payload;  // valid until the next call of next()
 };
 
 struct PcapCounters {
-  std::uint64_t records = 0;          // capture records read
-  std::uint64_t udp = 0;              // UDP datagrams returned (after the port filter)
-  std::uint64_t filtered = 0;         // UDP to another port
-  std::uint64_t not_udp = 0;          // other protocols, ARP, fragments, unknown link types
-  std::uint64_t malformed = 0;        // headers inconsistent with the record length
-  std::uint64_t truncated = 0;        // record shorter than the datagram (snap length)
-  std::uint64_t bad_ip_length = 0;    // IPv4 total length beyond a complete record; accepted on the UDP length
+  std::uint64_t records = 0;        // capture records read
+  std::uint64_t udp = 0;            // UDP datagrams returned (after the port filter)
+  std::uint64_t filtered = 0;       // UDP to another port
+  std::uint64_t not_udp = 0;        // other protocols, ARP, fragments, unknown link types
+  std::uint64_t malformed = 0;      // headers inconsistent with the record length
+  std::uint64_t truncated = 0;      // record shorter than the datagram (snap length)
+  std::uint64_t bad_ip_length = 0;  // IPv4 total length beyond a complete record; accepted on the UDP length
 };
 
 class PcapReader {

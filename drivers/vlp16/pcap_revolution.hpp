@@ -10,8 +10,8 @@
 namespace fsd {
 
 struct Vlp16Revolution {
-  Scan scan;                // sensor frame, capture-clock times
-  bool complete = false;    // the head came back to the start azimuth
+  Scan scan;                    // sensor frame, capture-clock times
+  bool complete = false;        // the head came back to the start azimuth
   double azimuth_span_deg = 0;  // azimuth covered
   std::uint64_t packets = 0, rejected_packets = 0;
 };

@@ -12,29 +12,40 @@ namespace w = wire::vlp16;
 
 std::string_view to_string(PpsState s) {
   switch (s) {
-    case PpsState::Absent: return "absent";
-    case PpsState::Synchronizing: return "synchronizing";
-    case PpsState::Locked: return "locked";
-    case PpsState::Error: return "error";
+    case PpsState::Absent:
+      return "absent";
+    case PpsState::Synchronizing:
+      return "synchronizing";
+    case PpsState::Locked:
+      return "locked";
+    case PpsState::Error:
+      return "error";
   }
   return "?";
 }
 
 std::string_view to_string(NmeaState s) {
   switch (s) {
-    case NmeaState::Absent: return "absent";
-    case NmeaState::Valid: return "valid";
-    case NmeaState::BadChecksum: return "bad checksum";
-    case NmeaState::Malformed: return "malformed";
+    case NmeaState::Absent:
+      return "absent";
+    case NmeaState::Valid:
+      return "valid";
+    case NmeaState::BadChecksum:
+      return "bad checksum";
+    case NmeaState::Malformed:
+      return "malformed";
   }
   return "?";
 }
 
 std::string_view to_string(PositionStatus s) {
   switch (s) {
-    case PositionStatus::Ok: return "ok";
-    case PositionStatus::WrongSize: return "wrong size";
-    case PositionStatus::BadPpsState: return "bad PPS state";
+    case PositionStatus::Ok:
+      return "ok";
+    case PositionStatus::WrongSize:
+      return "wrong size";
+    case PositionStatus::BadPpsState:
+      return "bad PPS state";
   }
   return "?";
 }
@@ -67,7 +78,9 @@ PositionStatus parse_position_packet(std::span<const std::uint8_t> p, PositionPa
     out.nmea_state = NmeaState::Malformed;
     out.nmea.clear();
   } else {
-    out.nmea_state = text.empty() ? NmeaState::Absent : nmea_checksum_ok(text) ? NmeaState::Valid : NmeaState::BadChecksum;
+    out.nmea_state = text.empty()             ? NmeaState::Absent
+                     : nmea_checksum_ok(text) ? NmeaState::Valid
+                                              : NmeaState::BadChecksum;
     out.nmea = std::move(text);
   }
   return PositionStatus::Ok;
@@ -76,15 +89,29 @@ PositionStatus parse_position_packet(std::span<const std::uint8_t> p, PositionPa
 PositionStatus PositionPacketParser::parse(std::span<const std::uint8_t> packet, PositionPacket& out) {
   const auto status = parse_position_packet(packet, out);
   switch (status) {
-    case PositionStatus::Ok: ++counters_.packets; break;
-    case PositionStatus::WrongSize: ++counters_.wrong_size; return status;
-    case PositionStatus::BadPpsState: ++counters_.bad_pps_state; return status;
+    case PositionStatus::Ok:
+      ++counters_.packets;
+      break;
+    case PositionStatus::WrongSize:
+      ++counters_.wrong_size;
+      return status;
+    case PositionStatus::BadPpsState:
+      ++counters_.bad_pps_state;
+      return status;
   }
   switch (out.nmea_state) {
-    case NmeaState::Valid: ++counters_.nmea_valid; break;
-    case NmeaState::Absent: ++counters_.nmea_absent; break;
-    case NmeaState::BadChecksum: ++counters_.nmea_bad_checksum; break;
-    case NmeaState::Malformed: ++counters_.nmea_malformed; break;
+    case NmeaState::Valid:
+      ++counters_.nmea_valid;
+      break;
+    case NmeaState::Absent:
+      ++counters_.nmea_absent;
+      break;
+    case NmeaState::BadChecksum:
+      ++counters_.nmea_bad_checksum;
+      break;
+    case NmeaState::Malformed:
+      ++counters_.nmea_malformed;
+      break;
   }
   return status;
 }

@@ -21,9 +21,9 @@ enum class NmeaState : std::uint8_t {
 std::string_view to_string(NmeaState s);
 
 struct PositionPacket {
-  std::uint32_t timestamp_us = 0;   // µs past the hour
+  std::uint32_t timestamp_us = 0;  // µs past the hour
   PpsState pps = PpsState::Absent;
-  std::string nmea;                 // the sentence without trailing CR/LF ("" when absent)
+  std::string nmea;  // the sentence without trailing CR/LF ("" when absent)
   NmeaState nmea_state = NmeaState::Absent;
 };
 

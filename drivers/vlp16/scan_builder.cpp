@@ -10,9 +10,7 @@ Vlp16ScanBuilder::Vlp16ScanBuilder(const Vlp16Config& config, ScanHandler on_sca
     : Vlp16ScanBuilder(config, LaserTable::load(config.laser_table), std::move(on_scan)) {}
 
 Vlp16ScanBuilder::Vlp16ScanBuilder(const Vlp16Config& config, LaserTable table, ScanHandler on_scan)
-    : decoder_(table, config.min_range, config.max_range),
-      frames_(config.frame_cut_deg),
-      on_scan_(std::move(on_scan)) {
+    : decoder_(table, config.min_range, config.max_range), frames_(config.frame_cut_deg), on_scan_(std::move(on_scan)) {
   returns_.reserve(2 * wire::vlp16::kBlocks * wire::vlp16::kSequencesPerBlock * wire::vlp16::kLasers);
 }
 

@@ -18,9 +18,9 @@ namespace fsd {
 class SensorClock {
  public:
   struct Params {
-    double max_drift = 2e-4;          // s/s the estimate may rise without evidence (crystal tolerance + margin)
-    Duration max_jump = 0.05;         // s above the estimate that counts as a clock step
-    int jump_confirmations = 8;       // consecutive packets above max_jump before the estimate resets
+    double max_drift = 2e-4;     // s/s the estimate may rise without evidence (crystal tolerance + margin)
+    Duration max_jump = 0.05;    // s above the estimate that counts as a clock step
+    int jump_confirmations = 8;  // consecutive packets above max_jump before the estimate resets
   };
   SensorClock() = default;
   explicit SensorClock(Params p) : p_(p) {}
@@ -29,16 +29,16 @@ class SensorClock {
   // time its firings cover.
   Stamp packet_start(Stamp receive, std::uint32_t timestamp_us, double duration_us);
 
-  std::uint64_t resets() const { return resets_; }   // offset re-estimated from scratch (first packet included)
+  std::uint64_t resets() const { return resets_; }  // offset re-estimated from scratch (first packet included)
   std::uint64_t hour_wraps() const { return hour_wraps_; }
 
  private:
   Params p_;
   bool have_offset_ = false;
-  double offset_ = 0;          // stack time − sensor time, s
+  double offset_ = 0;  // stack time − sensor time, s
   Stamp last_receive_ = 0;
   std::uint32_t last_timestamp_us_ = 0;
-  double hours_ = 0;           // completed hours of sensor time, s
+  double hours_ = 0;  // completed hours of sensor time, s
   int above_ = 0;
   std::uint64_t resets_ = 0, hour_wraps_ = 0;
 };

@@ -24,7 +24,7 @@ namespace fsd {
 class Clock;
 
 struct UdpReceiverCounters {
-  std::uint64_t datagrams = 0;       // delivered to the handler
+  std::uint64_t datagrams = 0;  // delivered to the handler
   std::uint64_t bytes = 0;
   std::uint64_t kernel_drops = 0;    // dropped by the kernel for lack of buffer space (SO_RXQ_OVFL)
   std::uint64_t truncated = 0;       // larger than 64 KiB (cannot happen for UDP over IPv4), not delivered
@@ -37,9 +37,9 @@ class UdpReceiver {
   using Handler = std::function<void(Stamp receive_time, std::span<const std::uint8_t> payload)>;
   struct Options {
     std::string address = "0.0.0.0";
-    std::uint16_t port = 0;          // 0 = ephemeral (tests)
+    std::uint16_t port = 0;  // 0 = ephemeral (tests)
     int receive_buffer_bytes = 4 << 20;
-    std::string name = "udp";        // for log messages, e.g. "vlp16 data"
+    std::string name = "udp";  // for log messages, e.g. "vlp16 data"
   };
 
   // Opens and binds the socket at once; throws std::runtime_error naming address, port and the reason.

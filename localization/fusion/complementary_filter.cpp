@@ -42,8 +42,10 @@ void ComplementaryFilter::on_imu(const ImuSample& s) {
 void ComplementaryFilter::on_speed(const BodySpeed& s) {
   if (!std::isfinite(s.vx) || (s.has_vy && !std::isfinite(s.vy))) return;
   // One speed source drives the motion: the optical sensor where present, the wheels (slip and all) without it.
-  if (s.source == BodySpeed::Source::Optical) last_optical_ = s.t;
-  else if (s.t - last_optical_ < 0.2) return;
+  if (s.source == BodySpeed::Source::Optical)
+    last_optical_ = s.t;
+  else if (s.t - last_optical_ < 0.2)
+    return;
   last_motion_ = s.t;
   speed_ = s.has_vy ? std::hypot(s.vx, s.vy) : std::abs(s.vx);
   if (s.t <= odometry_until_) return;  // LiDAR odometry drives the motion
@@ -168,10 +170,9 @@ void ComplementaryFilter::on_gnss(const GnssFix& f) {
     return;
   }
   const double sig = position_sigma();
-  const GnssCheck c = gate_.check(f, t_, Vec2(pose_.x, pose_.y), Eigen::Matrix2d::Identity() * sig * sig,
-                                  motion_since_fix_);
-  if (c.verdict != GnssVerdict::RejectedQuality && c.verdict != GnssVerdict::RejectedStale)
-    motion_since_fix_.setZero();
+  const GnssCheck c =
+      gate_.check(f, t_, Vec2(pose_.x, pose_.y), Eigen::Matrix2d::Identity() * sig * sig, motion_since_fix_);
+  if (c.verdict != GnssVerdict::RejectedQuality && c.verdict != GnssVerdict::RejectedStale) motion_since_fix_.setZero();
   out_.gnss_nis = c.nis;
   if (!c.used()) {
     reject(c.verdict);
@@ -186,8 +187,10 @@ void ComplementaryFilter::on_gnss(const GnssFix& f) {
   }
   out_.gnss = c.verdict;
   out_.last_gnss_accepted = f.t;
-  if (c.verdict == GnssVerdict::Accepted) ++out_.gnss_counters.accepted;
-  else ++out_.gnss_counters.down_weighted;
+  if (c.verdict == GnssVerdict::Accepted)
+    ++out_.gnss_counters.accepted;
+  else
+    ++out_.gnss_counters.down_weighted;
 }
 
 LocalizationState ComplementaryFilter::state() const {

@@ -45,7 +45,7 @@ class ComplementaryFilter final : public FusionFilter {
   double speed_ = 0;
   double sigma_fix_ = 1e3, drift_since_fix_ = 0;  // position σ at the last fix, and travel since
   double yaw_var_ = 1e-4;
-  Vec2 dr_path_ = Vec2::Zero();          // the motion alone, summed without GNSS corrections
+  Vec2 dr_path_ = Vec2::Zero();  // the motion alone, summed without GNSS corrections
   Vec2 motion_since_fix_ = Vec2::Zero();
   std::deque<Track> track_;
   Stamp last_motion_ = -1e300, last_optical_ = -1e300;

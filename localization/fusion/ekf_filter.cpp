@@ -5,8 +5,7 @@
 
 namespace fsd::fusion {
 
-namespace {
-}
+namespace {}
 
 EkfFilter::EkfFilter(const FusionConfig& cfg)
     : cfg_(cfg), gate_(cfg.gnss), heading_init_(cfg.common.heading_baseline_m) {
@@ -52,8 +51,7 @@ void EkfFilter::predict(Stamp t) {
 
 template <int M>
 double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm,
-                         int consider) {
+                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, int consider) {
   const Eigen::Matrix<double, M, 1> nu = z - h;  // no angles here: heading residuals come in wrapped
   const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + Rm;
   Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S.inverse();
@@ -81,8 +79,10 @@ void EkfFilter::on_speed(const BodySpeed& s) {
   if (!std::isfinite(s.vx) || (s.has_vy && !std::isfinite(s.vy))) return;
   // The wheels are the fallback: they slip, and their rpm-to-speed factor is only nominal; where the optical
   // sensor reports, they would pull its scale estimate to that factor.
-  if (s.source == BodySpeed::Source::Optical) last_optical_ = s.t;
-  else if (s.t - last_optical_ < 0.2) return;
+  if (s.source == BodySpeed::Source::Optical)
+    last_optical_ = s.t;
+  else if (s.t - last_optical_ < 0.2)
+    return;
   last_motion_ = s.t;
   speed_ = s.has_vy ? std::hypot(s.vx, s.vy) : std::abs(s.vx);
   const double lx = s.lever.x(), ly = s.lever.y();
@@ -103,8 +103,8 @@ void EkfFilter::on_speed(const BodySpeed& s) {
       H(1, Vy) = k;
       H(1, R) = k * lx;
       H(1, Scale) = sy;
-      update<2>(Eigen::Vector2d(s.vx, s.vy), Eigen::Vector2d(k * sx, k * sy), H,
-                Eigen::Matrix2d::Identity() * sig2, Scale);
+      update<2>(Eigen::Vector2d(s.vx, s.vy), Eigen::Vector2d(k * sx, k * sy), H, Eigen::Matrix2d::Identity() * sig2,
+                Scale);
     } else {
       Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
       H(0, Vx) = k;
@@ -221,8 +221,7 @@ void EkfFilter::on_gnss(const GnssFix& f) {
     return;
   }
   const GnssCheck c = gate_.check(f, t_, Vec2(x_(X), x_(Y)), P_.topLeftCorner<2, 2>(), motion_since_fix_);
-  if (c.verdict != GnssVerdict::RejectedQuality && c.verdict != GnssVerdict::RejectedStale)
-    motion_since_fix_.setZero();
+  if (c.verdict != GnssVerdict::RejectedQuality && c.verdict != GnssVerdict::RejectedStale) motion_since_fix_.setZero();
   out_.gnss_nis = c.nis;
   if (!c.used()) {
     reject(c.verdict);
@@ -241,8 +240,10 @@ void EkfFilter::on_gnss(const GnssFix& f) {
   }
   out_.gnss = c.verdict;
   out_.last_gnss_accepted = f.t;
-  if (c.verdict == GnssVerdict::Accepted) ++out_.gnss_counters.accepted;
-  else ++out_.gnss_counters.down_weighted;
+  if (c.verdict == GnssVerdict::Accepted)
+    ++out_.gnss_counters.accepted;
+  else
+    ++out_.gnss_counters.down_weighted;
 }
 
 LocalizationState EkfFilter::state() const {

@@ -46,10 +46,10 @@ class EkfFilter final : public FusionFilter {
   Mat P_ = Mat::Zero();
   bool have_position_ = false;
   bool heading_known_ = false;
-  double speed_ = 0;           // latest measured ground speed (m/s), for standstill and moving tests
+  double speed_ = 0;  // latest measured ground speed (m/s), for standstill and moving tests
   Stamp last_motion_ = -1e300, last_optical_ = -1e300;
   Vec2 motion_since_fix_ = Vec2::Zero();  // dead-reckoned displacement since the previous fix (jump test)
-  LocalizationState out_;      // GNSS verdicts and counters
+  LocalizationState out_;                 // GNSS verdicts and counters
 };
 
 }  // namespace fsd::fusion

@@ -32,14 +32,18 @@ const ConfigSection<GnssGateConfig>& gnss_gate_section() {
           .integer("min_fix_quality", &C::min_fix_quality, 1, 5, "", "GGA fix quality below this is rejected.")
           .number("sigma_single", &C::sigma_single, 0.001, 100.0, "m", "Position σ of a single-point fix (quality 1).")
           .number("sigma_dgps", &C::sigma_dgps, 0.001, 100.0, "m", "Position σ of a DGPS fix (quality 2).")
-          .number("sigma_rtk_float", &C::sigma_rtk_float, 0.001, 100.0, "m", "Position σ of an RTK float fix (quality 5).")
-          .number("sigma_rtk_fixed", &C::sigma_rtk_fixed, 0.001, 100.0, "m", "Position σ of an RTK fixed fix (quality 4).")
+          .number("sigma_rtk_float", &C::sigma_rtk_float, 0.001, 100.0, "m",
+                  "Position σ of an RTK float fix (quality 5).")
+          .number("sigma_rtk_fixed", &C::sigma_rtk_fixed, 0.001, 100.0, "m",
+                  "Position σ of an RTK fixed fix (quality 4).")
           .number("max_age_s", &C::max_age_s, 0.0, 600.0, "s",
                   "Differential corrections older than this: the fix counts as single-point (down-weighted).")
-          .number("max_delay_s", &C::max_delay_s, 0.0, 10.0, "s", "A fix older than the filter's time by more is stale.")
+          .number("max_delay_s", &C::max_delay_s, 0.0, 10.0, "s",
+                  "A fix older than the filter's time by more is stale.")
           .number("soft_gate_chi2", &C::soft_gate_chi2, 0.1, 1000.0, "",
                   "Normalised innovation beyond this: the fix's σ is inflated by sqrt(NIS / soft).")
-          .number("reject_gate_chi2", &C::reject_gate_chi2, 0.1, 1e6, "", "Normalised innovation beyond this: rejected.")
+          .number("reject_gate_chi2", &C::reject_gate_chi2, 0.1, 1e6, "",
+                  "Normalised innovation beyond this: rejected.")
           .number("jump_min_m", &C::jump_min_m, 0.01, 100.0, "m",
                   "A fix may move this much more than the dead-reckoned motion since the previous fix ...")
           .number("jump_fraction", &C::jump_fraction, 0.0, 10.0, "", "... plus this share of that motion; else a jump.")
@@ -55,7 +59,8 @@ const ConfigSection<EkfConfig>& ekf_section() {
           .number("gyro_sigma", &C::gyro_sigma, 1e-5, 1.0, "rad/s", "Gyro noise per sample.")
           .number("optical_sigma", &C::optical_sigma, 1e-4, 10.0, "m/s", "Optical speed noise per axis per sample.")
           .number("wheel_sigma", &C::wheel_sigma, 1e-3, 10.0, "m/s", "Wheel speed noise per sample ...")
-          .number("wheel_sigma_fraction", &C::wheel_sigma_fraction, 0.0, 1.0, "", "... plus this share of the speed (slip).")
+          .number("wheel_sigma_fraction", &C::wheel_sigma_fraction, 0.0, 1.0, "",
+                  "... plus this share of the speed (slip).")
           .number("wheel_lateral_sigma", &C::wheel_lateral_sigma, 0.01, 10.0, "m/s",
                   "Without optical vy, the lateral speed at the wheels' axle is held to 0 with this σ (sideslip).")
           .number("accel_noise", &C::accel_noise, 0.01, 100.0, "m/s²/√Hz", "Random walk of vx and vy.")
@@ -64,7 +69,8 @@ const ConfigSection<EkfConfig>& ekf_section() {
           .number("scale_walk", &C::scale_walk, 0.0, 0.1, "1/√s", "Random walk of the optical speed scale.")
           .number("position_noise", &C::position_noise, 0.0, 10.0, "m/√s", "Position noise the kinematic model misses.")
           .number("initial_bias_sigma", &C::initial_bias_sigma, 1e-6, 1.0, "rad/s", "Initial σ of the gyro bias.")
-          .number("initial_scale_sigma", &C::initial_scale_sigma, 1e-6, 1.0, "", "Initial σ of the optical speed scale.")
+          .number("initial_scale_sigma", &C::initial_scale_sigma, 1e-6, 1.0, "",
+                  "Initial σ of the optical speed scale.")
           .number("standstill_rate_sigma", &C::standstill_rate_sigma, 1e-6, 1.0, "rad/s",
                   "σ of the zero yaw rate a standing car is held to.");
   return s;
@@ -78,7 +84,8 @@ const ConfigSection<ComplementaryConfig>& complementary_section() {
                   "Crossover: GNSS position below 1/τ, dead reckoning above.")
           .number("heading_time_constant_s", &C::heading_time_constant_s, 0.05, 600.0, "s",
                   "Time constant of the heading's pull to the GNSS course.")
-          .number("course_baseline_m", &C::course_baseline_m, 1.0, 100.0, "m", "GNSS track length of one course measurement.")
+          .number("course_baseline_m", &C::course_baseline_m, 1.0, 100.0, "m",
+                  "GNSS track length of one course measurement.")
           .number("bias_time_constant_s", &C::bias_time_constant_s, 1.0, 1e4, "s",
                   "Integral of the heading correction into the gyro bias.")
           .number("standstill_bias_time_constant_s", &C::standstill_bias_time_constant_s, 0.01, 600.0, "s",

@@ -8,45 +8,45 @@
 namespace fsd::fusion {
 
 struct FusionCommonConfig {
-  std::string filter = "ekf";        // ekf | complementary
-  double heading_baseline_m = 10.0;  // GNSS track length that fixes the initial heading
-  double moving_speed = 1.0;         // m/s: above it the car moves (heading from the track)
-  double standstill_speed = 0.05;    // m/s: below it the car stands (the gyro reads its bias)
+  std::string filter = "ekf";           // ekf | complementary
+  double heading_baseline_m = 10.0;     // GNSS track length that fixes the initial heading
+  double moving_speed = 1.0;            // m/s: above it the car moves (heading from the track)
+  double standstill_speed = 0.05;       // m/s: below it the car stands (the gyro reads its bias)
   double initial_heading_sigma = 0.05;  // rad: σ of the heading from the track
-  double good_gnss_timeout_s = 1.0;  // the state is good only with a fix accepted this recently
-  double good_sigma_m = 0.5;         // ... and a position σ below this
-  double lost_sigma_m = 5.0;         // position σ beyond this: lost
-  double motion_timeout_s = 0.5;     // no IMU or speed sample for this long: lost
+  double good_gnss_timeout_s = 1.0;     // the state is good only with a fix accepted this recently
+  double good_sigma_m = 0.5;            // ... and a position σ below this
+  double lost_sigma_m = 5.0;            // position σ beyond this: lost
+  double motion_timeout_s = 0.5;        // no IMU or speed sample for this long: lost
 };
 const ConfigSection<FusionCommonConfig>& fusion_common_section();
 
 struct GnssGateConfig {
-  int min_fix_quality = 1;       // GGA quality below this is rejected
-  double sigma_single = 1.0;     // m per axis by fix quality: 1
-  double sigma_dgps = 0.5;       // 2
-  double sigma_rtk_float = 0.2;  // 5
-  double sigma_rtk_fixed = 0.03; // 4
-  double max_age_s = 5.0;        // corrections older than this: the fix counts as single (down-weighted)
-  double max_delay_s = 0.5;      // a fix older than the filter's time by more is stale
-  double soft_gate_chi2 = 5.99;  // NIS beyond this (95 %, 2 dof): σ inflated by √(NIS / soft)
+  int min_fix_quality = 1;         // GGA quality below this is rejected
+  double sigma_single = 1.0;       // m per axis by fix quality: 1
+  double sigma_dgps = 0.5;         // 2
+  double sigma_rtk_float = 0.2;    // 5
+  double sigma_rtk_fixed = 0.03;   // 4
+  double max_age_s = 5.0;          // corrections older than this: the fix counts as single (down-weighted)
+  double max_delay_s = 0.5;        // a fix older than the filter's time by more is stale
+  double soft_gate_chi2 = 5.99;    // NIS beyond this (95 %, 2 dof): σ inflated by √(NIS / soft)
   double reject_gate_chi2 = 13.8;  // NIS beyond this (99.9 %): rejected
-  double jump_min_m = 1.5;       // a fix may differ from the dead-reckoned motion since the previous fix by this
-  double jump_fraction = 0.2;    // ... plus this share of that motion
-  double recover_after_s = 3.0;  // fixes rejected (not jumps) for this long, mutually consistent: accepted again
+  double jump_min_m = 1.5;         // a fix may differ from the dead-reckoned motion since the previous fix by this
+  double jump_fraction = 0.2;      // ... plus this share of that motion
+  double recover_after_s = 3.0;    // fixes rejected (not jumps) for this long, mutually consistent: accepted again
 };
 const ConfigSection<GnssGateConfig>& gnss_gate_section();
 
 struct EkfConfig {
-  double gyro_sigma = 0.005;        // rad/s per sample
-  double optical_sigma = 0.05;      // m/s per axis per sample
-  double wheel_sigma = 0.3;         // m/s per sample ...
+  double gyro_sigma = 0.005;           // rad/s per sample
+  double optical_sigma = 0.05;         // m/s per axis per sample
+  double wheel_sigma = 0.3;            // m/s per sample ...
   double wheel_sigma_fraction = 0.05;  // ... plus this share of the speed (slip)
   double wheel_lateral_sigma = 0.5;    // m/s: the sideslip at the wheels' axle, held to 0 without optical vy
-  double accel_noise = 8.0;         // m/s² /√Hz: random walk of vx and vy
-  double yaw_accel_noise = 1.0;     // rad/s² /√Hz: random walk of the yaw rate (0.07 rad/s per 5 ms sample)
-  double bias_walk = 2e-4;          // rad/s /√s
-  double scale_walk = 2e-4;         // 1/√s
-  double position_noise = 0.1;      // m/√s: what the kinematic model misses (slip of the contact patch, lever arms)
+  double accel_noise = 8.0;            // m/s² /√Hz: random walk of vx and vy
+  double yaw_accel_noise = 1.0;        // rad/s² /√Hz: random walk of the yaw rate (0.07 rad/s per 5 ms sample)
+  double bias_walk = 2e-4;             // rad/s /√s
+  double scale_walk = 2e-4;            // 1/√s
+  double position_noise = 0.1;        // m/√s: what the kinematic model misses (slip of the contact patch, lever arms)
   double initial_bias_sigma = 0.01;   // rad/s
   double initial_scale_sigma = 0.03;  // optical speed scale
   double standstill_rate_sigma = 0.001;  // rad/s: a standing car does not turn (the gyro's bias shows)
@@ -54,14 +54,14 @@ struct EkfConfig {
 const ConfigSection<EkfConfig>& ekf_section();
 
 struct ComplementaryConfig {
-  double position_time_constant_s = 3.0;  // crossover: GNSS below 1/τ, dead reckoning above
-  double heading_time_constant_s = 4.0;   // heading pulled to the GNSS course
-  double course_baseline_m = 8.0;         // GNSS track length of one course measurement
-  double bias_time_constant_s = 15.0;     // integral of the heading correction into the gyro bias
+  double position_time_constant_s = 3.0;         // crossover: GNSS below 1/τ, dead reckoning above
+  double heading_time_constant_s = 4.0;          // heading pulled to the GNSS course
+  double course_baseline_m = 8.0;                // GNSS track length of one course measurement
+  double bias_time_constant_s = 15.0;            // integral of the heading correction into the gyro bias
   double standstill_bias_time_constant_s = 2.0;  // gyro bias low-passed at standstill
-  double scale_baseline_m = 40.0;         // travel of one speed-scale measurement
-  double scale_time_constant_s = 10.0;    // low-pass of the speed scale
-  double drift_fraction = 0.01;           // σ of dead reckoning per metre travelled
+  double scale_baseline_m = 40.0;                // travel of one speed-scale measurement
+  double scale_time_constant_s = 10.0;           // low-pass of the speed scale
+  double drift_fraction = 0.01;                  // σ of dead reckoning per metre travelled
 };
 const ConfigSection<ComplementaryConfig>& complementary_section();
 

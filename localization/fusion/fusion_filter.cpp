@@ -39,33 +39,48 @@ void FusionFilter::add(const Measurement& m) {
   std::visit(
       [this](const auto& v) {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, ImuSample>) on_imu(v);
-        else if constexpr (std::is_same_v<T, BodySpeed>) on_speed(v);
-        else if constexpr (std::is_same_v<T, GnssFix>) on_gnss(v);
-        else on_odometry(v);
+        if constexpr (std::is_same_v<T, ImuSample>)
+          on_imu(v);
+        else if constexpr (std::is_same_v<T, BodySpeed>)
+          on_speed(v);
+        else if constexpr (std::is_same_v<T, GnssFix>)
+          on_gnss(v);
+        else
+          on_odometry(v);
       },
       m);
 }
 
 std::string_view to_string(Quality q) {
   switch (q) {
-    case Quality::Good: return "good";
-    case Quality::Degraded: return "degraded";
-    case Quality::Lost: return "lost";
+    case Quality::Good:
+      return "good";
+    case Quality::Degraded:
+      return "degraded";
+    case Quality::Lost:
+      return "lost";
   }
   return "lost";
 }
 
 std::string_view to_string(GnssVerdict v) {
   switch (v) {
-    case GnssVerdict::None: return "none";
-    case GnssVerdict::Accepted: return "accepted";
-    case GnssVerdict::DownWeighted: return "down_weighted";
-    case GnssVerdict::RejectedQuality: return "rejected_quality";
-    case GnssVerdict::RejectedStale: return "rejected_stale";
-    case GnssVerdict::RejectedInnovation: return "rejected_innovation";
-    case GnssVerdict::RejectedJump: return "rejected_jump";
-    case GnssVerdict::Waiting: return "waiting";
+    case GnssVerdict::None:
+      return "none";
+    case GnssVerdict::Accepted:
+      return "accepted";
+    case GnssVerdict::DownWeighted:
+      return "down_weighted";
+    case GnssVerdict::RejectedQuality:
+      return "rejected_quality";
+    case GnssVerdict::RejectedStale:
+      return "rejected_stale";
+    case GnssVerdict::RejectedInnovation:
+      return "rejected_innovation";
+    case GnssVerdict::RejectedJump:
+      return "rejected_jump";
+    case GnssVerdict::Waiting:
+      return "waiting";
   }
   return "none";
 }
@@ -78,7 +93,8 @@ double LocalizationState::position_sigma() const {
 
 Quality assess_quality(const LocalizationState& s, Stamp last_motion, const FusionCommonConfig& cfg) {
   const double sigma = s.position_sigma();
-  if (!s.initialised || !std::isfinite(sigma) || sigma > cfg.lost_sigma_m || s.stamp - last_motion > cfg.motion_timeout_s)
+  if (!s.initialised || !std::isfinite(sigma) || sigma > cfg.lost_sigma_m ||
+      s.stamp - last_motion > cfg.motion_timeout_s)
     return Quality::Lost;
   const bool recent_fix = s.last_gnss_accepted >= 0 && s.stamp - s.last_gnss_accepted <= cfg.good_gnss_timeout_s;
   return recent_fix && sigma <= cfg.good_sigma_m ? Quality::Good : Quality::Degraded;

@@ -8,10 +8,14 @@ double GnssGate::nominal_sigma(const GnssFix& fix) const {
   if (fix.sigma > 0 && std::isfinite(fix.sigma)) return fix.sigma;
   const bool fresh = fix.age_s <= cfg_.max_age_s;
   switch (fix.fix_quality) {
-    case 4: return fresh ? cfg_.sigma_rtk_fixed : cfg_.sigma_single;
-    case 5: return fresh ? cfg_.sigma_rtk_float : cfg_.sigma_single;
-    case 2: return fresh ? cfg_.sigma_dgps : cfg_.sigma_single;
-    default: return cfg_.sigma_single;
+    case 4:
+      return fresh ? cfg_.sigma_rtk_fixed : cfg_.sigma_single;
+    case 5:
+      return fresh ? cfg_.sigma_rtk_float : cfg_.sigma_single;
+    case 2:
+      return fresh ? cfg_.sigma_dgps : cfg_.sigma_single;
+    default:
+      return cfg_.sigma_single;
   }
 }
 

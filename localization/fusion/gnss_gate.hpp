@@ -32,8 +32,7 @@ class GnssGate {
   // `now`: the filter's time; `predicted`, `cov`: the filter's position and its covariance at the fix;
   // `motion`: the filter's dead-reckoned displacement (map frame) since the previous fix that passed the gate's
   // quality checks. The filter resets its displacement after each call.
-  GnssCheck check(const GnssFix& fix, Stamp now, const Vec2& predicted, const Eigen::Matrix2d& cov,
-                  const Vec2& motion);
+  GnssCheck check(const GnssFix& fix, Stamp now, const Vec2& predicted, const Eigen::Matrix2d& cov, const Vec2& motion);
   void reset();
 
  private:

@@ -14,9 +14,9 @@ class HeadingInitialiser {
   explicit HeadingInitialiser(double baseline_m) : baseline_(baseline_m) {}
 
   struct Offset {
-    double yaw;            // to add to the provisional heading
-    Vec2 anchor_fix;       // the first fix ...
-    Vec2 anchor_dr;        // ... and the provisional position then: p_map = anchor_fix + R(yaw)(p − anchor_dr)
+    double yaw;       // to add to the provisional heading
+    Vec2 anchor_fix;  // the first fix ...
+    Vec2 anchor_dr;   // ... and the provisional position then: p_map = anchor_fix + R(yaw)(p − anchor_dr)
   };
   // A fix while the car moves, with the provisional position at the same instant.
   std::optional<Offset> add(const Vec2& fix, const Vec2& dr_position);

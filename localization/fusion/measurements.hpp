@@ -38,9 +38,9 @@ struct BodySpeed {
 struct GnssFix {
   Stamp t = 0;
   Vec2 position = Vec2::Zero();
-  int fix_quality = 1;  // GGA: 0 invalid, 1 single, 2 DGPS, 4 RTK fixed, 5 RTK float
-  double age_s = 0;     // differential age (0 for a single-point fix)
-  double sigma = 0;     // m per horizontal axis
+  int fix_quality = 1;         // GGA: 0 invalid, 1 single, 2 DGPS, 4 RTK fixed, 5 RTK float
+  double age_s = 0;            // differential age (0 for a single-point fix)
+  double sigma = 0;            // m per horizontal axis
   bool heading_valid = false;  // a dual-antenna heading
   double heading = 0;          // rad, ENU
 };
@@ -64,9 +64,9 @@ std::string_view to_string(Quality q);
 
 // The verdict on the latest GNSS fix.
 enum class GnssVerdict : std::uint8_t {
-  None,          // no fix seen yet
+  None,  // no fix seen yet
   Accepted,
-  DownWeighted,  // used with an inflated σ: innovation beyond the soft gate, or stale differential corrections
+  DownWeighted,        // used with an inflated σ: innovation beyond the soft gate, or stale differential corrections
   RejectedQuality,     // fix quality below the configured minimum
   RejectedStale,       // older than the filter's time by more than allowed
   RejectedInnovation,  // Mahalanobis distance beyond the gate
@@ -85,8 +85,8 @@ struct LocalizationState {
   Pose2 pose;                // map frame
   double vx = 0, vy = 0;     // body-frame velocity at the reference point
   double yaw_rate = 0;
-  double gyro_bias = 0;      // rad/s, z
-  double speed_scale = 1;    // optical sensor reading / true speed
+  double gyro_bias = 0;                                            // rad/s, z
+  double speed_scale = 1;                                          // optical sensor reading / true speed
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity() * 1e6;  // over (x, y, yaw)
   Quality quality = Quality::Lost;
   GnssVerdict gnss = GnssVerdict::None;  // the latest fix's verdict

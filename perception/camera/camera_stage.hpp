@@ -61,7 +61,7 @@ struct CameraFrameResult {
 // What `fsd classify` reports for one crop.
 struct CropVerdict {
   bool cone = false;
-  double score = 0.0;   // SVM decision value
+  double score = 0.0;  // SVM decision value
   ColourResult colour;
 };
 
@@ -71,7 +71,8 @@ class CameraStage {
   CameraStage(const CameraCalibration& calibration, ConeClassifierModel model, const CameraStageConfig& cfg = {});
 
   // `sizes` is empty or has one entry per candidate (std::invalid_argument otherwise).
-  CameraFrameResult verify(std::vector<Cone>& candidates, const cv::Mat& bgr, std::span<const CandidateSize> sizes = {});
+  CameraFrameResult verify(std::vector<Cone>& candidates, const cv::Mat& bgr,
+                           std::span<const CandidateSize> sizes = {});
 
   const CameraStageStats& stats() const { return stats_; }
   const ConeProjector& projector() const { return projector_; }

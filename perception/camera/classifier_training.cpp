@@ -43,8 +43,7 @@ ConeClassifierModel train_cone_classifier(const FeatureSet& samples, const Class
   const cv::Mat sv = svm->getSupportVectors();
   cv::Mat alpha, index;
   const double rho = svm->getDecisionFunction(0, alpha, index);
-  if (sv.rows != 1 || alpha.total() != 1)
-    throw std::logic_error("linear SVM did not compress to one support vector");
+  if (sv.rows != 1 || alpha.total() != 1) throw std::logic_error("linear SVM did not compress to one support vector");
   const double a = alpha.at<double>(0);
   ConeClassifierModel model;
   model.hog = samples.hog().parameters();
@@ -77,11 +76,12 @@ double Confusion::rejection() const {
 }
 std::string Confusion::summary() const {
   char line[256];
-  std::snprintf(line, sizeof line,
-                "accuracy %.2f %% of %zu: cones kept %zu, cones rejected %zu, non-cones rejected %zu, non-cones kept %zu "
-                "(cone recall %.2f %%, rejection %.2f %%)",
-                100 * accuracy(), total(), cones_kept, cones_rejected, others_rejected, others_kept, 100 * cone_recall(),
-                100 * rejection());
+  std::snprintf(
+      line, sizeof line,
+      "accuracy %.2f %% of %zu: cones kept %zu, cones rejected %zu, non-cones rejected %zu, non-cones kept %zu "
+      "(cone recall %.2f %%, rejection %.2f %%)",
+      100 * accuracy(), total(), cones_kept, cones_rejected, others_rejected, others_kept, 100 * cone_recall(),
+      100 * rejection());
   return line;
 }
 

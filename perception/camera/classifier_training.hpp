@@ -22,7 +22,7 @@ class FeatureSet {
   void add(const cv::Mat& roi_bgr, bool cone);
   std::size_t size() const { return labels_.size(); }
   std::size_t count(bool cone) const;
-  const cv::Mat& features() const { return features_; }   // CV_32F, one row per sample
+  const cv::Mat& features() const { return features_; }       // CV_32F, one row per sample
   const std::vector<int>& labels() const { return labels_; }  // 1 cone, 0 not a cone
   const HogFeatures& hog() const { return hog_; }
 
@@ -48,9 +48,9 @@ struct Confusion {
   std::size_t others_rejected = 0, others_kept = 0;  // not cones: rejected / accepted
   std::size_t total() const { return cones_kept + cones_rejected + others_rejected + others_kept; }
   double accuracy() const;
-  double cone_recall() const;      // share of cones kept
-  double rejection() const;        // share of non-cones rejected
-  std::string summary() const;     // one line: accuracy and the four counts
+  double cone_recall() const;   // share of cones kept
+  double rejection() const;     // share of non-cones rejected
+  std::string summary() const;  // one line: accuracy and the four counts
 };
 
 Confusion evaluate(const ConeClassifier& classifier, const FeatureSet& samples);

@@ -90,8 +90,8 @@ std::string to_text(const ConeClassifierModel& m) {
 ConeClassifier::ConeClassifier(ConeClassifierModel model, const ConeClassifierConfig& cfg)
     : model_(std::move(model)), cfg_(cfg), hog_(model_.hog) {
   if (model_.weights.size() != hog_.size())
-    throw ClassifierModelError("classifier model: " + std::to_string(model_.weights.size()) +
-                               " weights for " + std::to_string(hog_.size()) + " HOG features");
+    throw ClassifierModelError("classifier model: " + std::to_string(model_.weights.size()) + " weights for " +
+                               std::to_string(hog_.size()) + " HOG features");
 }
 
 double ConeClassifier::score(const cv::Mat& roi_bgr) const {

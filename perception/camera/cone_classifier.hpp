@@ -30,8 +30,8 @@ class ClassifierModelError : public std::runtime_error {
 
 struct ConeClassifierModel {
   HogParameters hog;
-  std::vector<double> weights;    // one per HOG feature
-  double bias = 0.0;              // score = weights · features + bias; positive: a cone
+  std::vector<double> weights;                         // one per HOG feature
+  double bias = 0.0;                                   // score = weights · features + bias; positive: a cone
   nlohmann::json training = nlohmann::json::object();  // provenance, not used for classifying
 };
 
@@ -45,7 +45,7 @@ struct ConeClassifierConfig {
   // Model file, relative to the working directory (the checkout; installed: /usr/local/share/fsd/models). The
   // daemon reads it; the classifier takes the parsed model.
   std::string model = "perception/models/cone_hog_svm.json";
-  double min_score = 0.0;         // SVM decision value at and above which an ROI is a cone
+  double min_score = 0.0;  // SVM decision value at and above which an ROI is a cone
 };
 const ConfigSection<ConeClassifierConfig>& cone_classifier_section();  // prefix "perception.camera.classifier"
 

@@ -26,10 +26,12 @@ const ConfigSection<ConeColourConfig>& cone_colour_section() {
                   "(zero on the edge).")
           .boolean("red", &ConeColourConfig::red,
                    "Name red cones (FSAC: red left boundary); off (FSG events), a red hue is read as orange.")
-          .number("orange_max", &ConeColourConfig::orange_max, 15.0, 60.0, "deg", "Hue band edge: orange below, yellow above.")
+          .number("orange_max", &ConeColourConfig::orange_max, 15.0, 60.0, "deg",
+                  "Hue band edge: orange below, yellow above.")
           .number("yellow_max", &ConeColourConfig::yellow_max, 40.0, 100.0, "deg",
                   "Hue band edge: yellow below, green (no cone colour) above.")
-          .number("blue_min", &ConeColourConfig::blue_min, 100.0, 220.0, "deg", "Hue band edge: green below, blue above.")
+          .number("blue_min", &ConeColourConfig::blue_min, 100.0, 220.0, "deg",
+                  "Hue band edge: green below, blue above.")
           .number("blue_max", &ConeColourConfig::blue_max, 220.0, 300.0, "deg",
                   "Hue band edge: blue below, purple (no cone colour) above.")
           .number("red_min", &ConeColourConfig::red_min, 280.0, 360.0, "deg", "Hue band edge: purple below, red above.")
@@ -124,10 +126,10 @@ void normalise_white(cv::Mat& bgr, const ConeColourConfig& cfg) {
 
 // The working image's pixels as the vote needs them.
 struct Pixels {
-  cv::Mat H, S, V;        // CV_32F: degrees, 0..1, 0..1
-  cv::Mat clipped;        // CV_8U: some channel at the sensor's limit, so the hue is off
-  cv::Mat prior;          // CV_8U: the silhouette prior
-  cv::Mat band;           // CV_8S: hue band of the cone cluster's voting pixels, -1 elsewhere
+  cv::Mat H, S, V;  // CV_32F: degrees, 0..1, 0..1
+  cv::Mat clipped;  // CV_8U: some channel at the sensor's limit, so the hue is off
+  cv::Mat prior;    // CV_8U: the silhouette prior
+  cv::Mat band;     // CV_8S: hue band of the cone cluster's voting pixels, -1 elsewhere
 };
 
 // Rows of the cone's axis, bottom to top, as body paint (B), white stripe (W) or neither (N); counts the white runs
@@ -166,7 +168,9 @@ int stripes_on_axis(const Pixels& px, int winner, const ConeColourConfig& cfg) {
       }
   if (columns.size() < 8 || bottom - top < 8) return 0;
   std::sort(columns.begin(), columns.end());
-  const auto at = [&](double q) { return columns[static_cast<std::size_t>(q * static_cast<double>(columns.size() - 1))]; };
+  const auto at = [&](double q) {
+    return columns[static_cast<std::size_t>(q * static_cast<double>(columns.size() - 1))];
+  };
   const int axis = at(0.5), half = std::max(1, static_cast<int>(std::lround(0.1 * (at(0.9) - at(0.1)))));
   std::nth_element(body_value.begin(), body_value.begin() + static_cast<long>(body_value.size() / 2), body_value.end());
   const float white_value = 0.7f * body_value[body_value.size() / 2];
@@ -203,8 +207,9 @@ double paint_height(const Pixels& px, int winner, const ConeView& v) {
 ConeColourClassifier::ConeColourClassifier(const ConeColourConfig& cfg) : cfg_(cfg) {
   if (!(cfg.red_max <= cfg.orange_max && cfg.orange_max <= cfg.yellow_max && cfg.yellow_max <= cfg.blue_min &&
         cfg.blue_min <= cfg.blue_max && cfg.blue_max <= cfg.red_min))
-    throw std::invalid_argument("cone colour: hue band edges must rise: red_max ≤ orange_max ≤ yellow_max ≤ "
-                                "blue_min ≤ blue_max ≤ red_min");
+    throw std::invalid_argument(
+        "cone colour: hue band edges must rise: red_max ≤ orange_max ≤ yellow_max ≤ "
+        "blue_min ≤ blue_max ≤ red_min");
 }
 
 ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint) const {
@@ -291,9 +296,12 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
       if (unclipped) ++tiers[kUnclipped][b];
       if (unclipped && interior.at<std::uint8_t>(r, c)) ++tiers[kTrusted][b];
     }
-  const auto cone_sum = [](const std::array<int, kBandCount>& v) { return std::accumulate(v.begin(), v.begin() + kConeBands, 0); };
+  const auto cone_sum = [](const std::array<int, kBandCount>& v) {
+    return std::accumulate(v.begin(), v.begin() + kConeBands, 0);
+  };
   int tier = kTrusted;
-  while (tier < kAll && cone_sum(tiers[static_cast<std::size_t>(tier)]) < std::max(4.0, 0.15 * cone_sum(tiers[kAll]))) ++tier;
+  while (tier < kAll && cone_sum(tiers[static_cast<std::size_t>(tier)]) < std::max(4.0, 0.15 * cone_sum(tiers[kAll])))
+    ++tier;
   const std::array<int, kBandCount>& votes = tiers[static_cast<std::size_t>(tier)];
   const std::array<int, kBandCount>& all = tiers[kAll];
   const int winner = static_cast<int>(std::max_element(votes.begin(), votes.begin() + kConeBands) - votes.begin());
@@ -302,7 +310,8 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
 
   // 4. Confidence: purity among the cone colours times coverage of the silhouette (all of the winner's pixels).
   const double purity = static_cast<double>(won) / cone_sum(votes);
-  const double coverage = static_cast<double>(all[static_cast<std::size_t>(winner)]) / std::max(1, cv::countNonZero(px.prior));
+  const double coverage =
+      static_cast<double>(all[static_cast<std::size_t>(winner)]) / std::max(1, cv::countNonZero(px.prior));
   result.best = colour_of(winner);
   result.confidence = purity * std::min(1.0, coverage / cfg_.full_coverage);
   double sx = 0, sy = 0;

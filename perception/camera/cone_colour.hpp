@@ -26,23 +26,23 @@
 namespace fsd {
 
 struct ConeColourConfig {
-  double min_saturation = 0.35;     // 0..1: pixels below have no hue worth a vote (stripes, asphalt, grey)
-  double min_value = 0.15;          // 0..1: nor darker ones
+  double min_saturation = 0.35;  // 0..1: pixels below have no hue worth a vote (stripes, asphalt, grey)
+  double min_value = 0.15;       // 0..1: nor darker ones
   // Hue bands, degrees (OpenCV's 0..180 scale is half of this): red wraps around 0.
-  double red_max = 6.0;             // red below this, orange from it (photos of orange cones reach 7°)
-  double orange_max = 41.0;         // yellow from here
-  double yellow_max = 75.0;         // green (not a cone colour) from here
-  double blue_min = 170.0;          // blue from here
-  double blue_max = 270.0;          // purple (not a cone colour) from here
-  double red_min = 330.0;           // red again from here
-  double edge_margin = 3.0;         // deg: a cone whose mean hue is this close to the edge of two cone colours is unsure
-  bool red = true;                  // name red cones (FSAC's left boundary); off: a red hue reads as orange
-  double min_confidence = 0.55;     // below: Unknown
-  double full_coverage = 0.12;      // voting pixels covering this share of the silhouette count fully
-  double big_cone_height = 0.415;   // m: an orange cone at least this tall is big orange (0.325 vs 0.505 m)
-  bool white_balance = true;        // normalise the ROI's white balance on its near-grey pixels
-  double max_white_gain = 1.25;     // bound of that correction per channel
-  int working_pixels = 1600;        // larger ROIs are shrunk to about this many pixels
+  double red_max = 6.0;            // red below this, orange from it (photos of orange cones reach 7°)
+  double orange_max = 41.0;        // yellow from here
+  double yellow_max = 75.0;        // green (not a cone colour) from here
+  double blue_min = 170.0;         // blue from here
+  double blue_max = 270.0;         // purple (not a cone colour) from here
+  double red_min = 330.0;          // red again from here
+  double edge_margin = 3.0;        // deg: a cone whose mean hue is this close to the edge of two cone colours is unsure
+  bool red = true;                 // name red cones (FSAC's left boundary); off: a red hue reads as orange
+  double min_confidence = 0.55;    // below: Unknown
+  double full_coverage = 0.12;     // voting pixels covering this share of the silhouette count fully
+  double big_cone_height = 0.415;  // m: an orange cone at least this tall is big orange (0.325 vs 0.505 m)
+  bool white_balance = true;       // normalise the ROI's white balance on its near-grey pixels
+  double max_white_gain = 1.25;    // bound of that correction per channel
+  int working_pixels = 1600;       // larger ROIs are shrunk to about this many pixels
 };
 const ConfigSection<ConeColourConfig>& cone_colour_section();  // prefix "perception.camera.colour"
 
@@ -55,11 +55,11 @@ struct ConeView {
 
 struct ColourResult {
   ConeColour colour = ConeColour::Unknown;
-  double confidence = 0.0;   // 0..1
+  double confidence = 0.0;                // 0..1
   ConeColour best = ConeColour::Unknown;  // the winning band even when not confident enough
-  double hue = 0.0;          // degrees, circular mean of the winning band's votes
-  double height = 0.0;       // m, the orange pixels' height when measured, else 0
-  int stripes = -1;          // white stripes counted on a crop of unknown scale, -1 when not counted
+  double hue = 0.0;                       // degrees, circular mean of the winning band's votes
+  double height = 0.0;                    // m, the orange pixels' height when measured, else 0
+  int stripes = -1;                       // white stripes counted on a crop of unknown scale, -1 when not counted
 };
 
 class ConeColourClassifier {

@@ -31,9 +31,9 @@ const ConfigSection<ConeProjectionConfig>& cone_projection_section() {
 }
 
 namespace {
-constexpr double kMinDepth = 0.1;        // m in front of the optical centre
-constexpr double kFieldMargin = 0.5;     // normalised coordinates this far past the image edges are not projected
-constexpr double kMinSightline = 0.05;   // m: a candidate under the camera has no line of sight
+constexpr double kMinDepth = 0.1;       // m in front of the optical centre
+constexpr double kFieldMargin = 0.5;    // normalised coordinates this far past the image edges are not projected
+constexpr double kMinSightline = 0.05;  // m: a candidate under the camera has no line of sight
 
 bool has_pinhole(const CameraCalibration& c) { return c.intrinsics.has_value() && c.extrinsics.has_value(); }
 
@@ -96,8 +96,10 @@ bool ConeProjector::project_pinhole(const Vec3& ground, cv::Size image, Candidat
   // Normalised image coordinates of the undistorted image's extent, widened so that corners a little outside still
   // project (the distortion polynomial is only meaningful near the field of view).
   const double fx = in.K(0, 0), fy = in.K(1, 1), cx = in.K(0, 2), cy = in.K(1, 2);
-  const double x_lo = (-cx) / fx - kFieldMargin * in.width / fx, x_hi = (in.width - cx) / fx + kFieldMargin * in.width / fx;
-  const double y_lo = (-cy) / fy - kFieldMargin * in.height / fy, y_hi = (in.height - cy) / fy + kFieldMargin * in.height / fy;
+  const double x_lo = (-cx) / fx - kFieldMargin * in.width / fx,
+               x_hi = (in.width - cx) / fx + kFieldMargin * in.width / fx;
+  const double y_lo = (-cy) / fy - kFieldMargin * in.height / fy,
+               y_hi = (in.height - cy) / fy + kFieldMargin * in.height / fy;
   std::vector<cv::Point3d> optical;
   for (const Vec3& p : body) {
     const Vec3 q = optical_from_body_ * p;
@@ -130,7 +132,8 @@ bool ConeProjector::project_homography(const Vec3& ground, cv::Size image, Candi
   const Vec2 sight = g - camera_ground_;
   if (sight.norm() < kMinSightline) return false;
   const Vec2 across = Vec2(-sight.y(), sight.x()).normalized() * (cfg_.roi_width / 2);
-  const auto base = ground_to_image(h, g), left = ground_to_image(h, g + across), right = ground_to_image(h, g - across);
+  const auto base = ground_to_image(h, g), left = ground_to_image(h, g + across),
+             right = ground_to_image(h, g - across);
   if (!base || !left || !right) return false;
   const cv::Point2d scale = pixel_scale(image);
   const auto px = [&](const Vec2& p) { return cv::Point2d(p.x() * scale.x, p.y() * scale.y); };

@@ -21,12 +21,13 @@
 namespace fsd {
 
 struct ConeProjectionConfig {
-  std::string model = "auto";   // auto (pinhole when intrinsics and extrinsics are known, else homography) | pinhole | homography
-  double roi_width = 0.44;      // m: the big cone's 0.285 m base, LiDAR centroid error and a margin
-  double roi_height = 0.58;     // m above the base point: the big cone's 0.505 m and a margin
-  double roi_below = 0.06;      // m below the base point: base plate, ground height error
-  double min_roi_pixels = 12;   // px: an ROI less tall than this (a far cone) is left unverified
-  double min_inside = 0.75;     // share of the ROI's area inside the image, else the candidate is left unverified
+  std::string model =
+      "auto";  // auto (pinhole when intrinsics and extrinsics are known, else homography) | pinhole | homography
+  double roi_width = 0.44;     // m: the big cone's 0.285 m base, LiDAR centroid error and a margin
+  double roi_height = 0.58;    // m above the base point: the big cone's 0.505 m and a margin
+  double roi_below = 0.06;     // m below the base point: base plate, ground height error
+  double min_roi_pixels = 12;  // px: an ROI less tall than this (a far cone) is left unverified
+  double min_inside = 0.75;    // share of the ROI's area inside the image, else the candidate is left unverified
 };
 const ConfigSection<ConeProjectionConfig>& cone_projection_section();  // prefix "perception.camera.projection"
 
@@ -34,10 +35,10 @@ enum class RoiStatus { Inside, Outside, TooSmall };
 
 struct CandidateRoi {
   RoiStatus status = RoiStatus::Outside;
-  cv::Rect2d box;           // the whole ROI in pixels; may reach past the image border
-  cv::Rect pixels;          // whole pixels of `box` (outward-rounded), not cut to the image
-  cv::Point2d base;         // pixel of the base point
-  double px_per_m = 0;      // image scale at the candidate
+  cv::Rect2d box;       // the whole ROI in pixels; may reach past the image border
+  cv::Rect pixels;      // whole pixels of `box` (outward-rounded), not cut to the image
+  cv::Point2d base;     // pixel of the base point
+  double px_per_m = 0;  // image scale at the candidate
 };
 
 class ConeProjector {

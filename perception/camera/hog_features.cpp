@@ -26,7 +26,8 @@ std::string HogParameters::check() const {
     return "window minus block must be a multiple of the stride";
   if (!in(bins, kMinBins, kMaxBins)) return "bins must be 6..18";
   if (descriptor_size() > kMaxFeatures)
-    return "the geometry gives " + std::to_string(descriptor_size()) + " features, more than " + std::to_string(kMaxFeatures);
+    return "the geometry gives " + std::to_string(descriptor_size()) + " features, more than " +
+           std::to_string(kMaxFeatures);
   return {};
 }
 

@@ -11,12 +11,12 @@ namespace fsd {
 
 // The descriptor's geometry, stored with the model: a model only applies to features of the same geometry.
 struct HogParameters {
-  int window_width = 32;   // px; a cone ROI is about 1.5 times as tall as wide
+  int window_width = 32;  // px; a cone ROI is about 1.5 times as tall as wide
   int window_height = 48;
-  int block = 16;          // px, square blocks of 2 × 2 cells
-  int stride = 8;          // px between blocks
-  int cell = 8;            // px
-  int bins = 9;            // orientation bins over 0..180°
+  int block = 16;  // px, square blocks of 2 × 2 cells
+  int stride = 8;  // px between blocks
+  int cell = 8;    // px
+  int bins = 9;    // orientation bins over 0..180°
 
   bool operator==(const HogParameters&) const = default;
   // Empty when the geometry is one HOGDescriptor accepts, else what is wrong.

@@ -19,7 +19,10 @@ TEST(Clock, RealClockIsMonotonicAndSleeps) {
 
 TEST(Clock, RealClockStopWakesSleepers) {
   RealClock c;
-  std::thread t([&] { std::this_thread::sleep_for(std::chrono::milliseconds(20)); c.stop(); });
+  std::thread t([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    c.stop();
+  });
   const Stamp t0 = c.now();
   EXPECT_FALSE(c.sleep_until(t0 + 30.0));  // would be 30 s without stop
   EXPECT_LT(c.now() - t0, 5.0);

@@ -39,8 +39,8 @@ TEST(ConfigSectionApply, SetsAndReadsEachMemberByItsKey) {
 
 TEST(ConfigSectionApply, OtherKeysAndStringsAreNotApplied) {
   Knobs k;
-  EXPECT_FALSE(knobs().apply("k.mode", 1.0, k));   // strings are never live parameters
-  EXPECT_FALSE(knobs().apply("speed", 1.0, k));    // the full dotted key only
+  EXPECT_FALSE(knobs().apply("k.mode", 1.0, k));  // strings are never live parameters
+  EXPECT_FALSE(knobs().apply("speed", 1.0, k));   // the full dotted key only
   EXPECT_FALSE(knobs().apply("other.speed", 1.0, k));
   EXPECT_EQ(k.speed, 5.0);
   EXPECT_FALSE(knobs().value("k.mode", k));

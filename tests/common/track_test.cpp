@@ -134,8 +134,8 @@ TEST(TrackLoader, AcceptsCrLfAndOptionalCovarianceColumns) {
 
 TEST(TrackLoader, ARowRepeatingAConeIsOneCone) {
   // Two rows 5 mm apart are one physical cone (the first row's role wins); 5 cm apart are two cones.
-  const Track t = parse_track(
-      "tag,x,y,direction\ncar_start,0,0,0\nyellow,3,4,0\nblue,3.005,4,0\nyellow,3.05,4,0\n", "repeat.csv");
+  const Track t =
+      parse_track("tag,x,y,direction\ncar_start,0,0,0\nyellow,3,4,0\nblue,3.005,4,0\nyellow,3.05,4,0\n", "repeat.csv");
   ASSERT_EQ(t.cones.size(), 2u);
   EXPECT_EQ(t.cones[0].role, ConeRole::Right);
   EXPECT_DOUBLE_EQ(t.cones[1].position.x(), 3.05);

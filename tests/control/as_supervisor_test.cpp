@@ -173,7 +173,7 @@ TEST(AsSupervisor, FinishedOnlyAtStandstillAfterTheFinish) {
   };
   for (int i = 0; i < 10; ++i) EXPECT_EQ(step(0.0, false).request, AsRequest::None);  // standing, not finished
   for (int i = 0; i < 10; ++i) EXPECT_EQ(step(3.0, true).request, AsRequest::None);   // finished, rolling
-  EXPECT_EQ(step(0.0, true).request, AsRequest::None);  // just stopped
+  EXPECT_EQ(step(0.0, true).request, AsRequest::None);                                // just stopped
   Supervision d;
   for (int i = 0; i < 6; ++i) d = step(0.0, true);
   EXPECT_EQ(d.request, AsRequest::Finished);

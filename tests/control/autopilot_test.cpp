@@ -56,7 +56,8 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
     if (l.role != ConeRole::Left) continue;
     const TrackCone* best = nullptr;
     for (const auto& r : track.cones)
-      if (r.role == ConeRole::Right && (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
+      if (r.role == ConeRole::Right &&
+          (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
         best = &r;
     centre.points.push_back({0.5 * (l.position + best->position), 0, 0, 0, 0});
   }
@@ -88,7 +89,8 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   const double a_lat_max = cfg.lap2.mu_margin * cfg.speed.mu * 9.81;
   double a_lat_peak = 0;
   ASSERT_NE(h.autopilot().recorded_path(), nullptr);
-  for (const auto& q : h.autopilot().recorded_path()->points) a_lat_peak = std::max(a_lat_peak, q.v * q.v * std::abs(q.kappa));
+  for (const auto& q : h.autopilot().recorded_path()->points)
+    a_lat_peak = std::max(a_lat_peak, q.v * q.v * std::abs(q.kappa));
   EXPECT_LE(a_lat_peak, a_lat_max * 1.001);
   EXPECT_GE(a_lat_peak, a_lat_max * 0.95);
   EXPECT_TRUE(h.autopilot().faults().empty());
@@ -132,8 +134,8 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
 INSTANTIATE_TEST_SUITE_P(SharedLoops, TrackdriveOnEveryLoop,
                          ::testing::Values("epfl_track_2", "epfl_track_3", "epfl_track_4", "epfl_track_5",
                                            "epfl_fsds_competition_1", "epfl_fsds_competition_2",
-                                           "epfl_fsds_competition_3", "epfl_fsds_default",
-                                           "epfl_autoX_Vaudoise_Sponso", "epfl_21_05_2023", "amz_fssim_thin"));
+                                           "epfl_fsds_competition_3", "epfl_fsds_default", "epfl_autoX_Vaudoise_Sponso",
+                                           "epfl_21_05_2023", "amz_fssim_thin"));
 
 }  // namespace
 }  // namespace fsd
@@ -338,17 +340,16 @@ TEST_P(EverySharedLayout, FinishesWithoutHittingCones) {
   for (const auto& f : h.autopilot().faults()) ADD_FAILURE() << f.t << " " << f.source << ": " << f.what;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AccelerationAndSkidpad, EverySharedLayout,
-    ::testing::Values(std::make_pair("epfl_acceleration_4m", Mission::Acceleration),
-                      std::make_pair("epfl_acceleration_4_5m", Mission::Acceleration),
-                      std::make_pair("epfl_acceleration_5_5m", Mission::Acceleration),
-                      std::make_pair("epfl_acceleration_large", Mission::Acceleration),
-                      std::make_pair("epfl_skidpad_v2", Mission::Skidpad),
-                      std::make_pair("epfl_skidpad_reversed", Mission::Skidpad),
-                      std::make_pair("epfl_skidpad_minimalist", Mission::Skidpad),
-                      std::make_pair("epfl_short_skidpad", Mission::Skidpad),
-                      std::make_pair("amz_fssim_skidpad", Mission::Skidpad)));
+INSTANTIATE_TEST_SUITE_P(AccelerationAndSkidpad, EverySharedLayout,
+                         ::testing::Values(std::make_pair("epfl_acceleration_4m", Mission::Acceleration),
+                                           std::make_pair("epfl_acceleration_4_5m", Mission::Acceleration),
+                                           std::make_pair("epfl_acceleration_5_5m", Mission::Acceleration),
+                                           std::make_pair("epfl_acceleration_large", Mission::Acceleration),
+                                           std::make_pair("epfl_skidpad_v2", Mission::Skidpad),
+                                           std::make_pair("epfl_skidpad_reversed", Mission::Skidpad),
+                                           std::make_pair("epfl_skidpad_minimalist", Mission::Skidpad),
+                                           std::make_pair("epfl_short_skidpad", Mission::Skidpad),
+                                           std::make_pair("amz_fssim_skidpad", Mission::Skidpad)));
 
 }  // namespace
 }  // namespace fsd

@@ -12,13 +12,13 @@ namespace fsd::test {
 
 struct BicycleSim {
   double wheelbase = 1.53;
-  double delay = 0.06;           // s, command to actuator
-  double steer_tau = 0.05;       // s, first-order steering response
-  double steer_rate = 1.5;       // rad/s
-  double max_steer = 0.5;        // rad
+  double delay = 0.06;              // s, command to actuator
+  double steer_tau = 0.05;          // s, first-order steering response
+  double steer_rate = 1.5;          // rad/s
+  double max_steer = 0.5;           // rad
   double accel = 5.0, brake = 8.0;  // m/s²
-  double speed_gain = 3.0;       // 1/s, speed loop
-  double dt = 0.005;             // s, integration step
+  double speed_gain = 3.0;          // 1/s, speed loop
+  double dt = 0.005;                // s, integration step
 
   double t = 0;
   Pose2 pose;

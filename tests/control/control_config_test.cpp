@@ -48,9 +48,10 @@ TEST(ControlConfig, LapTwoHasItsOwnGainsAndFrictionShare) {
   auto schema = std::make_shared<ConfigSchema>();
   describe_control(*schema);
   Config cfg(schema);
-  cfg.merge(nlohmann::json::parse(
-                R"({"control": {"follower": {"lqr_r": 5, "max_steer": 0.45}, "lap2": {"lqr_r": 0.7, "mu_margin": 0.9}}})"),
-            "test");
+  cfg.merge(
+      nlohmann::json::parse(
+          R"({"control": {"follower": {"lqr_r": 5, "max_steer": 0.45}, "lap2": {"lqr_r": 0.7, "mu_margin": 0.9}}})"),
+      "test");
   const AutopilotConfig c = read_control(cfg);
   EXPECT_DOUBLE_EQ(c.follower.lqr_r, 5.0);  // lap 1 keeps its own
   EXPECT_DOUBLE_EQ(c.lap2.mu_margin, 0.9);
@@ -75,9 +76,12 @@ TEST(ControlConfig, LiveChangeEqualsReadingTheChangedConfiguration) {
     if (v == def) v = std::max(e.min, def - 1.0);
     if (e.type == ValueType::Integer) v = std::round(v);
     Config changed = defaults;
-    if (e.type == ValueType::Boolean) changed.set(e.key, v != 0.0, "test");
-    else if (e.type == ValueType::Integer) changed.set(e.key, static_cast<long long>(v), "test");
-    else changed.set(e.key, v, "test");
+    if (e.type == ValueType::Boolean)
+      changed.set(e.key, v != 0.0, "test");
+    else if (e.type == ValueType::Integer)
+      changed.set(e.key, static_cast<long long>(v), "test");
+    else
+      changed.set(e.key, v, "test");
     AutopilotConfig live = read_control(defaults);
     ASSERT_TRUE(apply_control_param(live, e.key, v)) << e.key;
     ASSERT_NE(v, def) << e.key;

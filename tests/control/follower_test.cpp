@@ -178,7 +178,7 @@ TEST(Follower, LqrHoldsTheCarPointingIntoTheCornerByTheRearSlip) {
   fc.lqr_sideslip_gain = 0.008;
   VehicleState s;
   s.vx = 10.0;
-  const double slip = 0.008 * 10.0 * 10.0 / 20.0;  // 0.04 rad
+  const double slip = 0.008 * 10.0 * 10.0 / 20.0;     // 0.04 rad
   s.pose = {20.0, 0.0, std::numbers::pi / 2 + slip};  // on the circle at angle 0, heading along it (+y) plus slip
   const double ff = std::atan(fc.wheelbase / 20.0);
   EXPECT_NEAR(PathFollower(fc).follow(circle, s, 0, 30.0).command.steering, ff, 2e-3);

@@ -36,8 +36,10 @@ Track variant_of(Track track, Variant v) {
     std::bernoulli_distribution swap(0.1);
     for (auto& c : track.cones) {
       if (!swap(rng)) continue;
-      if (c.colour == track.convention.left) c.colour = track.convention.right;
-      else if (c.colour == track.convention.right) c.colour = track.convention.left;
+      if (c.colour == track.convention.left)
+        c.colour = track.convention.right;
+      else if (c.colour == track.convention.right)
+        c.colour = track.convention.left;
     }
   }
   return track;
@@ -131,13 +133,11 @@ TEST(MidlinePlanner, FollowsTheTrueCentreOnEverySharedTrack) {
 }
 
 TEST(MidlinePlanner, FifthOfConesMissing) {
-  for (const auto& name : test::loop_tracks())
-    run_track(name, Variant::FifthRemoved, degraded(name, 0.06));
+  for (const auto& name : test::loop_tracks()) run_track(name, Variant::FifthRemoved, degraded(name, 0.06));
 }
 
 TEST(MidlinePlanner, ColourBlind) {
-  for (const auto& name : test::loop_tracks())
-    run_track(name, Variant::ColourBlind, degraded(name, 0.03));
+  for (const auto& name : test::loop_tracks()) run_track(name, Variant::ColourBlind, degraded(name, 0.03));
 }
 
 // A tenth of the colours swapped is the hardest variant: a wrong-coloured cone at the edge of what is seen can

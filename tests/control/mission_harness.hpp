@@ -9,9 +9,9 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <set>
 #include <span>
 #include <string>
-#include <set>
 
 #include "common/track.hpp"
 #include "common/wire/nmea.hpp"
@@ -70,7 +70,10 @@ struct CycleRecord {
 class MissionHarness {
  public:
   MissionHarness(const Track& track, Mission mission, AutopilotConfig config, HarnessOptions options = {})
-      : track_(track), truth_(track), options_(options), stack_(stack_config(track, options), stack_options(mission, config, options)) {
+      : track_(track),
+        truth_(track),
+        options_(options),
+        stack_(stack_config(track, options), stack_options(mission, config, options)) {
     car_.pose = track.start;
     car_.wheelbase = config.follower.wheelbase;
     car_.max_steer = config.follower.max_steer;
@@ -97,8 +100,8 @@ class MissionHarness {
       const std::string nmea = nmea_epoch(t, options_.gnss_good(t));
       stack_.feed({RawChannel::Nmea, t, std::span(reinterpret_cast<const std::uint8_t*>(nmea.data()), nmea.size())});
       // The truth: the state (with the planner stall), and the ideal detector's scan at 10 Hz while the LiDAR lives.
-      const auto state = encode_truth_state({car_.state(), options_.planner_stalled(t),
-                                             static_cast<std::uint32_t>(hit_.size()), vcu_.as_state});
+      const auto state = encode_truth_state(
+          {car_.state(), options_.planner_stalled(t), static_cast<std::uint32_t>(hit_.size()), vcu_.as_state});
       stack_.feed({RawChannel::TruthState, t, state});
       if (t + 1e-9 >= next_perception) {
         next_perception += options_.perception_period;
@@ -123,8 +126,8 @@ class MissionHarness {
         count_hits();
       }
       if (outside) moved_outside_ += (car_.pose.position() - before).norm();
-      records_.push_back({t, car_.pose.position(), car_.v, truth_.centre_distance(car_.pose.position()),
-                          out.source, static_cast<int>(laps_.size())});
+      records_.push_back({t, car_.pose.position(), car_.v, truth_.centre_distance(car_.pose.position()), out.source,
+                          static_cast<int>(laps_.size())});
       const bool done_state = vcu_.as_state == AsState::Finished || vcu_.as_state == AsState::Emergency;
       if (done_state && car_.v < 0.01) break;
     }
@@ -225,11 +228,12 @@ class MissionHarness {
   std::string nmea_epoch(double t, bool good) const {
     const auto lat = nmea::format_latitude(kLat, 6), lon = nmea::format_longitude(kLon, 6);
     const std::string hhmmss = nmea::format_time_of_day(36000.0 + t, 2);
-    std::string out = nmea::build("GPGGA", std::vector<std::string>{hhmmss, lat.value, lat.hemisphere, lon.value,
-                                                                    lon.hemisphere, good ? "4" : "1", "12", "0.80",
-                                                                    "400.000", "M", "0.000", "M", good ? "0.5" : "",
-                                                                    good ? "0000" : ""});
-    const double north_deg = std::fmod(std::fmod(90.0 - car_.pose.yaw * 180.0 / std::numbers::pi, 360.0) + 360.0, 360.0);
+    std::string out =
+        nmea::build("GPGGA", std::vector<std::string>{hhmmss, lat.value, lat.hemisphere, lon.value, lon.hemisphere,
+                                                      good ? "4" : "1", "12", "0.80", "400.000", "M", "0.000", "M",
+                                                      good ? "0.5" : "", good ? "0000" : ""});
+    const double north_deg =
+        std::fmod(std::fmod(90.0 - car_.pose.yaw * 180.0 / std::numbers::pi, 360.0) + 360.0, 360.0);
     out += nmea::build("GPHDT", std::vector<std::string>{nmea::format_fixed(north_deg, 3), "T"});
     return out;
   }

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <numbers>
-#include <tuple>
 #include <random>
+#include <tuple>
 
 #include "control/recorded_trajectory.hpp"
 #include "tests/control/track_truth.hpp"
@@ -90,7 +90,8 @@ TEST(RecordedTrajectory, RecentringInABendTakesTheMiddleBetweenTheBoundaryLines)
   const double pi = std::numbers::pi;
   std::vector<Vec2> inner, outer;
   std::vector<Cone> cones;
-  for (const auto& [r, colour, out] : {std::tuple{8.0, ConeColour::Blue, &inner}, std::tuple{12.0, ConeColour::Yellow, &outer}}) {
+  for (const auto& [r, colour, out] :
+       {std::tuple{8.0, ConeColour::Blue, &inner}, std::tuple{12.0, ConeColour::Yellow, &outer}}) {
     const int n = static_cast<int>(std::round(2 * pi * r / 5.0));
     for (int k = 0; k < n; ++k) {
       const Vec2 q = r * Vec2(std::cos(2 * pi * k / n), std::sin(2 * pi * k / n));
@@ -103,7 +104,8 @@ TEST(RecordedTrajectory, RecentringInABendTakesTheMiddleBetweenTheBoundaryLines)
   }
   Path p;
   p.closed = true;
-  for (int i = 0; i < 400; ++i) p.points.push_back({10.6 * Vec2(std::cos(2 * pi * i / 400), std::sin(2 * pi * i / 400)), 0, 0, 0, 0});
+  for (int i = 0; i < 400; ++i)
+    p.points.push_back({10.6 * Vec2(std::cos(2 * pi * i / 400), std::sin(2 * pi * i / 400)), 0, 0, 0, 0});
   compute_geometry(p);
   recentre_on_cones(p, cones, ColourConvention{}, 4.0);
   for (const auto& q : p.points) {
@@ -137,7 +139,8 @@ TEST(RecordedTrajectory, RecentringRoundACornerFollowsTheCentreLineNotTheNearest
   for (double y = -2; y <= 26; y += 4) cone(4.2, y, ConeColour::Yellow);
   Path p;
   for (double x = -16; x < 0.5; x += 0.1) p.points.push_back({Vec2(x, -0.5), 0, 0, 0, 0});
-  for (double a = -std::numbers::pi / 2; a < 0; a += 0.05) p.points.push_back({Vec2(0.5, 1.5) + 2.0 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double a = -std::numbers::pi / 2; a < 0; a += 0.05)
+    p.points.push_back({Vec2(0.5, 1.5) + 2.0 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
   for (double y = 1.5; y <= 18; y += 0.1) p.points.push_back({Vec2(2.5, y), 0, 0, 0, 0});
   compute_geometry(p);
   auto centre_distance = [](const Vec2& q) {
@@ -167,7 +170,7 @@ TEST(RecordedTrajectory, ALapThatDoesNotCloseIsRefused) {
 TEST(RecordedTrajectory, KeepsOnePosePerSpacing) {
   RecordedTrajectory rec;
   for (int i = 0; i < 1000; ++i) rec.record(at(0.001 * i, Vec2(0.001 * i, 0)));  // 1 m in 1 mm steps
-  EXPECT_EQ(rec.size(), 4u);  // 0, 0.3, 0.6, 0.9
+  EXPECT_EQ(rec.size(), 4u);                                                     // 0, 0.3, 0.6, 0.9
 }
 
 }  // namespace

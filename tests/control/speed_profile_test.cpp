@@ -47,7 +47,7 @@ TEST(SpeedProfile, BrakingBeforeATightCorner) {
   const double mu = 1.2, brake = 6.0;  // braking below μg, so the brakes limit, not the tyres
   SpeedProfile(limits(mu, 4, brake, 25)).apply(p, 25, 100);
   const double vc = std::sqrt(mu * 9.81 * r);  // 7.67 m/s
-  for (int i = 0; i <= 580; ++i) {  // from 2 m before the arc backwards
+  for (int i = 0; i <= 580; ++i) {             // from 2 m before the arc backwards
     const double d = 60.0 - i * ds;
     const double expected = std::min(25.0, std::sqrt(vc * vc + 2 * brake * d));
     EXPECT_NEAR(p.points[static_cast<std::size_t>(i)].v, expected, 0.08) << "d = " << d;
@@ -116,7 +116,7 @@ TEST(SpeedProfile, SteeringRateCapsTheSpeedThroughAnSBend) {
   const double ds = 0.05;
   auto kappa_at = [](double s) {
     if (s < 30.0) return 0.0;
-    if (s < 32.0) return 0.1 * (s - 30.0);  // into the left bend
+    if (s < 32.0) return 0.1 * (s - 30.0);        // into the left bend
     if (s < 36.0) return 0.2 - 0.1 * (s - 32.0);  // the flick: dκ/ds = -0.1 1/m²
     if (s < 38.0) return -0.2 + 0.1 * (s - 36.0);
     return 0.0;

@@ -29,7 +29,8 @@ struct Hairpin {
     for (int k = 0; k <= 5; ++k) cones.push_back(c + r_out * Vec2(std::cos(k * kPi / 5), std::sin(k * kPi / 5)));
     Path raw;
     for (double y = start_y; y < c.y(); y += 0.25) raw.points.push_back({Vec2(c.x() + rm, y), 0, 0, 0, 0});
-    for (double a = 0; a < kPi; a += 0.25 / rm) raw.points.push_back({c + rm * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+    for (double a = 0; a < kPi; a += 0.25 / rm)
+      raw.points.push_back({c + rm * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
     for (double y = c.y(); y > c.y() - 12; y -= 0.25) raw.points.push_back({Vec2(c.x() - rm, y), 0, 0, 0, 0});
     compute_geometry(raw);
     midline = smooth_path(raw, 0.25, 5.0);
@@ -137,15 +138,19 @@ TEST(TightTurn, EveryHairpinOfAClosedLapIsShaped) {
     for (double x : {1.5, 4.5, -1.5, -4.5}) cones.push_back({x, y});
   for (const double cy : {0.0, 30.0}) {
     const double a0 = cy > 0 ? 0.0 : kPi;
-    for (int k = 1; k < 4; ++k) cones.push_back(Vec2(0, cy) + 1.5 * Vec2(std::cos(a0 + k * kPi / 4), std::sin(a0 + k * kPi / 4)));
-    for (int k = 1; k < 5; ++k) cones.push_back(Vec2(0, cy) + 4.5 * Vec2(std::cos(a0 + k * kPi / 5), std::sin(a0 + k * kPi / 5)));
+    for (int k = 1; k < 4; ++k)
+      cones.push_back(Vec2(0, cy) + 1.5 * Vec2(std::cos(a0 + k * kPi / 4), std::sin(a0 + k * kPi / 4)));
+    for (int k = 1; k < 5; ++k)
+      cones.push_back(Vec2(0, cy) + 4.5 * Vec2(std::cos(a0 + k * kPi / 5), std::sin(a0 + k * kPi / 5)));
   }
   Path raw;
   raw.closed = true;
   for (double y = 0; y < 30; y += 0.25) raw.points.push_back({Vec2(3, y), 0, 0, 0, 0});
-  for (double a = 0; a < kPi; a += 0.25 / 3) raw.points.push_back({Vec2(0, 30) + 3 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double a = 0; a < kPi; a += 0.25 / 3)
+    raw.points.push_back({Vec2(0, 30) + 3 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
   for (double y = 30; y > 0; y -= 0.25) raw.points.push_back({Vec2(-3, y), 0, 0, 0, 0});
-  for (double a = kPi; a < 2 * kPi; a += 0.25 / 3) raw.points.push_back({3 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double a = kPi; a < 2 * kPi; a += 0.25 / 3)
+    raw.points.push_back({3 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
   compute_geometry(raw);
   Path lap = smooth_path(raw, 0.25, 12.0);
   lap.closed = true;
@@ -190,9 +195,11 @@ TEST(TightTurn, AHairpinIntoABendTheOtherWayRejoinsWithinTheLock) {
   Path raw;
   const double rm = 3.0;
   for (double y = 9; y < h.c.y(); y += 0.25) raw.points.push_back({Vec2(rm, y), 0, 0, 0, 0});
-  for (double a = 0; a < kPi; a += 0.25 / rm) raw.points.push_back({h.c + rm * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double a = 0; a < kPi; a += 0.25 / rm)
+    raw.points.push_back({h.c + rm * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
   for (double y = h.c.y(); y > bend.y(); y -= 0.25) raw.points.push_back({Vec2(-rm, y), 0, 0, 0, 0});
-  for (double a = 0; a > -kPi / 2; a -= 0.25 / 4.0) raw.points.push_back({bend + 4.0 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
+  for (double a = 0; a > -kPi / 2; a -= 0.25 / 4.0)
+    raw.points.push_back({bend + 4.0 * Vec2(std::cos(a), std::sin(a)), 0, 0, 0, 0});
   for (double x = bend.x(); x > -30; x -= 0.25) raw.points.push_back({Vec2(x, bend.y() - 4.0), 0, 0, 0, 0});
   compute_geometry(raw);
   Path line = smooth_path(raw, 0.25, 5.0);

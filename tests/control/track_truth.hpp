@@ -109,10 +109,21 @@ class TrackTruth {
 };
 
 inline const std::vector<std::string>& loop_tracks() {
-  static const std::vector<std::string> names{
-      "epfl_track_1", "epfl_track_2", "epfl_track_3", "epfl_track_4", "epfl_track_5",
-      "epfl_fsds_competition_1", "epfl_fsds_competition_2", "epfl_fsds_competition_3", "epfl_fsds_default",
-      "epfl_VSV", "epfl_VSV_XL", "epfl_VSV_XS", "epfl_autoX_Vaudoise_Sponso", "epfl_21_05_2023", "amz_fssim_thin"};
+  static const std::vector<std::string> names{"epfl_track_1",
+                                              "epfl_track_2",
+                                              "epfl_track_3",
+                                              "epfl_track_4",
+                                              "epfl_track_5",
+                                              "epfl_fsds_competition_1",
+                                              "epfl_fsds_competition_2",
+                                              "epfl_fsds_competition_3",
+                                              "epfl_fsds_default",
+                                              "epfl_VSV",
+                                              "epfl_VSV_XL",
+                                              "epfl_VSV_XS",
+                                              "epfl_autoX_Vaudoise_Sponso",
+                                              "epfl_21_05_2023",
+                                              "amz_fssim_thin"};
   return names;
 }
 

@@ -80,11 +80,16 @@ const std::vector<TrackCase>& cases() {
 const char* mission_of(Kind k) {
   switch (k) {
     case Kind::Loop:
-    case Kind::Open: return "trackdrive";
-    case Kind::Autocross: return "autocross";
-    case Kind::Acceleration: return "acceleration";
-    case Kind::EbsTest: return "ebs_test";
-    case Kind::Skidpad: return "skidpad";
+    case Kind::Open:
+      return "trackdrive";
+    case Kind::Autocross:
+      return "autocross";
+    case Kind::Acceleration:
+      return "acceleration";
+    case Kind::EbsTest:
+      return "ebs_test";
+    case Kind::Skidpad:
+      return "skidpad";
   }
   return "trackdrive";
 }
@@ -181,11 +186,11 @@ TEST_P(AllTracks, CompletesItsMission) {
   const int rc = d.rc;
   const std::string& log = d.log;
   const auto& laps = r["laps"];
-  std::string line = std::string(c.name) + " " + mission_of(c.kind) + ": cones hit " + r["cones_hit"].dump() +
-                     ", AS " + r["as_state"].get<std::string>() + ", sim " + r["sim_time_s"].dump() + " s";
+  std::string line = std::string(c.name) + " " + mission_of(c.kind) + ": cones hit " + r["cones_hit"].dump() + ", AS " +
+                     r["as_state"].get<std::string>() + ", sim " + r["sim_time_s"].dump() + " s";
   for (const auto& l : laps)
-    line += " | lap " + l["lap"].dump() + " " + l["time_s"].dump() + " s, CTE rms " + l["cte_rms_m"].dump() +
-            " max " + l["cte_max_m"].dump();
+    line += " | lap " + l["lap"].dump() + " " + l["time_s"].dump() + " s, CTE rms " + l["cte_rms_m"].dump() + " max " +
+            l["cte_max_m"].dump();
   std::printf("%s\n", line.c_str());
 
   EXPECT_EQ(r["mission"], mission_of(c.kind));
@@ -211,12 +216,16 @@ TEST_P(AllTracks, CompletesItsMission) {
   EXPECT_TRUE(r["finished"]);
   EXPECT_EQ(r["as_state"], "Finished");
   switch (c.kind) {
-    case Kind::Loop: ASSERT_EQ(laps.size(), 2u); break;
+    case Kind::Loop:
+      ASSERT_EQ(laps.size(), 2u);
+      break;
     case Kind::Open:
       EXPECT_EQ(r["layout"], "open");
       ASSERT_EQ(laps.size(), 1u);
       break;
-    case Kind::Autocross: ASSERT_EQ(laps.size(), 1u); break;
+    case Kind::Autocross:
+      ASSERT_EQ(laps.size(), 1u);
+      break;
     case Kind::Acceleration:
       ASSERT_EQ(laps.size(), 1u);
       // From a standing start ≤ 5 m before the line at a = µg ≈ 11.8 m/s², 75 m take at least 2.6 s.
@@ -231,7 +240,8 @@ TEST_P(AllTracks, CompletesItsMission) {
         EXPECT_LE(l["cte_max_m"].get<double>(), kLap2CteMax);
       }
       break;
-    default: break;
+    default:
+      break;
   }
   if (c.kind != Kind::Loop) return;
 
@@ -246,8 +256,8 @@ TEST_P(AllTracks, CompletesItsMission) {
                    v["v_max"].get<double>()};
   ASSERT_GT(lim.mu, 0.0);
   const double reference = friction_limited_lap_time(read_cones(file), lim);
-  std::printf("%s: lap 2 %.3f s, friction-limited %.3f s (%+.1f %%)\n", c.name, l2["time_s"].get<double>(),
-              reference, 100.0 * (l2["time_s"].get<double>() / reference - 1.0));
+  std::printf("%s: lap 2 %.3f s, friction-limited %.3f s (%+.1f %%)\n", c.name, l2["time_s"].get<double>(), reference,
+              100.0 * (l2["time_s"].get<double>() / reference - 1.0));
   EXPECT_LE(l2["time_s"].get<double>(), (1.0 + kLap2Margin) * reference);
   // Much faster than the friction limit would mean the reference or the timing is wrong.
   EXPECT_GE(l2["time_s"].get<double>(), 0.85 * reference);

@@ -58,7 +58,8 @@ std::vector<Crop> rendered_cone_crops(std::size_t wanted) {
     for (const auto& c : f.candidates) {
       if (!c.is_cone || c.visible_fraction < 0.95 || c.truncated || c.range < 4 || c.range > 10) continue;
       const int mx = c.truth_box.width / 5, my = c.truth_box.height / 8;
-      const cv::Rect box = (c.truth_box + cv::Size(2 * mx, 2 * my) - cv::Point(mx, my)) & cv::Rect(0, 0, f.bgr.cols, f.bgr.rows);
+      const cv::Rect box =
+          (c.truth_box + cv::Size(2 * mx, 2 * my) - cv::Point(mx, my)) & cv::Rect(0, 0, f.bgr.cols, f.bgr.rows);
       if (crops.size() < wanted) crops.push_back({f.bgr(box).clone(), c.colour});
     }
   });
@@ -107,8 +108,8 @@ TEST_F(ClassifyCommand, BadImagesExitTwoWithAMessage) {
   cv::imencode(".jpg", cv::Mat(64, 48, CV_8UC3, cv::Scalar(30, 80, 200)), jpeg);
   std::ofstream(truncated, std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()), 40);
   // A PNG header claiming 30000 x 30000 px (a decompression bomb): refused before decoding.
-  const unsigned char bomb[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
-                                0, 0, 0x75, 0x30, 0, 0, 0x75, 0x30, 8, 2, 0, 0, 0, 0, 0, 0, 0};
+  const unsigned char bomb[] = {0x89, 'P',  'N',  'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R', 0,
+                                0,    0x75, 0x30, 0,   0,    0x75, 0x30, 8,    2, 0, 0, 0,  0,   0,   0,   0};
   std::ofstream(huge, std::ios::binary).write(reinterpret_cast<const char*>(bomb), sizeof bomb);
   const struct {
     fs::path file;
@@ -157,8 +158,10 @@ TEST_F(TrainClassifierCommand, IsReproducibleAndPrintsItsAccuracy) {
     cv::Mat ground(crops[i].bgr.size(), CV_8UC3, cv::Scalar(90 + 3 * static_cast<double>(i), 92, 95));
     cv::imwrite((real / "not_cone" / numbered("g", i, ".jpg")).string(), ground);
   }
-  const std::string args = "train-classifier --frames 3 --seed 5 --track ../shared/tracks/epfl_track_2.csv "
-                           "--track ../shared/tracks/amz_fssim_thin.csv --real " + real.string();
+  const std::string args =
+      "train-classifier --frames 3 --seed 5 --track ../shared/tracks/epfl_track_2.csv "
+      "--track ../shared/tracks/amz_fssim_thin.csv --real " +
+      real.string();
   const Result a = fsd(args + " --out " + (dir_ / "a.json").string());
   const Result b = fsd(args + " --out " + (dir_ / "b.json").string());
   ASSERT_EQ(a.status, 0) << a.out;

@@ -24,7 +24,7 @@ struct Count {
 struct Measured {
   std::map<std::string, Count> kept_by_kind;  // SVM accepts the clean candidate's ROI
   Count cones_kept, others_rejected;
-  Count colour_12m, colour_12m_unhinted;       // verified true cones within 12 m with the right colour
+  Count colour_12m, colour_12m_unhinted;  // verified true cones within 12 m with the right colour
   std::map<ConeColour, Count> colour_by_truth;
   std::size_t unknown_12m = 0, wrong_12m = 0, frames = 0;
 };
@@ -38,7 +38,7 @@ const Measured& measured() {
                   "../shared/tracks/epfl_autoX_Vaudoise_Sponso.csv", "../shared/tracks/amz_fssim_skidpad.csv"};
     cfg.frames_per_track = 20;
     cfg.frames_per_camera = 5;  // 16 cameras
-    cfg.seed = 90210;  // the shipped model was trained with seed 1
+    cfg.seed = 90210;           // the shipped model was trained with seed 1
     render_camera_scenes(cfg, [&](const RenderedFrame& f) {
       ++m.frames;
       const ConeClassifier classifier(model);
@@ -77,9 +77,10 @@ const Measured& measured() {
     std::printf("  %zu frames; SVM on clean candidates:\n", m.frames);
     for (const auto& [kind, k] : m.kept_by_kind)
       std::printf("    %-10s kept %4zu of %4zu (%.1f %%)\n", kind.c_str(), k.hit, k.n, 100 * k.share());
-    std::printf("  colour within 12 m: %zu of %zu right (%.2f %%; %zu unknown, %zu wrong); without the LiDAR size %.2f %%\n",
-                m.colour_12m.hit, m.colour_12m.n, 100 * m.colour_12m.share(), m.unknown_12m, m.wrong_12m,
-                100 * m.colour_12m_unhinted.share());
+    std::printf(
+        "  colour within 12 m: %zu of %zu right (%.2f %%; %zu unknown, %zu wrong); without the LiDAR size %.2f %%\n",
+        m.colour_12m.hit, m.colour_12m.n, 100 * m.colour_12m.share(), m.unknown_12m, m.wrong_12m,
+        100 * m.colour_12m_unhinted.share());
     for (const auto& [colour, c] : m.colour_by_truth)
       std::printf("    %-10s %4zu of %4zu\n", std::string(to_string(colour)).c_str(), c.hit, c.n);
     return m;

@@ -55,8 +55,7 @@ TEST(Cli, ConfigurationDocsListEveryKey) {
   std::ifstream f("docs/configuration.md");
   ASSERT_TRUE(f);
   const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  EXPECT_NE(doc.find(config_schema()->markdown()), std::string::npos)
-      << "regenerate the table with: fsd config doc";
+  EXPECT_NE(doc.find(config_schema()->markdown()), std::string::npos) << "regenerate the table with: fsd config doc";
 }
 
 TEST(Cli, ConfigCheckNamesTheBadKey) {
@@ -73,11 +72,10 @@ TEST(Cli, ConfigCheckListsEveryError) {
   std::ofstream(path) << R"({"run": {"laps": 0, "mission": "drag_race", "bogus": 1}, "nope": {"x": 1}})";
   const auto r = run("config check " + path);
   EXPECT_EQ(r.status, 2);
-  for (const char* why : {"key 'run.laps': value 0 out of range", "key 'run.mission'", "unknown key 'run.bogus'",
-                          "unknown key 'nope'"})
+  for (const char* why :
+       {"key 'run.laps': value 0 out of range", "key 'run.mission'", "unknown key 'run.bogus'", "unknown key 'nope'"})
     EXPECT_NE(r.out.find(why), std::string::npos) << why << " in\n" << r.out;
 }
-
 
 // A desk run's dashboard stays on the machine; a configuration file that sets web.bind is obeyed.
 TEST(Cli, TheVirtualCarsDashboardBindsTheLoopbackUnlessConfigured) {

@@ -47,12 +47,15 @@ inline std::uint32_t u32_le(const std::string& b, std::size_t at) {
 }
 
 // The next message-data payload of subscription `sub` (skipping others), parsed.
-inline std::optional<json> next_on(WsClient& c, std::uint32_t sub, std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+inline std::optional<json> next_on(WsClient& c, std::uint32_t sub,
+                                   std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < until) {
-    const auto m = c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
+    const auto m =
+        c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
     if (!m) return std::nullopt;
-    if (m->size() > 13 && static_cast<std::uint8_t>((*m)[0]) == 0x01 && u32_le(*m, 1) == sub) return json::parse(m->substr(13));
+    if (m->size() > 13 && static_cast<std::uint8_t>((*m)[0]) == 0x01 && u32_le(*m, 1) == sub)
+      return json::parse(m->substr(13));
   }
   return std::nullopt;
 }
@@ -60,15 +63,17 @@ inline std::optional<json> next_on(WsClient& c, std::uint32_t sub, std::chrono::
 // The first message-data payload of each subscription in `subs`, whatever order they arrive in (a message of one
 // must not be lost while waiting for another: a short run may send each only once).
 inline std::map<std::uint32_t, json> first_on_each(WsClient& c, const std::vector<std::uint32_t>& subs,
-                                            std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+                                                   std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
   std::map<std::uint32_t, json> out;
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (out.size() < subs.size() && std::chrono::steady_clock::now() < until) {
-    const auto m = c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
+    const auto m =
+        c.next_binary(std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()));
     if (!m) break;
     if (m->size() <= 13 || static_cast<std::uint8_t>((*m)[0]) != 0x01) continue;
     const std::uint32_t sub = u32_le(*m, 1);
-    if (std::find(subs.begin(), subs.end(), sub) != subs.end() && !out.count(sub)) out[sub] = json::parse(m->substr(13));
+    if (std::find(subs.begin(), subs.end(), sub) != subs.end() && !out.count(sub))
+      out[sub] = json::parse(m->substr(13));
   }
   return out;
 }

@@ -40,7 +40,8 @@ TEST(DashboardView, TrailsSplitAtTheFirstLapAndStayBounded) {
   DashboardView view(Mission::Trackdrive, 2);
   const ControlOutput out;
   // One point every 10 cycles while Driving: cycles 0..99 give 10 on lap 1.
-  for (std::uint64_t c = 0; c < 100; ++c) view.on_cycle(0.01 * c, AsState::Driving, out, 0, Vec2(static_cast<double>(c), 0), c);
+  for (std::uint64_t c = 0; c < 100; ++c)
+    view.on_cycle(0.01 * c, AsState::Driving, out, 0, Vec2(static_cast<double>(c), 0), c);
   view.on_cycle(1.0, AsState::Ready, out, 0, Vec2(1, 1), 100);      // not driving: nothing kept
   view.on_cycle(1.0, AsState::Driving, out, 0, std::nullopt, 110);  // no position yet: nothing kept
   auto s = view.snapshot(1.0, AsState::Driving, out, ap, {});

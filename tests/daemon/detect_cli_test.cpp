@@ -75,8 +75,8 @@ struct SimCapture {
 SimCapture write_sim_capture() {
   using sim::test::make_cone;
   SimCapture c;
-  std::vector<TrackCone> cones{make_cone(5.0, 1.5, ConeRole::Left), make_cone(5.5, -1.5, ConeRole::Right),
-                               make_cone(9.0, 1.6, ConeRole::Left), make_cone(9.5, -1.6, ConeRole::Right),
+  std::vector<TrackCone> cones{make_cone(5.0, 1.5, ConeRole::Left),  make_cone(5.5, -1.5, ConeRole::Right),
+                               make_cone(9.0, 1.6, ConeRole::Left),  make_cone(9.5, -1.6, ConeRole::Right),
                                make_cone(14.0, 1.7, ConeRole::Left), make_cone(-3.0, 2.5, ConeRole::Right)};
   const sim::World world(sim::test::make_track(cones), sim::test::bare_config(), 3);
   const sim::LidarConfig lc;
@@ -88,8 +88,9 @@ SimCapture write_sim_capture() {
   c.pcap = test::scratch_path("sim_cones.pcap");
   sim::PcapWriter w(c.pcap);
   sim::LidarModel lidar(lc, world, 7, 1000.0);
-  lidar.advance_to(1000.25, [](Stamp) { return Pose3::Identity(); },
-                   [&](Stamp t, std::span<const std::uint8_t> p) { w.write(t, p); });
+  lidar.advance_to(
+      1000.25, [](Stamp) { return Pose3::Identity(); },
+      [&](Stamp t, std::span<const std::uint8_t> p) { w.write(t, p); });
   return c;
 }
 

@@ -40,8 +40,10 @@ FsdRun run_with_faults(const std::string& name, const json& faults, bool lidar =
   if (!faults.is_null()) cfg["sim"]["faults"] = faults;
   if (max_sim_time > 0) cfg["run"] = {{"max_sim_time", max_sim_time}};
   std::ofstream(config) << cfg.dump();
-  const std::string args = "run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv"
-                           " --laps 2 --config " + config + " --report " + out;
+  const std::string args =
+      "run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv"
+      " --laps 2 --config " +
+      config + " --report " + out;
   FsdRun r;
   r.rc = test::run_fsd(args, &r.log);
   std::ifstream f(out);
@@ -88,8 +90,8 @@ TEST(FaultInjection, GnssLostOnLapTwoRealtimePlanningTakesOverAndTheLapCompletes
   // the last good sample.
   for (const auto& [mode, delay] : {std::pair<std::string, double>{"no_fix", 0.0}, {"silent", 0.5}}) {
     SCOPED_TRACE(mode);
-    const FsdRun r = run_with_faults(
-        "gnss_" + mode, {{"gnss", {{"lap", 2}, {"at_s", 3.0}, {"duration_s", 8.0}, {"mode", mode}}}});
+    const FsdRun r =
+        run_with_faults("gnss_" + mode, {{"gnss", {{"lap", 2}, {"at_s", 3.0}, {"duration_s", 8.0}, {"mode", mode}}}});
     ASSERT_EQ(r.rc, 0) << r.log;
     const json& rep = r.report;
     EXPECT_TRUE(rep["finished"]);
@@ -161,8 +163,8 @@ TEST(FaultInjection, LidarLostForOneSecondTheCarSlowsAndRecovers) {
 TEST(FaultInjection, SilentVlp16StarvesPerceptionThroughTheScanBuilder) {
   // With the VLP-16 simulated, perception runs on complete scans: the silent sensor itself starves it. Lap 1 only
   // (22 s of simulated time: the window is at ~17.4 s) to keep the slower run short.
-  const FsdRun r = run_with_faults("lidar_on", {{"lidar", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 1.0}}}},
-                                   true, 22.0);
+  const FsdRun r =
+      run_with_faults("lidar_on", {{"lidar", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 1.0}}}}, true, 22.0);
   ASSERT_FALSE(r.report.is_null()) << r.log;
   expect_slowed_and_recovered(r);
 }

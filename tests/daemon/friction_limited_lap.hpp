@@ -31,9 +31,12 @@ inline TrueCones read_cones(const std::string& file) {
   TrueCones t;
   for (const auto& r : read_track_csv(file)) {
     const P2 p{r.x, r.y};
-    if (r.tag == "blue") t.left.push_back(p);
-    else if (r.tag == "yellow") t.right.push_back(p);
-    else if (r.tag == "car_start") t.start = p, t.yaw = r.direction;
+    if (r.tag == "blue")
+      t.left.push_back(p);
+    else if (r.tag == "yellow")
+      t.right.push_back(p);
+    else if (r.tag == "car_start")
+      t.start = p, t.yaw = r.direction;
   }
   return t;
 }
@@ -71,7 +74,8 @@ inline std::vector<P2> order_boundary(std::vector<P2> pts, P2 start, double yaw)
       for (std::size_t j = i + 1; j < n; ++j) {
         const std::size_t k = (j + 1) % n;
         if (k == i - 1) continue;
-        if (norm(out[i - 1] - out[j]) + norm(out[i] - out[k]) < norm(out[i - 1] - out[i]) + norm(out[j] - out[k]) - 1e-9) {
+        if (norm(out[i - 1] - out[j]) + norm(out[i] - out[k]) <
+            norm(out[i - 1] - out[i]) + norm(out[j] - out[k]) - 1e-9) {
           std::reverse(out.begin() + static_cast<long>(i), out.begin() + static_cast<long>(j) + 1);
           again = true;
         }

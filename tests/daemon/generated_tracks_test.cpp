@@ -100,8 +100,7 @@ Outcome drive(const Case& c) {
   o.as_state = r.value("as_state", "");
   for (const auto& l : r["laps"]) o.laps.push_back(l.value("time_s", 0.0));
   std::vector<std::string> why;
-  if (!o.finished)
-    why.push_back("not finished (" + std::to_string(o.laps.size()) + " lap(s), AS " + o.as_state + ")");
+  if (!o.finished) why.push_back("not finished (" + std::to_string(o.laps.size()) + " lap(s), AS " + o.as_state + ")");
   if (o.cones_hit != 0) {
     std::string s = std::to_string(o.cones_hit) + " cone(s) hit:";
     for (const auto& h : cone_hits(log)) s += " " + h;
@@ -126,8 +125,7 @@ std::string describe(const Outcome& o) {
   s << o.c.kind << " seed " << o.c.seed << ": " << (o.clean ? "clean" : o.reason);
   for (std::size_t i = 0; i < o.laps.size(); ++i) s << (i ? ", " : " | laps ") << o.laps[i] << " s";
   if (o.reference > 0 && o.laps.size() >= 2)
-    s << " | lap 2 vs friction-limited " << o.reference << " s: " << (100.0 * (o.laps[1] / o.reference - 1.0))
-      << " %";
+    s << " | lap 2 vs friction-limited " << o.reference << " s: " << (100.0 * (o.laps[1] / o.reference - 1.0)) << " %";
   return s.str();
 }
 
@@ -208,7 +206,8 @@ TEST(GeneratedTracksSweep, DISABLED_Full) {
   std::printf("\nFailures:\n");
   for (const auto& o : out)
     if (!o.clean) std::printf("  %s\n    reproduce: %s\n", describe(o).c_str(), o.command.c_str());
-  std::printf("\n| kind | layouts | clean | finished | with cones hit | no stop in zone |\n|---|---|---|---|---|---|\n");
+  std::printf(
+      "\n| kind | layouts | clean | finished | with cones hit | no stop in zone |\n|---|---|---|---|---|---|\n");
   std::map<std::string, std::array<int, 5>> sum;
   for (const auto& o : out) {
     auto& s = sum[o.c.kind];
@@ -220,13 +219,15 @@ TEST(GeneratedTracksSweep, DISABLED_Full) {
   }
   int all = 0, clean = 0;
   for (const auto& [k, s] : sum) {
-    std::printf("| %s | %d | %d (%.1f %%) | %d | %d | %d |\n", k.c_str(), s[0], s[1], 100.0 * s[1] / s[0], s[2], s[3], s[4]);
+    std::printf("| %s | %d | %d (%.1f %%) | %d | %d | %d |\n", k.c_str(), s[0], s[1], 100.0 * s[1] / s[0], s[2], s[3],
+                s[4]);
     all += s[0], clean += s[1];
   }
   // Lap 2 against each trackdrive layout's friction-limited reference.
   std::vector<double> ratio;
-  std::printf("\n| trackdrive seed | centre line (m) | lap 1 (s) | lap 2 (s) | reference (s) | lap 2 vs reference |\n"
-              "|---|---|---|---|---|---|\n");
+  std::printf(
+      "\n| trackdrive seed | centre line (m) | lap 1 (s) | lap 2 (s) | reference (s) | lap 2 vs reference |\n"
+      "|---|---|---|---|---|---|\n");
   for (const auto& o : out)
     if (o.c.kind == "trackdrive" && o.laps.size() >= 2 && o.reference > 0) {
       ratio.push_back(o.laps[1] / o.reference - 1.0);

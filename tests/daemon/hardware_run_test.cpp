@@ -84,8 +84,10 @@ class Fsd {
     const auto end = Clock::now() + timeout;
     while (status_ < 0 && Clock::now() < end) {
       int st = 0;
-      if (::waitpid(pid_, &st, WNOHANG) == pid_) status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-      else std::this_thread::sleep_for(20ms);
+      if (::waitpid(pid_, &st, WNOHANG) == pid_)
+        status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+      else
+        std::this_thread::sleep_for(20ms);
     }
     return status_;
   }
@@ -243,8 +245,8 @@ TEST(HardwareStats, RatesLineFromTwoSnapshots) {
 
 TEST(HardwareRun, OnlyInspectionRunsWithoutPerception) {
   EXPECT_FALSE(hardware_mission_refusal(Mission::Inspection));
-  for (Mission m : {Mission::Trackdrive, Mission::Autocross, Mission::Acceleration, Mission::Skidpad,
-                    Mission::EbsTest}) {
+  for (Mission m :
+       {Mission::Trackdrive, Mission::Autocross, Mission::Acceleration, Mission::Skidpad, Mission::EbsTest}) {
     const auto why = hardware_mission_refusal(m);
     ASSERT_TRUE(why) << to_string(m);
     EXPECT_NE(why->find("needs perception"), std::string::npos) << *why;
@@ -264,16 +266,17 @@ TEST(HardwareRun, MissionsNeedingConesAreRefusedWithExitTwo) {
 }
 
 TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
-  const std::string vcu_missing = write_file("hw_missing_vcu.json", R"({"drivers": {"vcu": {"device": "/nonexistent/ttyVCU_test"}}})");
+  const std::string vcu_missing =
+      write_file("hw_missing_vcu.json", R"({"drivers": {"vcu": {"device": "/nonexistent/ttyVCU_test"}}})");
   Fsd a({"run", "--config", vcu_missing, "--mission", "inspection"}, scratch_path("missing_vcu.log"));
   EXPECT_EQ(a.wait(20s), 2);
   EXPECT_NE(a.output().find("drivers.vcu.device: no such device '/nonexistent/ttyVCU_test'"), std::string::npos)
       << a.output();
 
   PseudoTerminal vcu;  // a VCU that is there, so the GNSS-INS device is the one found missing
-  const std::string gnss_missing = write_file(
-      "hw_missing_gnss.json", R"({"drivers": {"vcu": {"device": ")" + vcu.slave_path() +
-                                  R"("}, "gnss": {"device": "/nonexistent/ttyGNSS_test"}}})");
+  const std::string gnss_missing =
+      write_file("hw_missing_gnss.json", R"({"drivers": {"vcu": {"device": ")" + vcu.slave_path() +
+                                             R"("}, "gnss": {"device": "/nonexistent/ttyGNSS_test"}}})");
   Fsd b({"run", "--config", gnss_missing, "--mission", "inspection"}, scratch_path("missing_gnss.log"));
   EXPECT_EQ(b.wait(20s), 2);
   EXPECT_NE(b.output().find("drivers.gnss.device: no such device '/nonexistent/ttyGNSS_test'"), std::string::npos)
@@ -291,10 +294,10 @@ TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
 // on the daemon's Commands), fsd run drives it over the real transports until AS Finished.
 TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
   const int port = free_udp_port();
-  const std::string sim_cfg = write_file(
-      "hw_sim.json", R"({"sim": {"enable_camera": false,
+  const std::string sim_cfg = write_file("hw_sim.json", R"({"sim": {"enable_camera": false,
                                  "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0}},
-                         "drivers": {"vlp16": {"data_port": )" + std::to_string(port) + "}}}");
+                         "drivers": {"vlp16": {"data_port": )" +
+                                                            std::to_string(port) + "}}}");
   Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_track_1.csv", "--duration", "120"},
           scratch_path("hw_sim.log"));
   const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
@@ -333,7 +336,8 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
   EXPECT_TRUE(r["mission_succeeded"]);
   // The stand-in's state machine, as its Status frames reported it: exactly Off → Ready → Driving → Finished.
   std::vector<std::string> states;
-  for (const auto& t : r["as_transitions"]) states.push_back(t["from"].get<std::string>() + ">" + t["to"].get<std::string>());
+  for (const auto& t : r["as_transitions"])
+    states.push_back(t["from"].get<std::string>() + ">" + t["to"].get<std::string>());
   EXPECT_EQ(states, (std::vector<std::string>{"Off>Ready", "Ready>Driving", "Driving>Finished"})) << r.dump(2);
   // The RES go came ≥ ready_to_drive_s after Ready; the sweep lasted inspection_duration before the stop.
   const auto& tr = r["as_transitions"];
@@ -425,8 +429,8 @@ class Devices {
     return c;
   }
   void loop() {
-    wire::vcu::Decoder decoder({[this](const wire::vcu::Command& c, std::uint16_t) { commands_.push_back(c); },
-                                nullptr, nullptr});
+    wire::vcu::Decoder decoder(
+        {[this](const wire::vcu::Command& c, std::uint16_t) { commands_.push_back(c); }, nullptr, nullptr});
     sim::GnssModel gnss_model(sim::GnssModelConfig{}, 7);
     std::array<std::uint8_t, 1024> buf{};
     const auto t0 = Clock::now();
@@ -443,18 +447,21 @@ class Devices {
         }
         vcu_standin_.step(t, truth);
       }
-      gnss_model.advance_to(t, [](Stamp at) {
-        sim::VehicleTruth standing;
-        standing.t = at;
-        return standing;
-      }, [this](Stamp, std::span<const std::uint8_t> b) { gnss_.write(b); });
+      gnss_model.advance_to(
+          t,
+          [](Stamp at) {
+            sim::VehicleTruth standing;
+            standing.t = at;
+            return standing;
+          },
+          [this](Stamp, std::span<const std::uint8_t> b) { gnss_.write(b); });
     }
   }
 
   PseudoTerminal vcu_, gnss_;
   mutable std::mutex m_;
-  sim::VcuStandin vcu_standin_;                 // guarded by m_
-  std::vector<wire::vcu::Command> commands_;    // guarded by m_
+  sim::VcuStandin vcu_standin_;               // guarded by m_
+  std::vector<wire::vcu::Command> commands_;  // guarded by m_
   std::atomic<bool> done_{false};
   std::thread thread_;
 };
@@ -471,13 +478,14 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
     for (int k = 0; k < 10; ++k) w.write(cv::Mat(120, 160, CV_8UC3, cv::Scalar::all(20 * k)));
   }
   const int lidar_port = free_udp_port(), position_port = free_udp_port();
-  const std::string cfg = write_file(
-      "hw_sigterm.json",
-      R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() + R"("}, "gnss": {"device": ")" +
-          dev.gnss().slave_path() + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
-          std::to_string(lidar_port) + R"(, "position_port": )" + std::to_string(position_port) +
-          R"(, "mount_x": 1.5, "mount_z": 0.8, "mount_yaw": 0.1},
-                      "camera": {"enabled": true, "source": ")" + video + R"(", "width": 160, "height": 120,
+  const std::string cfg =
+      write_file("hw_sigterm.json",
+                 R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() + R"("}, "gnss": {"device": ")" +
+                     dev.gnss().slave_path() + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
+                     std::to_string(lidar_port) + R"(, "position_port": )" + std::to_string(position_port) +
+                     R"(, "mount_x": 1.5, "mount_z": 0.8, "mount_yaw": 0.1},
+                      "camera": {"enabled": true, "source": ")" +
+                     video + R"(", "width": 160, "height": 120,
                                  "fps": 20, "loop_file": true}},
           "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5},
           "web": {"bind": "127.0.0.1", "port": 0}})");
@@ -548,9 +556,8 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   const auto commands = dev.commands();
   ASSERT_GE(commands.size(), 33u);
   // The inspection sweep was under way (control.mission.inspection_speed 1 m/s) with the mission selected...
-  const auto& last_driving = *std::find_if(commands.rbegin(), commands.rend(), [](const auto& k) {
-    return k.target_speed > 0;
-  });
+  const auto& last_driving =
+      *std::find_if(commands.rbegin(), commands.rend(), [](const auto& k) { return k.target_speed > 0; });
   EXPECT_EQ(last_driving.target_speed, 1.0);
   EXPECT_FALSE(last_driving.brake_hard);
   EXPECT_EQ(last_driving.mission, Mission::Inspection);

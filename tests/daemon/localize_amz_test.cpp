@@ -57,8 +57,8 @@ double distance_between(Stamp a, Stamp b) {
 
 // The last state at or before t.
 const fusion::LocalizationState& state_at(const std::vector<fusion::LocalizationState>& s, Stamp t) {
-  const auto it = std::upper_bound(s.begin(), s.end(), t,
-                                   [](Stamp v, const fusion::LocalizationState& x) { return v < x.stamp; });
+  const auto it =
+      std::upper_bound(s.begin(), s.end(), t, [](Stamp v, const fusion::LocalizationState& x) { return v < x.stamp; });
   return it == s.begin() ? s.front() : *(it - 1);
 }
 
@@ -139,10 +139,11 @@ TEST_P(AmzOutage, TwentySecondsWithoutGnssStayWithinPointSevenPercent) {
     const Pose2 naive = naive_dead_reckoning(state_at(states, ta).pose, state_at(states, ta).stamp, end.stamp);
     const double naive_err = (naive.position() - gnss_at(end.stamp)).norm();
     const double pct = 100.0 * err / driven, naive_pct = 100.0 * naive_err / driven;
-    std::printf("[ %s ] outage %5.1f-%5.1f s: %6.1f m driven, error %5.2f m = %.2f %% (naive %5.2f m = %.2f %%), "
-                "sigma %.2f m, %s\n",
-                GetParam(), w.a, w.b, driven, err, pct, naive_err, naive_pct, end.position_sigma(),
-                std::string(fusion::to_string(end.quality)).c_str());
+    std::printf(
+        "[ %s ] outage %5.1f-%5.1f s: %6.1f m driven, error %5.2f m = %.2f %% (naive %5.2f m = %.2f %%), "
+        "sigma %.2f m, %s\n",
+        GetParam(), w.a, w.b, driven, err, pct, naive_err, naive_pct, end.position_sigma(),
+        std::string(fusion::to_string(end.quality)).c_str());
     EXPECT_LE(pct, 0.7) << "outage " << w.a << "-" << w.b << " s";
     EXPECT_NE(end.quality, fusion::Quality::Good) << "20 s of dead reckoning is flagged";
     EXPECT_LE(err, 3.0 * end.position_sigma()) << "the covariance says how good the dead-reckoned pose is";
@@ -172,8 +173,8 @@ TEST_P(AmzOutage, WithoutGnssAfterTheStart) {
   const auto& end = state_at(states, t_end);
   const double driven = distance_between(t0 + a, t_end);
   const double err = (end.pose.position() - gnss_at(end.stamp)).norm();
-  std::printf("[ %s ] no GNSS from %.1f s: %.1f m driven, final error %.2f m = %.2f %%, sigma %.2f m, %s\n",
-              GetParam(), a, driven, err, 100.0 * err / driven, end.position_sigma(),
+  std::printf("[ %s ] no GNSS from %.1f s: %.1f m driven, final error %.2f m = %.2f %%, sigma %.2f m, %s\n", GetParam(),
+              a, driven, err, 100.0 * err / driven, end.position_sigma(),
               std::string(fusion::to_string(end.quality)).c_str());
   EXPECT_GT(driven, 600.0);
   EXPECT_LT(err, 0.03 * driven);

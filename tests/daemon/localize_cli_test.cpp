@@ -56,10 +56,10 @@ TEST(LocalizeCli, WritesTheTrajectoryInTheFirstFixEnuFrame) {
   for (const std::string filter : {"ekf", "complementary"}) {
     const std::string out = test::scratch_path("traj_" + filter + ".csv");
     std::string text;
-    ASSERT_EQ(test::run_fsd(args(kDir + "imu.csv", "--wheels " + kDir + "wheel_rpm.csv --filter " + filter +
-                                                       " --out " + out),
-                            &text),
-              0)
+    ASSERT_EQ(
+        test::run_fsd(args(kDir + "imu.csv", "--wheels " + kDir + "wheel_rpm.csv --filter " + filter + " --out " + out),
+                      &text),
+        0)
         << text;
     std::string header;
     const auto rows = read_rows(out, &header);

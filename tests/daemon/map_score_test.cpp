@@ -24,11 +24,11 @@ TEST(MapScore, PairsMissesGhostsErrorAndColour) {
   const std::vector<TrackCone> truth = {truth_cone(0, 0, ConeColour::Blue), truth_cone(5, 0, ConeColour::Blue),
                                         truth_cone(0, 3, ConeColour::Yellow), truth_cone(5, 3, ConeColour::Yellow)};
   const std::vector<Cone> map = {
-      mapped_cone(0.1, 0, ConeColour::Blue),      // 0.1 m off
-      mapped_cone(5, 0.2, ConeColour::Yellow),    // 0.2 m off, wrong colour
-      mapped_cone(0, 3, ConeColour::Yellow),      // exact
-      mapped_cone(20, 20, ConeColour::Blue),      // nothing there: a ghost
-  };                                              // (5, 3) is missed
+      mapped_cone(0.1, 0, ConeColour::Blue),    // 0.1 m off
+      mapped_cone(5, 0.2, ConeColour::Yellow),  // 0.2 m off, wrong colour
+      mapped_cone(0, 3, ConeColour::Yellow),    // exact
+      mapped_cone(20, 20, ConeColour::Blue),    // nothing there: a ghost
+  };                                            // (5, 3) is missed
   const MapScore s = score_map(truth, map);
   EXPECT_EQ(s.true_cones, 4);
   EXPECT_EQ(s.mapped, 4);
@@ -45,8 +45,10 @@ TEST(MapScore, PairsMissesGhostsErrorAndColour) {
 TEST(MapScore, TwoMappedConesOnOneTrueConeMakeOneGhost) {
   // A cone mapped twice (a failed association) pairs once, the nearer copy; the other is a ghost, and the true
   // neighbour 1 m away, outside the gate, stays missed rather than taking the copy.
-  const std::vector<TrackCone> truth = {truth_cone(0, 0, ConeColour::BigOrange), truth_cone(1, 0, ConeColour::BigOrange)};
-  const std::vector<Cone> map = {mapped_cone(0.05, 0, ConeColour::BigOrange), mapped_cone(-0.3, 0, ConeColour::BigOrange)};
+  const std::vector<TrackCone> truth = {truth_cone(0, 0, ConeColour::BigOrange),
+                                        truth_cone(1, 0, ConeColour::BigOrange)};
+  const std::vector<Cone> map = {mapped_cone(0.05, 0, ConeColour::BigOrange),
+                                 mapped_cone(-0.3, 0, ConeColour::BigOrange)};
   const MapScore s = score_map(truth, map);
   EXPECT_EQ(s.matched, 1);
   EXPECT_EQ(s.ghosts, 1);

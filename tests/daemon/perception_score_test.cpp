@@ -22,9 +22,9 @@ TEST(PerceptionScore, PrecisionRecallByRangeErrorAndColour) {
   const std::vector<Cone> truth = {cone(10, 5, ConeColour::Blue), cone(10, 13, ConeColour::Yellow),
                                    cone(10, 18, ConeColour::Blue), cone(10, 25, ConeColour::Yellow)};
   ConeDetections det;
-  det.cones = {cone(5, 0, ConeColour::Blue),       // the 5 m cone, exactly, right colour
-               cone(13, -0.3, ConeColour::Blue),   // the 13 m cone 0.3 m to the car's right (map +x), wrong colour
-               cone(8, 4, ConeColour::Yellow)};    // nothing there: a false positive
+  det.cones = {cone(5, 0, ConeColour::Blue),      // the 5 m cone, exactly, right colour
+               cone(13, -0.3, ConeColour::Blue),  // the 13 m cone 0.3 m to the car's right (map +x), wrong colour
+               cone(8, 4, ConeColour::Yellow)};   // nothing there: a false positive
   PerceptionScore score;
   score.add_frame(det, truth, pose);
   const auto j = score.to_json();
@@ -51,11 +51,11 @@ TEST(PerceptionScore, ColourByStageAndRange) {
   PerceptionScore score;
   score.add_frame(det, truth, Pose2{});
   const auto j = score.to_json();
-  EXPECT_NEAR(j["colour_accuracy_12m"].get<double>(), 0.5, 1e-12);           // 2 of 4
-  EXPECT_NEAR(j["verified_share_12m"].get<double>(), 0.5, 1e-12);            // 8 and 10 m
-  EXPECT_NEAR(j["verified_colour_accuracy_12m"].get<double>(), 0.5, 1e-12);  // 8 right, 10 wrong
+  EXPECT_NEAR(j["colour_accuracy_12m"].get<double>(), 0.5, 1e-12);             // 2 of 4
+  EXPECT_NEAR(j["verified_share_12m"].get<double>(), 0.5, 1e-12);              // 8 and 10 m
+  EXPECT_NEAR(j["verified_colour_accuracy_12m"].get<double>(), 0.5, 1e-12);    // 8 right, 10 wrong
   EXPECT_NEAR(j["named_colour_accuracy_12m"].get<double>(), 2.0 / 3.0, 1e-4);  // the unknown is not named
-  EXPECT_NEAR(j["colour_accuracy_6m"].get<double>(), 1.0, 1e-12);            // only the 4 m cone
+  EXPECT_NEAR(j["colour_accuracy_6m"].get<double>(), 1.0, 1e-12);              // only the 4 m cone
 }
 
 TEST(PerceptionScore, FramesAccumulateAndNothingSeenIsZeroNotNaN) {

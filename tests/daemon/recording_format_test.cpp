@@ -14,19 +14,15 @@ using Bytes = std::vector<std::uint8_t>;
 
 TEST(RecordingFormat, ACommandIsThirtyFiveLittleEndianBytes) {
   CommandRecord r;
-  r.now = 1.5;                    // 0x3FF8000000000000
-  r.command.stamp = 2.0;          // 0x4000000000000000
-  r.command.steering = -0.25;     // 0xBFD0000000000000
+  r.now = 1.5;                 // 0x3FF8000000000000
+  r.command.stamp = 2.0;       // 0x4000000000000000
+  r.command.steering = -0.25;  // 0xBFD0000000000000
   r.command.target_speed = 0.0;
   r.command.brake_hard = true;
   r.request = wire::vcu::AsRequest::Finished;  // 2
   const Bytes b = encode_command(r);
-  const Bytes want = {1,
-                      0, 0, 0, 0, 0, 0, 0xF8, 0x3F,
-                      0, 0, 0, 0, 0, 0, 0x00, 0x40,
-                      0, 0, 0, 0, 0, 0, 0xD0, 0xBF,
-                      0, 0, 0, 0, 0, 0, 0, 0,
-                      1, 2};
+  const Bytes want = {1, 0, 0, 0, 0, 0,    0,    0xF8, 0x3F, 0, 0, 0, 0, 0, 0, 0x00, 0x40, 0,
+                      0, 0, 0, 0, 0, 0xD0, 0xBF, 0,    0,    0, 0, 0, 0, 0, 0, 1,    2};
   EXPECT_EQ(b, want);
   const auto back = decode_command(b);
   ASSERT_TRUE(back);

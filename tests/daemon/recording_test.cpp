@@ -64,10 +64,11 @@ const Recorded& acceleration() {
     x.file = test::scratch_path("acc.mcap");
     x.live_report = test::scratch_path("acc_live.json");
     const auto cfg = write_text("fast.json", kFast);
-    x.rc = test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
-                         "../shared/tracks/epfl_acceleration.csv --config " + cfg + " --record " + x.file +
-                             " --report " + x.live_report,
-                         &x.log);
+    x.rc = test::run_fsd(
+        "run --sim --headless --until-finished --mission acceleration --track "
+        "../shared/tracks/epfl_acceleration.csv --config " +
+            cfg + " --record " + x.file + " --report " + x.live_report,
+        &x.log);
     return x;
   }();
   return r;
@@ -146,7 +147,8 @@ TEST(Recording, ATwoLapTrackdriveReplaysBitForBit) {
   const auto cfg = write_text("fast_td.json", kFast);
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 "
-                          "--config " + cfg + " --record " + file + " --report " + live_report,
+                          "--config " +
+                              cfg + " --record " + file + " --report " + live_report,
                           &out),
             0)
       << out;
@@ -170,7 +172,8 @@ TEST(Recording, AConfigOnTopOfTheRecordedOneChangesTheReplay) {
   const auto slower = write_text("slower.json", R"({"control": {"speed": {"v_max": 5.0}}})");
   const auto report = test::scratch_path("acc_slower.json");
   std::string out;
-  EXPECT_EQ(test::run_fsd("run --replay " + rec.file + " --headless --config " + slower + " --report " + report, &out), 1)
+  EXPECT_EQ(test::run_fsd("run --replay " + rec.file + " --headless --config " + slower + " --report " + report, &out),
+            1)
       << out;
   EXPECT_NE(out.find("did not repeat the recorded run bit for bit"), std::string::npos) << out;
   const json r = read_json(report)["replay"];
@@ -288,9 +291,11 @@ TEST(Recording, AFullDiskStopsTheRecordingNotTheRun) {
   const auto report = test::scratch_path("full.json");
   const auto cfg = write_text("fast_full.json", kFast);
   std::string out;
-  const int rc = test::run_fsd_with("ulimit -f 128;", "run --sim --headless --until-finished --mission acceleration "
-                                    "--track ../shared/tracks/epfl_acceleration.csv --config " + cfg + " --record " +
-                                    file + " --report " + report, &out);
+  const int rc = test::run_fsd_with("ulimit -f 128;",
+                                    "run --sim --headless --until-finished --mission acceleration "
+                                    "--track ../shared/tracks/epfl_acceleration.csv --config " +
+                                        cfg + " --record " + file + " --report " + report,
+                                    &out);
   std::signal(SIGXFSZ, SIG_DFL);
   EXPECT_EQ(rc, 0) << out;  // the run went on and finished its mission
   EXPECT_NE(out.find("recording stopped: "), std::string::npos) << out;
@@ -314,8 +319,8 @@ TEST(Recording, AHeadlessRunWaitsForTheWriterRatherThanDropping) {
                                                            "record": {"queue_frames": 16}})");
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
-                          "../shared/tracks/epfl_acceleration.csv --config " + cfg + " --record " + file +
-                              " --report " + report,
+                          "../shared/tracks/epfl_acceleration.csv --config " +
+                              cfg + " --record " + file + " --report " + report,
                           &out),
             0)
       << out;
@@ -336,8 +341,8 @@ TEST(Recording, LargeRecordingsSplitIntoPartsThatEachReplay) {
                                                      "record": {"split_mb": 0.05}})");
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
-                          "../shared/tracks/epfl_acceleration.csv --config " + cfg + " --record " + file +
-                              " --report " + report,
+                          "../shared/tracks/epfl_acceleration.csv --config " +
+                              cfg + " --record " + file + " --report " + report,
                           &out),
             0)
       << out;

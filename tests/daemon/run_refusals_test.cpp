@@ -24,9 +24,10 @@ std::string write(const std::string& name, const std::string& text) {
 
 TEST(RunRefusals, ASkidPadMissionOnALoopIsRefusedBeforeItDrives) {
   std::string out;
-  const int rc = test::run_fsd("run --sim --headless --until-finished --mission skidpad --track "
-                               "../shared/tracks/epfl_track_1.csv",
-                               &out);
+  const int rc = test::run_fsd(
+      "run --sim --headless --until-finished --mission skidpad --track "
+      "../shared/tracks/epfl_track_1.csv",
+      &out);
   EXPECT_EQ(rc, 2) << out;
   EXPECT_NE(out.find("no skid pad"), std::string::npos) << out;
   EXPECT_EQ(out.find("lap 1 in"), std::string::npos) << out;  // nothing was driven
@@ -34,8 +35,8 @@ TEST(RunRefusals, ASkidPadMissionOnALoopIsRefusedBeforeItDrives) {
 
 TEST(RunRefusals, AnAccelerationMissionWithoutALaneIsRefused) {
   std::string out;
-  EXPECT_EQ(test::run_fsd("run --sim --headless --mission acceleration --track ../shared/tracks/epfl_skidpad.csv", &out),
-            2)
+  EXPECT_EQ(
+      test::run_fsd("run --sim --headless --mission acceleration --track ../shared/tracks/epfl_skidpad.csv", &out), 2)
       << out;
   EXPECT_NE(out.find("no straight lane"), std::string::npos) << out;
 }
@@ -77,7 +78,8 @@ TEST(RunRefusals, TheVerdictNamesWhyARunFailed) {
   const auto fast = write("fast.json", kFast);
   const auto good = test::scratch_path("good_report.json");
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
-                          "../shared/tracks/epfl_acceleration.csv --config " + fast + " --report " + good,
+                          "../shared/tracks/epfl_acceleration.csv --config " +
+                              fast + " --report " + good,
                           &out),
             0)
       << out;

@@ -54,8 +54,8 @@ TEST(Scorecard, LapsCrossTrackErrorAndStopOnAHandMadeDrive) {
   EXPECT_EQ(j["mission"], "trackdrive");
   EXPECT_EQ(j["as_state"], "Finished");
   EXPECT_EQ(j["laps"].size(), 2u);
-  for (const char* key : {"seed", "finished", "stopped_after_finish", "sim_time_s", "wall_time_s", "cones_hit",
-                          "laps", "latency_ms", "faults", "vehicle"})
+  for (const char* key : {"seed", "finished", "stopped_after_finish", "sim_time_s", "wall_time_s", "cones_hit", "laps",
+                          "latency_ms", "faults", "vehicle"})
     EXPECT_TRUE(j.contains(key)) << key;
 }
 

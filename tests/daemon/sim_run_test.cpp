@@ -40,10 +40,11 @@ std::string fast_config() {
 TEST(SimRun, TrackdriveTwoLapsWithEverySensor) {
   const std::string out = scratch_path("track1.json");
   std::string log;
-  ASSERT_EQ(run_fsd("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 --report " +
-                    out,
-                &log),
-            0)
+  ASSERT_EQ(
+      run_fsd(
+          "run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 --report " + out,
+          &log),
+      0)
       << log;
   const auto r = report(out);
   EXPECT_EQ(r["track"], "epfl_track_1");
@@ -124,7 +125,7 @@ TEST(SimRun, OtherLoopsFinishCleanly) {
     SCOPED_TRACE(track);
     const std::string out = scratch_path(std::string(track) + ".json");
     ASSERT_EQ(run_fsd("run --sim --headless --until-finished --config " + fast_config() + " --track ../shared/tracks/" +
-                  track + ".csv --report " + out),
+                      track + ".csv --report " + out),
               0);
     const auto r = report(out);
     EXPECT_EQ(r["cones_hit"], 0);
@@ -138,7 +139,7 @@ TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
     SCOPED_TRACE(track);
     const std::string out = scratch_path(std::string(track) + ".json");
     ASSERT_EQ(run_fsd("run --sim --headless --until-finished --mission acceleration --config " + fast_config() +
-                  " --track ../shared/tracks/" + track + ".csv --report " + out),
+                      " --track ../shared/tracks/" + track + ".csv --report " + out),
               0);
     const auto r = report(out);
     EXPECT_EQ(r["mission"], "acceleration");

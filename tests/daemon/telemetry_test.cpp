@@ -28,8 +28,8 @@ namespace {
 
 using nlohmann::json;
 using test::first_on_each;
-using test::parse_metrics;
 using test::next_on;
+using test::parse_metrics;
 using test::subscribe;
 using web::test::WsClient;
 namespace http = boost::beast::http;
@@ -75,7 +75,6 @@ struct LiveRun {
   std::unique_ptr<SimRun> run;
 };
 
-
 struct FileCone {
   std::string tag;
   double x = 0, y = 0;
@@ -95,7 +94,6 @@ std::vector<FileCone> read_cones(const std::string& path, double* start_x, doubl
   }
   return out;
 }
-
 
 TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   double sx = NAN, sy = NAN, syaw = NAN;
@@ -123,7 +121,8 @@ TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   EXPECT_EQ(knocked["cylinders"].size(), 0u);
   ASSERT_EQ(standing["cylinders"].size(), file.size());
   bool labelled = false;
-  for (const auto& kv : standing["metadata"]) labelled |= kv["key"] == "source" && kv["value"] == "simulator ground truth";
+  for (const auto& kv : standing["metadata"])
+    labelled |= kv["key"] == "source" && kv["value"] == "simulator ground truth";
   EXPECT_TRUE(labelled);
   // Every cone of the file has its own cylinder at its position, of the rules' size, in its colour.
   std::vector<bool> used(file.size(), false);
@@ -199,8 +198,9 @@ TEST(Telemetry, MetricsOfARunAreScrapedOverHttp) {
   ASSERT_EQ(live.go(), 0);
   const auto res = web::test::http_request(live.server->port(), http::verb::get, "/metrics");
   ASSERT_EQ(res.status, 200u);
-  EXPECT_NE(res.body.find("# HELP fsd_as_state AS state of the VCU: 0 Off, 1 Ready, 2 Driving, 3 Emergency, 4 Finished"),
-            std::string::npos);
+  EXPECT_NE(
+      res.body.find("# HELP fsd_as_state AS state of the VCU: 0 Off, 1 Ready, 2 Driving, 3 Emergency, 4 Finished"),
+      std::string::npos);
   const auto m = parse_metrics(res.body);
   auto at = [&](const std::string& key) {
     const auto it = m.find(key);

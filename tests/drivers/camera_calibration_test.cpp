@@ -111,30 +111,55 @@ TEST(CameraCalibrationValidation, EachErrorNamesTheField) {
       {"unknown top-level field", [](json& j) { j["lens"] = 1; }, "field 'lens': unknown field"},
       {"wrong format tag", [](json& j) { j["format"] = "other"; }, "field 'format'"},
       {"future version", [](json& j) { j["version"] = 2; }, "field 'version': unsupported"},
-      {"nothing in it", [](json& j) { j = {{"version", 1}}; }, "holds no calibration"},
+      {"nothing in it",
+       [](json& j) {
+         j = {{"version", 1}};
+       },
+       "holds no calibration"},
       {"missing K", [](json& j) { j["intrinsics"].erase("K"); }, "field 'intrinsics.K': missing"},
-      {"K not 3x3", [](json& j) { j["intrinsics"]["K"] = {{1, 0, 0}, {0, 1, 0}}; }, "field 'intrinsics.K': expected a 3×3"},
-      {"K row short", [](json& j) { j["intrinsics"]["K"][1] = {0, 1}; }, "row 1 has 2 numbers"},
+      {"K not 3x3",
+       [](json& j) {
+         j["intrinsics"]["K"] = {{1, 0, 0}, {0, 1, 0}};
+       },
+       "field 'intrinsics.K': expected a 3×3"},
+      {"K row short",
+       [](json& j) {
+         j["intrinsics"]["K"][1] = {0, 1};
+       },
+       "row 1 has 2 numbers"},
       {"K text", [](json& j) { j["intrinsics"]["K"][0][0] = "500"; }, "field 'intrinsics.K[0][0]': expected a number"},
       {"negative focal", [](json& j) { j["intrinsics"]["K"][0][0] = -500.0; }, "focal lengths"},
       {"not upper triangular", [](json& j) { j["intrinsics"]["K"][2][2] = 2.0; }, "upper triangular"},
       {"principal point outside", [](json& j) { j["intrinsics"]["K"][0][2] = 900.0; }, "principal point"},
       {"zero width", [](json& j) { j["intrinsics"]["width"] = 0; }, "field 'intrinsics.width': 0 is outside"},
-      {"fractional height", [](json& j) { j["intrinsics"]["height"] = 480.5; }, "field 'intrinsics.height': expected an integer"},
-      {"distortion count", [](json& j) { j["intrinsics"]["distortion"] = {0.1, 0.2, 0.3}; }, "has 3 coefficients"},
+      {"fractional height", [](json& j) { j["intrinsics"]["height"] = 480.5; },
+       "field 'intrinsics.height': expected an integer"},
+      {"distortion count",
+       [](json& j) {
+         j["intrinsics"]["distortion"] = {0.1, 0.2, 0.3};
+       },
+       "has 3 coefficients"},
       {"distortion text", [](json& j) { j["intrinsics"]["distortion"][1] = "x"; }, "field 'intrinsics.distortion[1]'"},
       {"missing z", [](json& j) { j["extrinsics"].erase("z"); }, "field 'extrinsics.z': missing"},
-      {"pitch out of range", [](json& j) { j["extrinsics"]["pitch"] = 2.0; }, "field 'extrinsics.pitch': 2.000000 is outside"},
+      {"pitch out of range", [](json& j) { j["extrinsics"]["pitch"] = 2.0; },
+       "field 'extrinsics.pitch': 2.000000 is outside"},
       {"mount far off the car", [](json& j) { j["extrinsics"]["x"] = 50.0; }, "field 'extrinsics.x'"},
-      {"unknown extrinsics field", [](json& j) { j["extrinsics"]["scale"] = 1.0; }, "field 'extrinsics.scale': unknown"},
-      {"singular homography", [](json& j) { j["homography"]["image_to_ground"] = {{1, 2, 3}, {2, 4, 6}, {0, 0, 1}}; },
+      {"unknown extrinsics field", [](json& j) { j["extrinsics"]["scale"] = 1.0; },
+       "field 'extrinsics.scale': unknown"},
+      {"singular homography",
+       [](json& j) {
+         j["homography"]["image_to_ground"] = {{1, 2, 3}, {2, 4, 6}, {0, 0, 1}};
+       },
        "field 'homography.image_to_ground': homography is singular"},
       {"homography disagrees with its points",
-       [](json& j) { j["homography"]["ground_points"][2] = {11.0, -2.0}; },
+       [](json& j) {
+         j["homography"]["ground_points"][2] = {11.0, -2.0};
+       },
        "does not map image point 3 onto ground point 3"},
       {"points without partner", [](json& j) { j["homography"].erase("ground_points"); },
        "field 'homography.ground_points': missing"},
-      {"three points", [](json& j) { j["homography"]["image_points"].erase(3); }, "field 'homography.image_points': expected 4 points"},
+      {"three points", [](json& j) { j["homography"]["image_points"].erase(3); },
+       "field 'homography.image_points': expected 4 points"},
   };
   for (const auto& c : cases) {
     json j = good;

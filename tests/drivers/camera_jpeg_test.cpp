@@ -81,8 +81,9 @@ TEST(JpegFrame, DecodesTheVirtualCarsCamera) {
   sim::CameraModel cam(cfg, world, 1);
   std::vector<Frame> frames;
   std::uint32_t seq = 0;
-  cam.advance_to(0.1, [](Stamp) { return Pose3::Identity(); },
-                 [&](Stamp t, std::span<const std::uint8_t> b) { frames.push_back(decode_jpeg_frame(b, t, seq++)); });
+  cam.advance_to(
+      0.1, [](Stamp) { return Pose3::Identity(); },
+      [&](Stamp t, std::span<const std::uint8_t> b) { frames.push_back(decode_jpeg_frame(b, t, seq++)); });
   ASSERT_EQ(frames.size(), 3u);
   EXPECT_DOUBLE_EQ(frames[2].stamp, 0.1 + cfg.latency);
   EXPECT_EQ(frames[2].bgr.size(), cv::Size(640, 480));

@@ -52,8 +52,10 @@ class CameraSourceFile : public ::testing::Test {
   static std::vector<Frame> drain(CameraSource& src) {
     std::vector<Frame> got;
     for (int polls = 0; polls < 500; ++polls) {
-      if (auto f = src.next_frame(milliseconds(20))) got.push_back(*f);
-      else if (src.stats().finished) break;
+      if (auto f = src.next_frame(milliseconds(20)))
+        got.push_back(*f);
+      else if (src.stats().finished)
+        break;
     }
     return got;
   }

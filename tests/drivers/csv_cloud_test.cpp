@@ -60,7 +60,8 @@ TEST(CsvCloud, DropsAndCountsNonFiniteRows) {
   EXPECT_EQ(c.invalid, 4u);
   EXPECT_EQ(c.scan.points.size(), 2u);
   // An intensity beyond a float (found by the fuzzer: it became inf) is no data either.
-  const auto i = parse_csv_cloud("1,2,3,8888888888888888888888888888888888888888888888836\n1,2,3,nan\n4,5,6,7\n", "t.csv");
+  const auto i =
+      parse_csv_cloud("1,2,3,8888888888888888888888888888888888888888888888836\n1,2,3,nan\n4,5,6,7\n", "t.csv");
   EXPECT_EQ(i.invalid, 2u);
   ASSERT_EQ(i.scan.points.size(), 1u);
   EXPECT_FLOAT_EQ(i.scan.points[0].intensity, 7.0f);

@@ -82,9 +82,9 @@ void expect_epochs_a_b(const std::vector<GnssSample>& s) {
   EXPECT_DOUBLE_EQ(a.alt_m, 5.18 + 35.78);
   EXPECT_TRUE(a.heading_valid);  // from PASHR: the epoch has no HDT
   EXPECT_NEAR(a.heading, deg2rad(90.0 - 27.23), 1e-12);
-  EXPECT_FALSE(a.velocity_valid);   // VTG and RMC without speed
-  EXPECT_FALSE(a.attitude_valid);   // PASHR without pitch
-  EXPECT_FALSE(a.yaw_rate_valid);   // ROT status V
+  EXPECT_FALSE(a.velocity_valid);  // VTG and RMC without speed
+  EXPECT_FALSE(a.attitude_valid);  // PASHR without pitch
+  EXPECT_FALSE(a.yaw_rate_valid);  // ROT status V
   EXPECT_TRUE(a.good);
   EXPECT_NEAR(a.enu.norm(), 0.0, 1e-9);
 
@@ -120,7 +120,8 @@ TEST(GnssDriver, RealInsStreamTwoEpochs) {
 }
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
   return s;
 }
 
@@ -155,20 +156,20 @@ TEST(GnssDriver, BrokenInputIsCountedAndSkipped) {
   c.emit_on = "HDT";
   Harness h(c);
   std::string in;
-  in += std::string("\x00\xFFhello", 7);                          // 7 garbage bytes before any sentence
-  in += "$GPGGA,114835.60,5742.55";                                // cut short by the next '$'
+  in += std::string("\x00\xFFhello", 7);  // 7 garbage bytes before any sentence
+  in += "$GPGGA,114835.60,5742.55";       // cut short by the next '$'
   in += "$GPHDT,232.39,T*0C\r\n";
-  in += "$GPGGA," + std::string(200, '1') + "\r\n";                // overlong
-  in += "$GPHDT,23\x01.39,T*0C\r\n";                                // control character inside
-  in += "$GPROT,35.6,A*FF\r\n";                                    // checksum mismatch
+  in += "$GPGGA," + std::string(200, '1') + "\r\n";  // overlong
+  in += "$GPHDT,23\x01.39,T*0C\r\n";                 // control character inside
+  in += "$GPROT,35.6,A*FF\r\n";                      // checksum mismatch
   in += "$GPGGA,181908.00,3404.7041778,N,07044.3966270,W,4,13,1.00,495.144,M,29.200,M,0.10,0000*40\r\n";
-  in += "$GPROT,35.6,A*\r\n";                                      // malformed checksum
-  in += "$GPROT,35.6,A\r\n";                                       // no checksum
-  in += "$GPGSV,5,5,17,50,45,190,*43\r\n";                         // unsupported
-  in += line("GPHDT,-5.0,T");                                      // malformed field
-  in += line("gpgga,1");                                           // bad address
+  in += "$GPROT,35.6,A*\r\n";               // malformed checksum
+  in += "$GPROT,35.6,A\r\n";                // no checksum
+  in += "$GPGSV,5,5,17,50,45,190,*43\r\n";  // unsupported
+  in += line("GPHDT,-5.0,T");               // malformed field
+  in += line("gpgga,1");                    // bad address
   in += "\r\n\r\n";
-  in += "$GPHDT,232.39,T*0C";                                      // unterminated at the end: waits
+  in += "$GPHDT,232.39,T*0C";  // unterminated at the end: waits
   h.feed(in, 1.0);
   const GnssCounters k = h.driver.counters();
   EXPECT_EQ(k.framing.bytes, in.size());
@@ -181,8 +182,8 @@ TEST(GnssDriver, BrokenInputIsCountedAndSkipped) {
   EXPECT_EQ(k.unsupported, 1u);
   EXPECT_EQ(k.malformed, 1u);
   EXPECT_EQ(k.bad_address, 1u);
-  EXPECT_EQ(k.sentences, 1u);  // the HDT after the truncated GGA
-  EXPECT_EQ(k.lines, 8u);  // complete lines that reached the checksum check
+  EXPECT_EQ(k.sentences, 1u);           // the HDT after the truncated GGA
+  EXPECT_EQ(k.lines, 8u);               // complete lines that reached the checksum check
   EXPECT_EQ(k.epochs_without_gga, 1u);  // that HDT alone ended an epoch
   EXPECT_TRUE(h.samples.empty());
   h.feed("\r\n", 1.1);
@@ -256,7 +257,7 @@ TEST(GnssDriver, GoodFlagThresholds) {
   EXPECT_FALSE(one_epoch(many_sats, kHdt, kRtkFloat).good);  // 12 in use
   GnssConfig low_hdop = def;
   low_hdop.max_hdop = 0.8;
-  EXPECT_FALSE(one_epoch(low_hdop, kHdt, kRtkFloat).good);   // HDOP 0.84
+  EXPECT_FALSE(one_epoch(low_hdop, kHdt, kRtkFloat).good);  // HDOP 0.84
 
   // RMC saying "void" in the same epoch.
   const std::string rmc_void = line("GNRMC,104710.00,V,4832.5844943,N,00229.8320136,E,,,191022,,,N");
@@ -277,9 +278,9 @@ TEST(GnssDriver, AnglesAndRatesByHand) {
   auto heading_of = [&](double deg) {
     return one_epoch(c, line("GPHDT," + nmea::format_fixed(deg, 2) + ",T"), gga).heading;
   };
-  EXPECT_NEAR(heading_of(0.0), std::numbers::pi / 2, 1e-12);    // north
-  EXPECT_NEAR(heading_of(90.0), 0.0, 1e-12);                    // east
-  EXPECT_NEAR(heading_of(180.0), -std::numbers::pi / 2, 1e-12); // south
+  EXPECT_NEAR(heading_of(0.0), std::numbers::pi / 2, 1e-12);     // north
+  EXPECT_NEAR(heading_of(90.0), 0.0, 1e-12);                     // east
+  EXPECT_NEAR(heading_of(180.0), -std::numbers::pi / 2, 1e-12);  // south
   EXPECT_NEAR(std::abs(heading_of(270.0)), std::numbers::pi, 1e-12);
   EXPECT_NEAR(heading_of(359.0), deg2rad(91.0), 1e-12);
 
@@ -311,8 +312,7 @@ TEST(GnssDriver, AnglesAndRatesByHand) {
   EXPECT_TRUE(s.heading_valid);
   EXPECT_NEAR(s.heading, deg2rad(80.0), 1e-12);
   // HDT wins over PASHR's heading.
-  s = one_epoch(c, line("GPHDT,20.00,T") + line("PASHR,104710.000,10.00,T,+2.00,+3.00,+0.00,0.01,0.01,0.02,2,1"),
-                gga);
+  s = one_epoch(c, line("GPHDT,20.00,T") + line("PASHR,104710.000,10.00,T,+2.00,+3.00,+0.00,0.01,0.01,0.02,2,1"), gga);
   EXPECT_NEAR(s.heading, deg2rad(70.0), 1e-12);
 }
 
@@ -349,7 +349,7 @@ TEST(GnssDriver, LeverArmToRearAxle) {
   const GnssConfig left = lever_config(0.0, 0.5, 0.0);
   p = one_epoch(left, line("GPHDT,0.00,T") + line("PASHR,104710.00,0.00,T,+5.00,+0.00,,,,,4,1"), kRtkFloat).enu;
   const double r = deg2rad(5.0);
-  EXPECT_NEAR(p.x(), 0.5 * std::cos(r), 1e-6);   // left of a car facing north is west: -x, removed: +x
+  EXPECT_NEAR(p.x(), 0.5 * std::cos(r), 1e-6);  // left of a car facing north is west: -x, removed: +x
   EXPECT_NEAR(p.z(), -0.5 * std::sin(r), 1e-6);
   // Without a heading only the height is removed, and the sample is not good.
   const GnssSample s = one_epoch(c, "", kRtkFloat);

@@ -64,7 +64,7 @@ TEST(EpochAssembler, LearnsTheLastSentenceAndThenEmitsWithoutDelay) {
     const Epoch& e = r.epochs[k];
     EXPECT_EQ(e.types, 0x3Fu);
     EXPECT_DOUBLE_EQ(*e.utc_s, 36000.0 + 0.02 * k);
-    EXPECT_DOUBLE_EQ(*e.hdt->heading_deg, k);          // the heading of its own epoch
+    EXPECT_DOUBLE_EQ(*e.hdt->heading_deg, k);  // the heading of its own epoch
     EXPECT_DOUBLE_EQ(*e.rot->rate_deg_per_min, 10.0 * k);
     EXPECT_DOUBLE_EQ(e.receive_time, 0.02 * k);
   }

@@ -37,8 +37,7 @@ TEST(NmeaUnframe, AcceptsRealSentences) {
 
 TEST(NmeaUnframe, RejectsBadChecksumsFoundInTheWild) {
   // This RTK example circulates in many tutorials with *40; the XOR of its payload is 0x5F.
-  EXPECT_EQ(unframe("$GPGGA,181908.00,3404.7041778,N,07044.3966270,W,4,13,1.00,495.144,M,29.200,M,0.10,0000*40")
-                .error,
+  EXPECT_EQ(unframe("$GPGGA,181908.00,3404.7041778,N,07044.3966270,W,4,13,1.00,495.144,M,29.200,M,0.10,0000*40").error,
             FrameError::ChecksumMismatch);
   // Trimble's example with the comma before the station id turned into a space keeps the old checksum.
   EXPECT_EQ(unframe("$GPGGA,172814.0,3723.46587704,N,12202.26957864,W,2,6,1.2,18.893,M,-25.669,M,2.0 0031*4F").error,
@@ -64,8 +63,8 @@ TEST(NmeaBuild, ReproducesRealSentencesByteForByte) {
   EXPECT_EQ(frame("GPHDT,232.39,T"), "$GPHDT,232.39,T*0C\r\n");
   const std::vector<std::string> rot = {"-000.16", "A"};
   EXPECT_EQ(build("GPROT", rot), "$GPROT,-000.16,A*2B\r\n");
-  const std::vector<std::string> gga = {"123519", "4807.038", "N", "01131.000", "E", "1", "08", "0.9",
-                                        "545.4",  "M",        "46.9", "M",      "",  ""};
+  const std::vector<std::string> gga = {"123519", "4807.038", "N", "01131.000", "E", "1", "08",
+                                        "0.9",    "545.4",    "M", "46.9",      "M", "",  ""};
   EXPECT_EQ(build("GPGGA", gga), "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n");
 }
 
@@ -111,9 +110,15 @@ TEST(NmeaCodecs, LatitudeLongitudeByHand) {
   EXPECT_DOUBLE_EQ(*parse_latitude("0000.0000000", "N"), 0.0);
   EXPECT_DOUBLE_EQ(*parse_latitude("9000.0000", "S"), -90.0);
   // Hemisphere missing or wrong, minutes ≥ 60, beyond the pole, garbage.
-  for (auto [v, h] : std::vector<std::pair<const char*, const char*>>{
-           {"4807.038", ""}, {"4807.038", "E"}, {"4860.000", "N"}, {"9100.000", "N"}, {"48x7.038", "N"},
-           {"-4807.038", "N"}, {"7.038", "N"}, {"", "N"}, {"4807.038", "NN"}})
+  for (auto [v, h] : std::vector<std::pair<const char*, const char*>>{{"4807.038", ""},
+                                                                      {"4807.038", "E"},
+                                                                      {"4860.000", "N"},
+                                                                      {"9100.000", "N"},
+                                                                      {"48x7.038", "N"},
+                                                                      {"-4807.038", "N"},
+                                                                      {"7.038", "N"},
+                                                                      {"", "N"},
+                                                                      {"4807.038", "NN"}})
     EXPECT_FALSE(parse_latitude(v, h)) << v << " " << h;
   EXPECT_FALSE(parse_longitude("18100.000", "E"));
   EXPECT_FALSE(parse_longitude("01131.000", "N"));
@@ -163,7 +168,7 @@ TEST(NmeaCodecs, FormatCoordinates) {
 TEST(NmeaCodecs, FormatTimeAndNumbers) {
   EXPECT_EQ(format_time_of_day(12 * 3600 + 35 * 60 + 19.5, 2), "123519.50");
   EXPECT_EQ(format_time_of_day(1.0, 3), "000001.000");
-  EXPECT_EQ(format_time_of_day(86399.999, 2), "000000.00");   // rounds over midnight
+  EXPECT_EQ(format_time_of_day(86399.999, 2), "000000.00");  // rounds over midnight
   EXPECT_EQ(format_time_of_day(86400 + 61.25, 2), "000101.25");
   EXPECT_EQ(format_time_of_day(-1.0, 0), "235959");
   EXPECT_EQ(format_fixed(-1.256, 2), "-1.26");

@@ -74,7 +74,8 @@ TEST(NmeaGga, RtkFixedAndFloatFromRovers) {
   EXPECT_DOUBLE_EQ(*fixed.diff_age_s, 14.6);
   EXPECT_EQ(fixed.station_id, 0);
 
-  const auto flt = parse_as<GgaSentence>("$GNGGA,114835.60,5742.5522736,N,01156.8392494,E,5,15,1.1,5.18,M,35.78,M,,*77");
+  const auto flt =
+      parse_as<GgaSentence>("$GNGGA,114835.60,5742.5522736,N,01156.8392494,E,5,15,1.1,5.18,M,35.78,M,,*77");
   EXPECT_EQ(flt.quality, 5);
   EXPECT_EQ(flt.satellites, 15);
   EXPECT_DOUBLE_EQ(*flt.lat_deg, 57.0 + 42.5522736 / 60.0);
@@ -121,8 +122,7 @@ TEST(NmeaRmc, ShipsLogAndClassicExample) {
 }
 
 TEST(NmeaRmc, Nmea41WithEmptySpeedAndNavStatus) {
-  const auto r =
-      parse_as<RmcSentence>("$GNRMC,114835.60,A,5742.5522736,N,01156.8392494,E,,,191022,,W,D,V*61");
+  const auto r = parse_as<RmcSentence>("$GNRMC,114835.60,A,5742.5522736,N,01156.8392494,E,,,191022,,W,D,V*61");
   EXPECT_DOUBLE_EQ(*r.utc_s, hms(11, 48, 35.6));
   EXPECT_TRUE(r.valid);
   EXPECT_FALSE(r.speed_knots);
@@ -209,20 +209,18 @@ TEST(NmeaSentence, OtherTalkersAccepted) {
 
 TEST(NmeaSentence, MalformedFieldsRejected) {
   for (const char* payload : {
-           "GPGGA,123519,4807.038,N,01131.000,E,X,08,0.9,545.4,M,46.9,M,,",  // quality not a number
-           "GPGGA,123519,4807.038,N,01131.000,E,,08,0.9,545.4,M,46.9,M,,",   // quality missing
-           "GPGGA,123519,4807.038,,01131.000,E,1,08,0.9,545.4,M,46.9,M,,",   // hemisphere missing
-           "GPGGA,123519,4807.038,N,01131.000,E,1,08,-0.9,545.4,M,46.9,M,,", // negative HDOP
-           "GPGGA,12h519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,",  // bad time
+           "GPGGA,123519,4807.038,N,01131.000,E,X,08,0.9,545.4,M,46.9,M,,",   // quality not a number
+           "GPGGA,123519,4807.038,N,01131.000,E,,08,0.9,545.4,M,46.9,M,,",    // quality missing
+           "GPGGA,123519,4807.038,,01131.000,E,1,08,0.9,545.4,M,46.9,M,,",    // hemisphere missing
+           "GPGGA,123519,4807.038,N,01131.000,E,1,08,-0.9,545.4,M,46.9,M,,",  // negative HDOP
+           "GPGGA,12h519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,",   // bad time
            "GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,2.0 0031",
            "GPRMC,123519,X,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W",  // status
            "GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,320394,003.1,W",  // date
            "GPRMC,123519,,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W",
-           "GPVTG,054.7,034.4,005.5,010.2",                                      // pre-2.0 layout
-           "GPVTG,400.0,T,,M,1.0,N,1.9,K,A",                                      // course > 360
-           "GPHDT,-5.0,T",
-           "GPHDT,12.5,M",
-           "GPROT,fast,A",
+           "GPVTG,054.7,034.4,005.5,010.2",   // pre-2.0 layout
+           "GPVTG,400.0,T,,M,1.0,N,1.9,K,A",  // course > 360
+           "GPHDT,-5.0,T", "GPHDT,12.5,M", "GPROT,fast,A",
            "PASHR,085335.000,224.19,T,-01.26,+00.83,+00.00,0.101,0.113,0.267,x,0",
            "PASHR,085335.000,224.19,T,-01.26,+95.83,+00.00,0.101,0.113,0.267,1,0",  // pitch beyond 90
        })

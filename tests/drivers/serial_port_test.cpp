@@ -171,7 +171,7 @@ TEST(SerialPort, StopDeliversQueuedWritesFirst) {
   port.stop();
   EXPECT_EQ(read_master(pty, last.size(), 1.0), last);
   EXPECT_FALSE(port.is_open());
-  port.stop();  // idempotent
+  port.stop();   // idempotent
   port.start();  // and startable again
   ASSERT_TRUE(wait_until([&] { return port.is_open(); }));
   port.write(last);
@@ -242,8 +242,7 @@ TEST(SerialPort, RecoversWhenTheDeviceDisappearsAndReportsTheGap) {
   pty = std::make_unique<PseudoTerminal>();
   dev.point_to(pty->slave_path());
   ASSERT_TRUE(wait_until([&] { return port.is_open(); }));
-  const double outage =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_unplug).count();
+  const double outage = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_unplug).count();
   ASSERT_TRUE(wait_until([&] { return rec.with([](Recorder& r) { return r.gaps.size(); }) == 1u; }));
   const SerialGap gap = rec.with([](Recorder& r) { return r.gaps[0]; });
   EXPECT_GT(gap.duration(), 0.0);

@@ -29,8 +29,7 @@ using test::wait_until;
 class Car {
  public:
   Car(const Clock& clock, sim::VcuStandinConfig cfg)
-      : clock_(clock),
-        vcu_(cfg, [this](Stamp, std::span<const std::uint8_t> b) {
+      : clock_(clock), vcu_(cfg, [this](Stamp, std::span<const std::uint8_t> b) {
           if (pty_) pty_->write(b);
         }) {}
   ~Car() { stop(); }
@@ -83,8 +82,8 @@ class Car {
   std::unique_ptr<PseudoTerminal> pty_;
   sim::VcuStandin vcu_;
   std::vector<wire::vcu::Command> commands_;
-  wire::vcu::Decoder tap_{{[this](const wire::vcu::Command& c, std::uint16_t) { commands_.push_back(c); }, nullptr,
-                           nullptr}};
+  wire::vcu::Decoder tap_{
+      {[this](const wire::vcu::Command& c, std::uint16_t) { commands_.push_back(c); }, nullptr, nullptr}};
   sim::VehicleTruth truth_;
   std::atomic<bool> running_{true};
   std::thread thread_;

@@ -23,9 +23,9 @@ const Bytes kStatusFrame = {0xa5, 0x5a, 0x12, 0x01, 0x81, 0xff, 0xff, 0x02, 0x03
 struct Sink {
   std::vector<std::pair<Command, std::uint16_t>> commands;
   std::vector<std::pair<VcuStatus, std::uint16_t>> statuses;
-  Decoder decoder{Decoder::Handlers{
-      [this](const Command& c, std::uint16_t s) { commands.emplace_back(c, s); },
-      [this](const VcuStatus& st, std::uint16_t s) { statuses.emplace_back(st, s); }, nullptr}};
+  Decoder decoder{Decoder::Handlers{[this](const Command& c, std::uint16_t s) { commands.emplace_back(c, s); },
+                                    [this](const VcuStatus& st, std::uint16_t s) { statuses.emplace_back(st, s); },
+                                    nullptr}};
   void feed(const Bytes& b) { decoder.feed(b); }
   std::uint64_t rejected(Reject r) const { return decoder.counters().count(r); }
 };
@@ -119,16 +119,20 @@ TEST(VcuProtocol, CommandRoundTripsEveryEnumValueAndTheRangeEnds) {
     }
   }
   // (value sent, value received): ends of the scaled ranges, saturation, rounding and NaN.
-  const std::pair<double, double> steering[] = {{3.2767, 3.2767}, {-3.2768, -3.2768}, {10.0, 3.2767},
-                                                {-10.0, -3.2768}, {0.00004, 0.0},     {-0.00016, -0.0002},
+  const std::pair<double, double> steering[] = {{3.2767, 3.2767},   {-3.2768, -3.2768}, {10.0, 3.2767},
+                                                {-10.0, -3.2768},   {0.00004, 0.0},     {-0.00016, -0.0002},
                                                 {std::nan(""), 0.0}};
   for (auto [sent, got] : steering) {
     k.feed(encode(Command{sent, 0.0, false, AsRequest::None, Mission::None}, seq++));
     EXPECT_NEAR(k.commands.back().first.steering, got, 1e-12) << sent;
   }
-  const std::pair<double, double> speed[] = {
-      {0.0, 0.0}, {655.35, 655.35}, {1e9, 655.35}, {-3.0, 0.0}, {std::numeric_limits<double>::infinity(), 655.35},
-      {std::nan(""), 0.0}, {0.005, 0.01}};
+  const std::pair<double, double> speed[] = {{0.0, 0.0},
+                                             {655.35, 655.35},
+                                             {1e9, 655.35},
+                                             {-3.0, 0.0},
+                                             {std::numeric_limits<double>::infinity(), 655.35},
+                                             {std::nan(""), 0.0},
+                                             {0.005, 0.01}};
   for (auto [sent, got] : speed) {
     k.feed(encode(Command{0.0, sent, true, AsRequest::None, Mission::None}, seq++));
     EXPECT_NEAR(k.commands.back().first.target_speed, got, 1e-12) << sent;
@@ -324,8 +328,8 @@ TEST(VcuProtocol, GarbageBetweenFramesResynchronises) {
   const Bytes garbage = {0x00, 0xa5, 0x13, 0x5a, 0xa5, 0xa5, 0xff, 0x5a};
   // A false sync with a plausible header inside the garbage must not swallow the real frame after it.
   const Bytes false_sync = {0xa5, 0x5a, 0x08, 0x01, 0x01, 0x00};
-  k.feed(cat({garbage, kCommandFrame, garbage, false_sync, command_frame(0x1235), garbage,
-              encode(VcuStatus{}, 0x1236)}));
+  k.feed(
+      cat({garbage, kCommandFrame, garbage, false_sync, command_frame(0x1235), garbage, encode(VcuStatus{}, 0x1236)}));
   ASSERT_EQ(k.commands.size(), 2u);
   EXPECT_EQ(k.commands[1].second, 0x1235);
   EXPECT_EQ(k.statuses.size(), 1u);

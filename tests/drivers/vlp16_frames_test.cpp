@@ -64,7 +64,7 @@ TEST(Vlp16Frames, EachFrameIsOneRevolutionFromTheCutAngle) {
   for (std::size_t i = 1; i < 3; ++i) {
     const auto& pts = got.scans[i].points;
     ASSERT_EQ(pts.size(), kPointsPerRevolution) << "frame " << i;
-    EXPECT_NEAR(deg(pts.front().azimuth), 0.0625, 1e-5);  // laser 15 of the 0.00° firing
+    EXPECT_NEAR(deg(pts.front().azimuth), 0.0625, 1e-5);                     // laser 15 of the 0.00° firing
     EXPECT_NEAR(deg(pts.back().azimuth), 0.2 * 14 * 2.304 / 110.592, 1e-5);  // laser 14, 0.0583°
     EXPECT_EQ(got.scans[i].seq, i);
   }

@@ -94,8 +94,8 @@ TEST(Vlp16Packet, WrapsAzimuthAt360) {
   auto d = make_decoder();
   // Blocks at 359.50, 359.70, 359.90, 0.10, ... : the step across the wrap is 20 counts, not -35980.
   Vlp16PacketBytes p(0, 35950, 20);
-  p.channel(2, 0, 0, 1000, 1);    // 359.90° exactly
-  p.channel(2, 1, 15, 1000, 1);   // 359.90° + 0.20° × 0.8125 = 360.0625° → 0.0625°
+  p.channel(2, 0, 0, 1000, 1);   // 359.90° exactly
+  p.channel(2, 1, 15, 1000, 1);  // 359.90° + 0.20° × 0.8125 = 360.0625° → 0.0625°
   const auto out = decode_ok(d, p.bytes());
   ASSERT_EQ(out.size(), 2u);
   expect_point(out[0], 2.0, -15, 0.0112, 359.90);
@@ -234,10 +234,10 @@ TEST(Vlp16Packet, RejectsAndCountsMalformedPackets) {
 TEST(Vlp16Packet, RangeFilterAndMissingReturns) {
   PacketDecoder d(LaserTable::builtin(), 0.5, 130.0);
   Vlp16PacketBytes p(0, 0, 20);
-  p.channel(0, 0, 0, 100, 1);     // 0.2 m: inside the blind zone
-  p.channel(0, 0, 2, 250, 1);     // 0.5 m: kept (bounds inclusive)
-  p.channel(0, 0, 4, 65000, 1);   // 130.0 m: kept
-  p.channel(0, 0, 6, 65535, 1);   // 131.07 m: too far
+  p.channel(0, 0, 0, 100, 1);    // 0.2 m: inside the blind zone
+  p.channel(0, 0, 2, 250, 1);    // 0.5 m: kept (bounds inclusive)
+  p.channel(0, 0, 4, 65000, 1);  // 130.0 m: kept
+  p.channel(0, 0, 6, 65535, 1);  // 131.07 m: too far
   const auto out = decode_ok(d, p.bytes());
   ASSERT_EQ(out.size(), 2u);
   EXPECT_EQ(out[0].laser, 2);

@@ -39,9 +39,8 @@ std::vector<Vlp16Return> all_returns(PcapDumpSummary* summary = nullptr) {
 
 // The return of `laser` fired `t_us` (sensor time) in the capture.
 const Vlp16Return& find_return(const std::vector<Vlp16Return>& all, int laser, double t_us) {
-  const auto it = std::find_if(all.begin(), all.end(), [&](const Vlp16Return& r) {
-    return r.laser == laser && std::abs(r.t_us - t_us) < 1e-6;
-  });
+  const auto it = std::find_if(
+      all.begin(), all.end(), [&](const Vlp16Return& r) { return r.laser == laser && std::abs(r.t_us - t_us) < 1e-6; });
   if (it == all.end()) throw std::runtime_error("return not found: laser " + std::to_string(laser));
   return *it;
 }
@@ -210,8 +209,10 @@ TEST(Vlp16Pcap, GroundRingsLieOnOneGroundPlane) {
   }
   EXPECT_NEAR(planes[0].height(), planes[1].height(), 0.05);
   const double h = planes[0].height();
-  EXPECT_NEAR(median_range[0], h / std::tan(15 * std::numbers::pi / 180), 0.15 * h / std::tan(15 * std::numbers::pi / 180));
-  EXPECT_NEAR(median_range[1], h / std::tan(13 * std::numbers::pi / 180), 0.15 * h / std::tan(13 * std::numbers::pi / 180));
+  EXPECT_NEAR(median_range[0], h / std::tan(15 * std::numbers::pi / 180),
+              0.15 * h / std::tan(15 * std::numbers::pi / 180));
+  EXPECT_NEAR(median_range[1], h / std::tan(13 * std::numbers::pi / 180),
+              0.15 * h / std::tan(13 * std::numbers::pi / 180));
   EXPECT_LT(median_range[0], median_range[1]);
   EXPECT_LT(median_range[1], median_range[2]);
 }

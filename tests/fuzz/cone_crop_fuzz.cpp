@@ -24,7 +24,8 @@ const fsd::ConeClassifier& classifier() {
   static const fsd::ConeClassifier c = [] {
     fsd::ConeClassifierModel m;
     m.weights.resize(m.hog.descriptor_size());
-    for (std::size_t i = 0; i < m.weights.size(); ++i) m.weights[i] = (i % 2 ? 0.01 : -0.01) * static_cast<double>(i % 7);
+    for (std::size_t i = 0; i < m.weights.size(); ++i)
+      m.weights[i] = (i % 2 ? 0.01 : -0.01) * static_cast<double>(i % 7);
     m.bias = 0.1;
     return fsd::ConeClassifier(m);
   }();

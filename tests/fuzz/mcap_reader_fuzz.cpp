@@ -10,11 +10,11 @@
 #include <cstdlib>
 #include <span>
 
+#include "common/mcap/fsd_profile.hpp"
 #include "common/mcap/inspect.hpp"
 #include "common/mcap/linear_reader.hpp"
 #include "common/mcap/recover.hpp"
 #include "common/mcap/summary_reader.hpp"
-#include "common/mcap/fsd_profile.hpp"
 #include "daemon/recording_reader.hpp"
 
 namespace {
@@ -33,8 +33,7 @@ void replay_path(std::span<const std::uint8_t> in, std::uint64_t messages, const
     if (const auto* run = rec.metadata(kRunMetadata)) {
       try {
         (void)fsd::recorded_run_from_metadata(*run);
-      } catch (const std::invalid_argument&) {
-      }
+      } catch (const std::invalid_argument&) {}
     }
     std::uint64_t events = 0;
     while (auto e = rec.next()) {
@@ -44,8 +43,7 @@ void replay_path(std::span<const std::uint8_t> in, std::uint64_t messages, const
     const auto& c = rec.counters();
     require(c.frames + c.cycles + c.commands == events);
     require(events <= messages);
-  } catch (const fsd::RecordingError&) {
-  }
+  } catch (const fsd::RecordingError&) {}
 }
 
 }  // namespace

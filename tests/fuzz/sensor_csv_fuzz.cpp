@@ -16,8 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fsd::SensorCsvSpec spec;
   switch (data[0] % 3) {
     case 0:
-      spec.columns = {"t_unix_s", "gyro_x_rad_s", "gyro_y_rad_s", "gyro_z_rad_s", "acc_x_m_s2", "acc_y_m_s2",
-                      "acc_z_m_s2"};
+      spec.columns = {"t_unix_s",   "gyro_x_rad_s", "gyro_y_rad_s", "gyro_z_rad_s",
+                      "acc_x_m_s2", "acc_y_m_s2",   "acc_z_m_s2"};
       spec.max_gap_s = 0.5;
       break;
     case 1:

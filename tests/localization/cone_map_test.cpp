@@ -49,8 +49,8 @@ void expect_each_cone_mapped(const World& world, const std::vector<Cone>& cones)
 }
 
 TEST(ConeMap, FusesRepeatedNoisyDetectionsToTheTruePosition) {
-  const std::vector<std::pair<Vec2, ConeColour>> world{{{5, 2}, ConeColour::Blue}, {{5, -2}, ConeColour::Yellow},
-                                                      {{9, 2}, ConeColour::Blue}};
+  const std::vector<std::pair<Vec2, ConeColour>> world{
+      {{5, 2}, ConeColour::Blue}, {{5, -2}, ConeColour::Yellow}, {{9, 2}, ConeColour::Blue}};
   ConeMap map;
   std::mt19937 rng(3);
   for (int k = 0; k < 100; ++k) {
@@ -96,7 +96,7 @@ TEST(ConeMap, ADoubledStartLineKeepsItsOrangeConesApartFromTheBoundaryCone) {
   // epfl_autoX_Vaudoise_Sponso: big orange cones 0.5 m before and after a boundary cone on each side of the start
   // line. Same-colour gating (1 m) alone merged the three into one and voted it the boundary's colour.
   const std::vector<std::pair<Vec2, ConeColour>> world{
-      {{7.0, 1.5}, ConeColour::BigOrange}, {{7.5, 1.5}, ConeColour::Blue},   {{8.0, 1.5}, ConeColour::BigOrange},
+      {{7.0, 1.5}, ConeColour::BigOrange},  {{7.5, 1.5}, ConeColour::Blue},    {{8.0, 1.5}, ConeColour::BigOrange},
       {{7.0, -1.5}, ConeColour::BigOrange}, {{7.5, -1.5}, ConeColour::Yellow}, {{8.0, -1.5}, ConeColour::BigOrange}};
   expect_each_cone_mapped(world, drive_past(world, 50, 0.05, 5));
 }
@@ -127,7 +127,6 @@ TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
   ASSERT_EQ(cones.size(), 1u);
   EXPECT_EQ(cones[0].colour, ConeColour::Blue);
 }
-
 
 // A tyre beside the track that the LiDAR takes for a cone, seen from afar (LiDAR only), then in the camera's view
 // (rejected) and beside the car (LiDAR only again); a real cone next to it that the camera verifies once and doubts
@@ -170,7 +169,8 @@ TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
 
   const auto cones = map.cones();
   auto mapped = [&](const Vec2& p) {
-    return std::any_of(cones.begin(), cones.end(), [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
+    return std::any_of(cones.begin(), cones.end(),
+                       [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
   };
   EXPECT_FALSE(mapped(tyre));   // rejected 2, verified 0
   EXPECT_TRUE(mapped(cone));    // rejected 1 (< min_rejections), verified 1

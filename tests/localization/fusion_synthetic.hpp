@@ -20,14 +20,14 @@ struct TruthSample {
 
 struct SyntheticDrive {
   double start_yaw = 0.7;
-  double stand_s = 10.0;         // standing still first
+  double stand_s = 10.0;  // standing still first
   double duration_s = 130.0;
-  double gyro_bias = 0.01;       // rad/s
-  double gyro_noise = 0.003;     // rad/s
-  double speed_scale = 1.02;     // optical reading / truth
-  double speed_noise = 0.03;     // m/s
+  double gyro_bias = 0.01;    // rad/s
+  double gyro_noise = 0.003;  // rad/s
+  double speed_scale = 1.02;  // optical reading / truth
+  double speed_noise = 0.03;  // m/s
   Vec2 lever{-0.41, 0.27};
-  double gnss_sigma = 0.3;       // m, white
+  double gnss_sigma = 0.3;  // m, white
   unsigned seed = 7;
   std::function<double(double)> speed = [](double t) { return t < 10 ? 0.0 : std::min(10.0, (t - 10) * 2.0); };
   std::function<double(double)> yaw_rate = [](double t) { return t < 12 ? 0.0 : 0.35 * std::sin(0.15 * (t - 12)); };

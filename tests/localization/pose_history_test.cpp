@@ -52,7 +52,7 @@ TEST(PoseHistory, KeepsOnlyTheNewestPosesAndIgnoresOlderOnes) {
   EXPECT_DOUBLE_EQ(h.at(0.0)->x, 2.0);  // 0 and 1 are gone: the oldest kept holds
   h.add(3.5, {100, 0, 0});              // older than the newest (4): ignored
   EXPECT_DOUBLE_EQ(h.at(3.5)->x, 3.5);
-  h.add(4.0, {8, 0, 0});                // the same instant: replaces it
+  h.add(4.0, {8, 0, 0});  // the same instant: replaces it
   EXPECT_DOUBLE_EQ(h.at(4.0)->x, 8.0);
   EXPECT_EQ(h.size(), 3u);
 }

@@ -36,7 +36,8 @@ Bytes of(const std::string& s) { return Bytes(s.begin(), s.end()); }
 TEST(McapBadFiles, EmptyFile) { EXPECT_EQ(error_of({}), "empty file"); }
 
 TEST(McapBadFiles, NotMcap) {
-  EXPECT_EQ(error_of(of("tag,x,y,direction\nblue,1,2,0\n")), "not an MCAP file (it does not start with the MCAP magic)");
+  EXPECT_EQ(error_of(of("tag,x,y,direction\nblue,1,2,0\n")),
+            "not an MCAP file (it does not start with the MCAP magic)");
   const Bytes pcap = {0xD4, 0xC3, 0xB2, 0xA1, 0x02, 0x00, 0x04, 0x00, 0, 0, 0, 0};
   EXPECT_EQ(error_of(pcap), "not an MCAP file (it does not start with the MCAP magic)");
   EXPECT_EQ(error_of(of("\x89MCAPx\r\n")), "not an MCAP file (bad magic)");

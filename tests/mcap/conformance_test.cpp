@@ -54,17 +54,23 @@ json conformance_json(const Record& r) {
         if constexpr (std::is_same_v<T, Header>) {
           f = {{"profile", x.profile}, {"library", x.library}};
         } else if constexpr (std::is_same_v<T, Footer>) {
-          f = {{"summary_start", str(x.summary_start)}, {"summary_offset_start", str(x.summary_offset_start)},
+          f = {{"summary_start", str(x.summary_start)},
+               {"summary_offset_start", str(x.summary_offset_start)},
                {"summary_crc", str(x.summary_crc)}};
         } else if constexpr (std::is_same_v<T, Schema>) {
           f = {{"id", str(x.id)}, {"name", x.name}, {"encoding", x.encoding}, {"data", bytes(x.data)}};
         } else if constexpr (std::is_same_v<T, Channel>) {
-          f = {{"id", str(x.id)},       {"schema_id", str(x.schema_id)},
-               {"topic", x.topic},      {"message_encoding", x.message_encoding},
+          f = {{"id", str(x.id)},
+               {"schema_id", str(x.schema_id)},
+               {"topic", x.topic},
+               {"message_encoding", x.message_encoding},
                {"metadata", map(x.metadata)}};
         } else if constexpr (std::is_same_v<T, Message>) {
-          f = {{"channel_id", str(x.channel_id)}, {"sequence", str(x.sequence)}, {"log_time", str(x.log_time)},
-               {"publish_time", str(x.publish_time)}, {"data", bytes(x.data)}};
+          f = {{"channel_id", str(x.channel_id)},
+               {"sequence", str(x.sequence)},
+               {"log_time", str(x.log_time)},
+               {"publish_time", str(x.publish_time)},
+               {"data", bytes(x.data)}};
         } else if constexpr (std::is_same_v<T, ChunkIndex>) {
           f = {{"message_start_time", str(x.message_start_time)},
                {"message_end_time", str(x.message_end_time)},
@@ -76,10 +82,13 @@ json conformance_json(const Record& r) {
                {"compressed_size", str(x.compressed_size)},
                {"uncompressed_size", str(x.uncompressed_size)}};
         } else if constexpr (std::is_same_v<T, Attachment>) {  // the suite leaves the CRC out
-          f = {{"log_time", str(x.log_time)}, {"create_time", str(x.create_time)}, {"name", x.name},
-               {"media_type", x.media_type}, {"data", bytes(x.data)}};
+          f = {{"log_time", str(x.log_time)},
+               {"create_time", str(x.create_time)},
+               {"name", x.name},
+               {"media_type", x.media_type},
+               {"data", bytes(x.data)}};
         } else if constexpr (std::is_same_v<T, AttachmentIndex>) {
-          f = {{"offset", str(x.offset)},   {"length", str(x.length)},       {"log_time", str(x.log_time)},
+          f = {{"offset", str(x.offset)},           {"length", str(x.length)},       {"log_time", str(x.log_time)},
                {"create_time", str(x.create_time)}, {"data_size", str(x.data_size)}, {"name", x.name},
                {"media_type", x.media_type}};
         } else if constexpr (std::is_same_v<T, Statistics>) {
@@ -97,7 +106,8 @@ json conformance_json(const Record& r) {
         } else if constexpr (std::is_same_v<T, MetadataIndex>) {
           f = {{"offset", str(x.offset)}, {"length", str(x.length)}, {"name", x.name}};
         } else if constexpr (std::is_same_v<T, SummaryOffset>) {
-          f = {{"group_opcode", str(x.group_opcode)}, {"group_start", str(x.group_start)},
+          f = {{"group_opcode", str(x.group_opcode)},
+               {"group_start", str(x.group_start)},
                {"group_length", str(x.group_length)}};
         } else if constexpr (std::is_same_v<T, DataEnd>) {
           f = {{"data_section_crc", str(x.data_section_crc)}};
@@ -159,9 +169,8 @@ TEST(McapConformance, EveryVariantWrittenByMcapCoreReadsRecordForRecord) {
       // The summary reader: the same messages, through the chunk indexes where the variant has them.
       SummaryReader summary(file.bytes(), strict);
       std::vector<MessageKey> via_summary;
-      summary.for_each_message([&](const Message& m, const Channel&) {
-        via_summary.push_back(key_of(conformance_json(m)));
-      });
+      summary.for_each_message(
+          [&](const Message& m, const Channel&) { via_summary.push_back(key_of(conformance_json(m))); });
       std::sort(messages.begin(), messages.end());
       std::sort(via_summary.begin(), via_summary.end());
       EXPECT_EQ(via_summary, messages) << name;

@@ -19,8 +19,8 @@ using nlohmann::json;
 
 std::string write_file(const std::string& name, std::span<const std::uint8_t> bytes) {
   const auto path = fsd::test::scratch_path(name);
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                              static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   return path;
 }
 
@@ -81,8 +81,7 @@ TEST(McapCli, InfoOnACutOffFileSaysSoAndRecoverMendsIt) {
   EXPECT_EQ(j["truncated_at"], c.chunk_start_offset);
   EXPECT_EQ(j["messages"], kept);
   const auto text = fsd("mcap info " + path);
-  EXPECT_NE(text.out.find("cut off at offset " + std::to_string(c.chunk_start_offset)), std::string::npos)
-      << text.out;
+  EXPECT_NE(text.out.find("cut off at offset " + std::to_string(c.chunk_start_offset)), std::string::npos) << text.out;
 
   const auto out = fsd::test::scratch_path("mended.mcap");
   const auto rr = fsd("mcap recover " + path + " " + out);

@@ -28,8 +28,8 @@ std::string hex(const Bytes& b) {
 }
 
 json expected_message(const Message& m) {
-  return json::array({m.channel_id, m.sequence, std::to_string(m.log_time), std::to_string(m.publish_time),
-                      hex(m.data)});
+  return json::array(
+      {m.channel_id, m.sequence, std::to_string(m.log_time), std::to_string(m.publish_time), hex(m.data)});
 }
 
 class McapCoreReadsOurs : public ::testing::TestWithParam<Compression> {};
@@ -38,7 +38,8 @@ TEST_P(McapCoreReadsOurs, SameMessagesStatisticsMetadataAndIndexes) {
   test::RecordingSpec spec;
   spec.compression = GetParam();
   const auto rec = test::make_recording(spec);
-  const std::string path = fsd::test::scratch_path(std::string("ours_") + (GetParam() == Compression::Zstd ? "zstd" : "none") + ".mcap");
+  const std::string path =
+      fsd::test::scratch_path(std::string("ours_") + (GetParam() == Compression::Zstd ? "zstd" : "none") + ".mcap");
   {
     FileSink sink(path);
     sink.write(rec.file);
@@ -62,9 +63,9 @@ TEST_P(McapCoreReadsOurs, SameMessagesStatisticsMetadataAndIndexes) {
   EXPECT_EQ(st["chunk_count"], rec.chunks.size());
   EXPECT_EQ(st["message_start_time"], std::to_string(rec.messages.front().log_time));
   EXPECT_EQ(st["message_end_time"], std::to_string(rec.messages.back().log_time));
-  EXPECT_EQ(st["channel_message_counts"],
-            json({{"1", std::to_string(spec.messages / 3)}, {"2", std::to_string(spec.messages / 3)},
-                  {"3", std::to_string(spec.messages / 3)}}));
+  EXPECT_EQ(st["channel_message_counts"], json({{"1", std::to_string(spec.messages / 3)},
+                                                {"2", std::to_string(spec.messages / 3)},
+                                                {"3", std::to_string(spec.messages / 3)}}));
   EXPECT_EQ(ix["chunk_indexes"], rec.chunks.size());
 
   ASSERT_EQ(ix["channels"].size(), 3u);

@@ -62,8 +62,7 @@ TEST_P(McapRoundTrip, LinearReaderYieldsEveryRecordWritten) {
   EXPECT_EQ(order.front(), Opcode::Header);
   EXPECT_EQ(order.back(), Opcode::Footer);
   // Each chunk is followed by one message index per channel that has messages in it.
-  EXPECT_EQ(std::count(order.begin(), order.end(), Opcode::MessageIndex),
-            static_cast<long>(rec.chunks.size() * 3));
+  EXPECT_EQ(std::count(order.begin(), order.end(), Opcode::MessageIndex), static_cast<long>(rec.chunks.size() * 3));
 }
 
 TEST_P(McapRoundTrip, SummaryHasStatisticsAndIndexesOfWhatWasWritten) {
@@ -85,8 +84,7 @@ TEST_P(McapRoundTrip, SummaryHasStatisticsAndIndexesOfWhatWasWritten) {
   EXPECT_EQ(s.statistics->chunk_count, rec.chunks.size());
   EXPECT_EQ(s.statistics->message_start_time, rec.messages.front().log_time);
   EXPECT_EQ(s.statistics->message_end_time, rec.messages.back().log_time);
-  for (std::uint16_t c = 1; c <= 3; ++c)
-    EXPECT_EQ(s.statistics->channel_message_counts.at(c), rec.messages.size() / 3);
+  for (std::uint16_t c = 1; c <= 3; ++c) EXPECT_EQ(s.statistics->channel_message_counts.at(c), rec.messages.size() / 3);
   EXPECT_EQ(s.channels.size(), 3u);
   EXPECT_EQ(s.schemas.at(1).encoding, "jsonschema");
   EXPECT_EQ(s.metadata_indexes.size(), 2u);
@@ -168,7 +166,7 @@ TEST(McapWriter, BytesWrittenGrowsByChunk) {
   for (int i = 0; i < 3; ++i) w.write_message(ch, i, i, data);
   EXPECT_EQ(w.bytes_written(), start);  // still in the open chunk
   EXPECT_EQ(w.bytes_pending(), 3 * (test::kMessageRecordOverhead + 1000));
-  w.write_message(ch, 3, 3, data);      // crosses 4096: the chunk is written
+  w.write_message(ch, 3, 3, data);  // crosses 4096: the chunk is written
   EXPECT_GT(w.bytes_written(), start);
   EXPECT_EQ(w.bytes_written(), sink.data.size());
   EXPECT_EQ(w.bytes_pending(), 0u);

@@ -22,8 +22,8 @@ struct RecordingSpec {
 
 struct KnownRecording {
   Bytes file;
-  std::vector<Message> messages;               // in write order
-  std::vector<std::vector<int>> chunks;        // message indices of each chunk, as the writer must cut them
+  std::vector<Message> messages;         // in write order
+  std::vector<std::vector<int>> chunks;  // message indices of each chunk, as the writer must cut them
   std::vector<Metadata> metadata;
   std::vector<Attachment> attachments;
 };

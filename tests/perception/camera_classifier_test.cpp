@@ -37,7 +37,8 @@ cv::Mat draw_other(int kind, cv::Size size, cv::RNG& rng) {
     }
     case 1: {  // post
       const int x = static_cast<int>(w * rng.uniform(0.35, 0.6)), pw = std::max(2, static_cast<int>(w * 0.12));
-      cv::rectangle(img, cv::Rect(x, 0, pw, static_cast<int>(h * 0.9)), test::scaled({200, 200, 200}, shade), cv::FILLED);
+      cv::rectangle(img, cv::Rect(x, 0, pw, static_cast<int>(h * 0.9)), test::scaled({200, 200, 200}, shade),
+                    cv::FILLED);
       break;
     }
     case 2:  // fence panel
@@ -54,7 +55,7 @@ cv::Mat draw_other(int kind, cv::Size size, cv::RNG& rng) {
 
 cv::Mat draw_cone_crop(cv::RNG& rng) {
   static constexpr ConeColour kColours[] = {ConeColour::Blue, ConeColour::Yellow, ConeColour::Orange,
-                                           ConeColour::BigOrange, ConeColour::Red};
+                                            ConeColour::BigOrange, ConeColour::Red};
   test::DrawnCone d;
   test::paint_cone(d, kColours[rng.uniform(0, 5)], rng);
   const int height = rng.uniform(24, 120);
@@ -136,11 +137,19 @@ TEST(CameraClassifierModel, EachErrorNamesTheField) {
       {"wrong format", [](json& j) { j["format"] = "opencv"; }, "field 'format'"},
       {"future version", [](json& j) { j["version"] = 2; }, "field 'version': unsupported"},
       {"no hog", [](json& j) { j.erase("hog"); }, "field 'hog': missing"},
-      {"window of one number", [](json& j) { j["hog"]["window"] = {32}; }, "field 'hog.window': expected [width, height]"},
-      {"window not a multiple", [](json& j) { j["hog"]["window"] = {33, 48}; }, "multiple of the stride"},
+      {"window of one number", [](json& j) { j["hog"]["window"] = {32}; },
+       "field 'hog.window': expected [width, height]"},
+      {"window not a multiple",
+       [](json& j) {
+         j["hog"]["window"] = {33, 48};
+       },
+       "multiple of the stride"},
       {"cell too big", [](json& j) { j["hog"]["cell"] = 32; }, "field 'hog'"},
       // One-cell blocks with 2 bins crashed OpenCV's HOGDescriptor::compute (found by cone_model_fuzz).
-      {"one-cell blocks", [](json& j) { j["hog"] = {{"window", {16, 24}}, {"block", 8}, {"stride", 8}, {"cell", 8}, {"bins", 9}}; },
+      {"one-cell blocks",
+       [](json& j) {
+         j["hog"] = {{"window", {16, 24}}, {"block", 8}, {"stride", 8}, {"cell", 8}, {"bins", 9}};
+       },
        "a block 2 x 2 cells"},
       {"two bins", [](json& j) { j["hog"]["bins"] = 2; }, "bins must be 6..18"},
       {"fractional bins", [](json& j) { j["hog"]["bins"] = 9.5; }, "field 'hog.bins': expected an integer"},

@@ -55,7 +55,8 @@ Tally classify_crops(bool loose, std::uint64_t rng_seed) {
         // A crop has no scale: big orange is told from orange by its two stripes, which a cone under ~40 px does not
         // resolve (each is 12 % of its height). The stage on a camera frame measures the height instead.
         const double cone_px = d.fill * height;
-        const bool size_unresolvable = colour == ConeColour::BigOrange && cone_px < 40 && r.colour == ConeColour::Orange;
+        const bool size_unresolvable =
+            colour == ConeColour::BigOrange && cone_px < 40 && r.colour == ConeColour::Orange;
         if (r.colour == colour || size_unresolvable)
           ++t.right, ++all.right;
         else if (r.colour == ConeColour::Unknown)
@@ -63,11 +64,12 @@ Tally classify_crops(bool loose, std::uint64_t rng_seed) {
         else
           ++t.wrong, ++all.wrong;
         if (r.colour != colour && !size_unresolvable)
-          std::printf("  miss: %s at %d px (light %.2f, background %d) came out %s (best %s, confidence %.2f, hue %.0f, "
-                      "stripes %d)\n",
-                      std::string(to_string(colour)).c_str(), height, d.light, static_cast<int>(d.background),
-                      std::string(to_string(r.colour)).c_str(), std::string(to_string(r.best)).c_str(), r.confidence,
-                      r.hue, r.stripes);
+          std::printf(
+              "  miss: %s at %d px (light %.2f, background %d) came out %s (best %s, confidence %.2f, hue %.0f, "
+              "stripes %d)\n",
+              std::string(to_string(colour)).c_str(), height, d.light, static_cast<int>(d.background),
+              std::string(to_string(r.colour)).c_str(), std::string(to_string(r.best)).c_str(), r.confidence, r.hue,
+              r.stripes);
       }
   for (const auto& [colour, t] : tally)
     std::printf("  %-10s right %3d unknown %2d wrong %2d of %d\n", std::string(to_string(colour)).c_str(), t.right,
@@ -143,7 +145,8 @@ TEST(CameraColourScale, BigOrangeFromTheProjectedScaleOrTheLidarHeight) {
       d.noise = 2.0;
       const cv::Mat img = test::draw_cone(d);
       const ColourResult r = classifier.classify(img, view);
-      EXPECT_EQ(r.colour, big ? ConeColour::BigOrange : ConeColour::Orange) << "light " << light << ", height " << r.height;
+      EXPECT_EQ(r.colour, big ? ConeColour::BigOrange : ConeColour::Orange)
+          << "light " << light << ", height " << r.height;
       EXPECT_NEAR(r.height, big ? 0.505 : 0.325, 0.06) << "light " << light;
       // The LiDAR's height overrides the image: the envelope is the better measure of size.
       EXPECT_EQ(classifier.classify(img, view, 0.50).colour, ConeColour::BigOrange);

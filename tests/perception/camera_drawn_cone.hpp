@@ -18,19 +18,19 @@ namespace fsd::test {
 enum class Background { Asphalt, Grass, SkyAndAsphalt, Concrete, Gravel };
 
 struct DrawnCone {
-  cv::Size crop{60, 80};           // image size
-  double fill = 0.85;              // cone height / crop height
-  double centre = 0.5;             // cone axis at this share of the width
-  double base = -1;                // base at this share of the height; < 0: the cone centred vertically
-  double aspect = 0.70;            // base width / height (small cone 0.70, big 0.56)
-  cv::Scalar body{200, 80, 30};    // BGR paint
+  cv::Size crop{60, 80};         // image size
+  double fill = 0.85;            // cone height / crop height
+  double centre = 0.5;           // cone axis at this share of the width
+  double base = -1;              // base at this share of the height; < 0: the cone centred vertically
+  double aspect = 0.70;          // base width / height (small cone 0.70, big 0.56)
+  cv::Scalar body{200, 80, 30};  // BGR paint
   cv::Scalar stripe{240, 240, 240};
   std::vector<std::array<double, 2>> stripes{{0.38, 0.62}};  // height fractions from the base
-  double light = 1.0;              // exposure
-  cv::Scalar cast{1, 1, 1};        // per-channel white balance error (B, G, R)
+  double light = 1.0;                                        // exposure
+  cv::Scalar cast{1, 1, 1};                                  // per-channel white balance error (B, G, R)
   Background background = Background::Asphalt;
-  double noise = 3.0;              // σ, 8-bit levels
-  double blur = 0.7;               // σ, px
+  double noise = 3.0;  // σ, 8-bit levels
+  double blur = 0.7;   // σ, px
   std::uint64_t seed = 1;
 };
 
@@ -45,11 +45,21 @@ inline cv::Mat draw_cone(const DrawnCone& d) {
   for (int r = 0; r < h; ++r) {
     cv::Scalar c;
     switch (d.background) {
-      case Background::Asphalt: c = {95, 95, 98}; break;
-      case Background::Grass: c = {40, 140, 70}; break;
-      case Background::SkyAndAsphalt: c = r < horizon ? cv::Scalar(235, 190, 140) : cv::Scalar(90, 92, 95); break;
-      case Background::Concrete: c = {165, 170, 172}; break;
-      case Background::Gravel: c = {110, 130, 150}; break;
+      case Background::Asphalt:
+        c = {95, 95, 98};
+        break;
+      case Background::Grass:
+        c = {40, 140, 70};
+        break;
+      case Background::SkyAndAsphalt:
+        c = r < horizon ? cv::Scalar(235, 190, 140) : cv::Scalar(90, 92, 95);
+        break;
+      case Background::Concrete:
+        c = {165, 170, 172};
+        break;
+      case Background::Gravel:
+        c = {110, 130, 150};
+        break;
     }
     img.row(r).setTo(c);
   }
@@ -100,12 +110,17 @@ inline cv::Mat draw_cone(const DrawnCone& d) {
 inline cv::Scalar paint_of(ConeColour c, cv::RNG& rng) {
   const auto j = [&](double v, double spread) { return std::clamp(v + rng.uniform(-spread, spread), 0.0, 255.0); };
   switch (c) {
-    case ConeColour::Blue: return {j(175, 40), j(70, 30), j(20, 15)};
-    case ConeColour::Yellow: return {j(20, 20), j(205, 15), j(235, 15)};
+    case ConeColour::Blue:
+      return {j(175, 40), j(70, 30), j(20, 15)};
+    case ConeColour::Yellow:
+      return {j(20, 20), j(205, 15), j(235, 15)};
     case ConeColour::Orange:
-    case ConeColour::BigOrange: return {j(15, 15), j(100, 25), j(245, 10)};
-    case ConeColour::Red: return {j(40, 12), j(28, 10), j(200, 30)};  // crimson: green at most blue
-    default: return {128, 128, 128};
+    case ConeColour::BigOrange:
+      return {j(15, 15), j(100, 25), j(245, 10)};
+    case ConeColour::Red:
+      return {j(40, 12), j(28, 10), j(200, 30)};  // crimson: green at most blue
+    default:
+      return {128, 128, 128};
   }
 }
 

@@ -60,7 +60,8 @@ inline void paint(cv::Mat& frame, double X, double Y, ConeColour colour, bool bi
     const double ra = r0 + (r1 - r0) * z0 / height, rb = r0 + (r1 - r0) * z1 / height;
     const std::array<Seen, 4> q{see(X, Y + ra, z0), see(X, Y - ra, z0), see(X, Y - rb, z1), see(X, Y + rb, z1)};
     std::array<cv::Point, 4> pts;
-    for (std::size_t i = 0; i < 4; ++i) pts[i] = cv::Point(static_cast<int>(q[i].pixel.x * 16), static_cast<int>(q[i].pixel.y * 16));
+    for (std::size_t i = 0; i < 4; ++i)
+      pts[i] = cv::Point(static_cast<int>(q[i].pixel.x * 16), static_cast<int>(q[i].pixel.y * 16));
     cv::fillConvexPoly(frame, pts.data(), 4, stripe ? d.stripe : d.body, cv::LINE_AA, 4);
   }
 }

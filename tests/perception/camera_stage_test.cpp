@@ -23,8 +23,11 @@ TEST(CameraStage, AcceptedCandidatesGetStageCameraAndTheirColour) {
   const struct {
     double x, y;
     ConeColour colour;
-  } cones[] = {{6, 1.5, ConeColour::Blue}, {6, -1.5, ConeColour::Yellow}, {9, 0.4, ConeColour::Orange},
-               {11, -1.2, ConeColour::Red}, {8, 2.6, ConeColour::Blue}};
+  } cones[] = {{6, 1.5, ConeColour::Blue},
+               {6, -1.5, ConeColour::Yellow},
+               {9, 0.4, ConeColour::Orange},
+               {11, -1.2, ConeColour::Red},
+               {8, 2.6, ConeColour::Blue}};
   std::vector<Cone> candidates;
   for (const auto& c : cones) {
     paint(frame, c.x, c.y, c.colour);

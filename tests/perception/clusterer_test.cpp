@@ -81,7 +81,7 @@ TEST(Clusterer, RangeAwareToleranceKeepsASparseFarObjectWhole) {
   ClusterConfig fixed;
   fixed.range_factor = 0.0;
   EXPECT_EQ(Clusterer(fixed).cluster(pts, Vec2(0, 0)).size(), 0u);  // four single points, below min_points 2
-  ClusterConfig aware;  // range_factor 0.01
+  ClusterConfig aware;                                              // range_factor 0.01
   const auto c = Clusterer(aware).cluster(pts, Vec2(0, 0));
   ASSERT_EQ(c.size(), 1u);
   EXPECT_EQ(c[0].indices.size(), 4u);
@@ -93,7 +93,7 @@ TEST(Clusterer, RangeAwareToleranceKeepsASparseFarObjectWhole) {
 TEST(Clusterer, HeightWeightSplitsStackedObjects) {
   std::vector<Point> pts;
   for (int i = 0; i < 5; ++i) pts.push_back(at(4.0 + 0.02 * i, 0, 0.1));
-  for (int i = 0; i < 5; ++i) pts.push_back(at(4.0 + 0.02 * i, 0, 0.9));  // 0.8 m above, same footprint
+  for (int i = 0; i < 5; ++i) pts.push_back(at(4.0 + 0.02 * i, 0, 0.9));      // 0.8 m above, same footprint
   EXPECT_EQ(Clusterer(ClusterConfig{}).cluster(pts, Vec2(0, 0)).size(), 1u);  // footprint only: one object
   ClusterConfig weighted;
   weighted.z_weight = 1.0;

@@ -122,7 +122,8 @@ TEST(ConeSizeFilter, RejectsWhatIsNoCone) {
   SceneObject kerb = test::cylinder_at(5.0, -0.5, 0.1, 0.12);          // lower than any cone
   const std::vector<Case> cases{
       {"lying tyre", test::cylinder_at(7.0, 2.0, 0.3, 0.2), {ConeRejection::TooWide}},
-      {"standing tyre, tread on", test::standing_tyre_at(6.0, 0.0, std::numbers::pi / 2),
+      {"standing tyre, tread on",
+       test::standing_tyre_at(6.0, 0.0, std::numbers::pi / 2),
        {ConeRejection::TooTall, ConeRejection::NotConeShaped}},
       {"standing tyre, side on", test::standing_tyre_at(6.0, 0.0, 0.0), {ConeRejection::TooWide}},
       {"post", test::cylinder_at(8.0, -1.0, 0.05, 1.2), {ConeRejection::TooTall}},

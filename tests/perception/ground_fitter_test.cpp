@@ -57,8 +57,8 @@ TEST_P(GroundFitterMounts, RecoversTheTiltAndHeightOfTheGroundFromEveryMount) {
     for (double pitch_deg : {-5.0, 0.0, 3.0, 5.0}) {
       const double roll_deg = pitch_deg / 2;
       const RayScene scene = cluttered_ground(0.02, -0.01);  // the ground itself slopes 1.1° and 0.6°
-      const Pose3 mount = pose_zyx(Vec3(1.0, 0.5, scene.a + 0.5 * scene.b + height), 0.3, deg2rad(pitch_deg),
-                                   deg2rad(roll_deg));
+      const Pose3 mount =
+          pose_zyx(Vec3(1.0, 0.5, scene.a + 0.5 * scene.b + height), 0.3, deg2rad(pitch_deg), deg2rad(roll_deg));
       const Scan scan = scene.sweep(mount, 30.0);
       std::vector<Point> pts;
       for (const auto& p : scan.points)
@@ -88,7 +88,7 @@ TEST(GroundFitter, KeepsToTheConfiguredTiltAndHeight) {
   EXPECT_FALSE(pcl.fit(points_of(scan)).valid);
 
   RayScene flat;
-  GroundConfig vehicle_frame;  // h within ±0.3 m of the frame origin
+  GroundConfig vehicle_frame;                                              // h within ±0.3 m of the frame origin
   const Scan high = flat.sweep(pose_zyx(Vec3(0, 0, 1.0), 0, 0, 0), 20.0);  // ground 1 m below the origin
   EXPECT_FALSE(GroundFitter(vehicle_frame).fit(points_of(high)).valid);
   EXPECT_FALSE(GroundFitter(vehicle_frame).fit({}).valid);

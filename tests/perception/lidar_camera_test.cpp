@@ -76,7 +76,7 @@ TEST(LidarCamera, ConesMovedToTheCaptureGetTheirColourAndKeepTheLidarPosition) {
     EXPECT_EQ(c.colour, kCones[i].colour) << i << ": " << to_string(c.colour);
     EXPECT_EQ(c.colour_source, ColourSource::Camera) << i;
     EXPECT_EQ(c.position, given.detections.cones[i].position) << i;  // where the LiDAR put it, at the scan
-    EXPECT_EQ(c.id, 0u) << i;                                         // no tag left behind
+    EXPECT_EQ(c.id, 0u) << i;                                        // no tag left behind
   }
 }
 
@@ -93,7 +93,7 @@ TEST(LidarCamera, WithoutTheMotionTheCameraLooksInTheWrongPlace) {
 TEST(LidarCamera, RejectedConesLeaveTheDetectionsAndTheirCandidates) {
   CameraStage stage(calibration(), constant_model(-1.0));  // rejects every ROI it sees
   LidarDetection d = detection_at_scan();
-  d.detections.cones.push_back(lidar_candidate(-3, 0));    // behind the camera: cannot be judged, kept
+  d.detections.cones.push_back(lidar_candidate(-3, 0));  // behind the camera: cannot be judged, kept
   ConeCandidate behind;
   behind.position = Vec3(-3, 0, 0);
   d.candidates.push_back(behind);

@@ -42,9 +42,9 @@ TEST(LidarConeDetector, FindsTheConesOfAHandMadeSceneAndNothingElse) {
   for (const auto& c : cones)
     scene.objects.push_back(c.colour == ConeColour::Blue ? painted(test::small_cone_at(c.at.x(), c.at.y()), 22, 95)
                                                          : painted(test::small_cone_at(c.at.x(), c.at.y()), 70, 8));
-  scene.objects.push_back(test::cylinder_at(6.0, 5.0, 0.3, 0.2));         // lying tyre
-  scene.objects.push_back(test::cylinder_at(9.0, -5.0, 0.05, 1.3));       // post
-  scene.objects.push_back(test::wall_at(-6.0, 8.0, 0.0, 12.0, 1.5));      // fence
+  scene.objects.push_back(test::cylinder_at(6.0, 5.0, 0.3, 0.2));     // lying tyre
+  scene.objects.push_back(test::cylinder_at(9.0, -5.0, 0.05, 1.3));   // post
+  scene.objects.push_back(test::wall_at(-6.0, 8.0, 0.0, 12.0, 1.5));  // fence
   const Scan scan = scene.sweep(kMount, 60.0);
 
   LidarConeDetector det({}, kMount);

@@ -16,9 +16,9 @@
 namespace fsd::test {
 
 struct ColourTally {
-  int truth = 0;      // paired cones within the colour range
-  int named = 0;      // with a colour
-  int right = 0;      // with the right colour
+  int truth = 0;  // paired cones within the colour range
+  int named = 0;  // with a colour
+  int right = 0;  // with the right colour
   double accuracy() const { return truth > 0 ? static_cast<double>(right) / truth : 0.0; }
   double named_accuracy() const { return named > 0 ? static_cast<double>(right) / named : 0.0; }
 };
@@ -44,8 +44,10 @@ class LidarEval {
         ++colour_.truth;
         const ConeColour c = detections.cones[pr.estimate].colour;
         if (c != ConeColour::Unknown) ++colour_.named;
-        if (c == truth[pr.truth].colour) ++colour_.right;
-        else if (c != ConeColour::Unknown) ++wrong_colour_[static_cast<int>(truth[pr.truth].colour)][static_cast<int>(c)];
+        if (c == truth[pr.truth].colour)
+          ++colour_.right;
+        else if (c != ConeColour::Unknown)
+          ++wrong_colour_[static_cast<int>(truth[pr.truth].colour)][static_cast<int>(c)];
       }
     }
     for (std::size_t i = 0; i < est.size(); ++i)
@@ -68,9 +70,8 @@ class LidarEval {
     std::snprintf(b, sizeof b,
                   "frames %d, precision %.4f, recall 15 m %.4f, 20 m %.4f, RMSE 15 m %.4f m, colour within %.0f m: "
                   "%.3f of %d (named %.3f, of them right %.3f), false positives %zu",
-                  score_.frames(), precision(), recall_15(), recall_20(), rmse_15(), colour_range_,
-                  colour_.accuracy(), colour_.truth,
-                  colour_.truth > 0 ? static_cast<double>(colour_.named) / colour_.truth : 0.0,
+                  score_.frames(), precision(), recall_15(), recall_20(), rmse_15(), colour_range_, colour_.accuracy(),
+                  colour_.truth, colour_.truth > 0 ? static_cast<double>(colour_.named) / colour_.truth : 0.0,
                   colour_.named_accuracy(), false_positives_.size());
     return b;
   }

@@ -51,8 +51,8 @@ TEST(LidarSimQuality, TrackdrivesWithDistractorsMeetTheIssueTargets) {
   EXPECT_GE(all.recall_15(), 0.97);
   EXPECT_GE(all.recall_20(), 0.85);
   EXPECT_LE(all.rmse_15(), 0.08);
-  EXPECT_GE(all.precision(), 0.97);  // the LiDAR alone (the camera's classifier rejects the distractors left)
-  EXPECT_GE(all.colour().accuracy(), 0.90);        // right colour among the cones within 6 m
+  EXPECT_GE(all.precision(), 0.97);          // the LiDAR alone (the camera's classifier rejects the distractors left)
+  EXPECT_GE(all.colour().accuracy(), 0.90);  // right colour among the cones within 6 m
   EXPECT_GE(all.colour().named_accuracy(), 0.99);  // Unknown rather than a wrong colour
 }
 
@@ -134,14 +134,16 @@ TEST(LidarSimQuality, OtherMountsFindTheConesTheirLasersCross) {
           }
         if (!hit && std::getenv("DIAG")) {
           const char* why = "none";
-          for (const auto& r : d.rejected) if ((r.position.head<2>() - local).norm() < 0.5) why = to_string(r.reason);
+          for (const auto& r : d.rejected)
+            if ((r.position.head<2>() - local).norm() < 0.5) why = to_string(r.reason);
           std::printf("  miss %.1f %.1f (%s)\n", local.x(), local.y(), why);
         }
       }
     }
     const double recall = observable > 0 ? static_cast<double>(found) / observable : 0.0;
-    std::printf("mount z %.2f m pitch %+.0f deg: ground |h| <= %.3f m, recall of the cones lasers cross %.3f (%d), %s\n",
-                m.z, m.pitch_deg, worst_h, recall, observable, eval.summary().c_str());
+    std::printf(
+        "mount z %.2f m pitch %+.0f deg: ground |h| <= %.3f m, recall of the cones lasers cross %.3f (%d), %s\n", m.z,
+        m.pitch_deg, worst_h, recall, observable, eval.summary().c_str());
     EXPECT_LT(worst_h, 0.02);  // the vehicle-frame ground is found at the rear axle's height (0)
     EXPECT_GE(recall, 0.9) << m.z << " " << m.pitch_deg;
     EXPECT_GE(eval.precision(), 0.95);

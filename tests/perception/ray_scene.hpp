@@ -18,10 +18,10 @@ namespace fsd::test {
 
 struct SceneObject {
   enum class Shape { Frustum, Panel } shape = Shape::Frustum;
-  Pose3 pose = Pose3::Identity();  // scene ← object (object z up its axis, origin at the base centre / panel start)
-  double r0 = 0, r1 = 0, h = 0;    // frustum radii and height; panel: r0 = length
-  double reflectivity = 40;        // a cone's body
-  double stripe_reflectivity = 40; // between stripe_low and stripe_high of the height
+  Pose3 pose = Pose3::Identity();   // scene ← object (object z up its axis, origin at the base centre / panel start)
+  double r0 = 0, r1 = 0, h = 0;     // frustum radii and height; panel: r0 = length
+  double reflectivity = 40;         // a cone's body
+  double stripe_reflectivity = 40;  // between stripe_low and stripe_high of the height
   double stripe_low = 0, stripe_high = 0;
 };
 
@@ -46,7 +46,9 @@ inline SceneObject cylinder_at(double x, double y, double radius, double height,
 // A tyre standing on its tread, axle horizontal along `yaw`.
 inline SceneObject standing_tyre_at(double x, double y, double yaw, double radius = 0.3, double width = 0.2) {
   SceneObject o;
-  const Eigen::Matrix3d R = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY())).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY()))
+          .toRotationMatrix();
   o.pose.linear() = R;
   o.pose.translation() = Vec3(x, y, radius) - R.col(2) * (width / 2);
   o.r0 = o.r1 = radius, o.h = width;
@@ -121,8 +123,9 @@ struct RayScene {
       const Pose3 inv = ob.pose.inverse();
       const Vec3 lo = inv * o, ld = inv.linear() * d;
       const double t_max = best ? best->first : max_range;
-      const auto hit = ob.shape == SceneObject::Shape::Panel ? sim::intersect_panel(lo, ld, ob.r0, ob.h, 0.0, t_max)
-                                                             : sim::intersect_frustum(lo, ld, ob.r0, ob.r1, ob.h, 0.0, t_max);
+      const auto hit = ob.shape == SceneObject::Shape::Panel
+                           ? sim::intersect_panel(lo, ld, ob.r0, ob.h, 0.0, t_max)
+                           : sim::intersect_frustum(lo, ld, ob.r0, ob.r1, ob.h, 0.0, t_max);
       if (!hit) continue;
       const double f = ob.h > 0 ? hit->point.z() / ob.h : 0.0;
       const bool stripe = f >= ob.stripe_low && f <= ob.stripe_high && ob.stripe_high > ob.stripe_low;

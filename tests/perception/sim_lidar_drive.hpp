@@ -51,10 +51,10 @@ class LineDrive {
 
 struct SimLidarSetup {
   std::string track = "../shared/tracks/epfl_track_1.csv";
-  sim::WorldConfig world;            // distractors on by default
-  sim::LidarConfig lidar;            // the virtual car's mount by default
-  double speed = 8.0;                // m/s
-  double start_fraction = 0.0;       // where on the lap the drive starts
+  sim::WorldConfig world;       // distractors on by default
+  sim::LidarConfig lidar;       // the virtual car's mount by default
+  double speed = 8.0;           // m/s
+  double start_fraction = 0.0;  // where on the lap the drive starts
   std::uint64_t seed = 1;
 };
 
@@ -80,9 +80,8 @@ class SimLidarDrive {
   Scan next() {
     while (scans_.empty()) {
       t_ += 0.01;
-      lidar_.advance_to(t_, std::cref(drive_), [this](Stamp t, std::span<const std::uint8_t> p) {
-        builder_->on_data_packet(t, p);
-      });
+      lidar_.advance_to(t_, std::cref(drive_),
+                        [this](Stamp t, std::span<const std::uint8_t> p) { builder_->on_data_packet(t, p); });
     }
     Scan s = std::move(scans_.front());
     scans_.pop_front();

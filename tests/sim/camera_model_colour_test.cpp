@@ -47,10 +47,11 @@ Patch lower_body_patch(const cv::Mat& bgr, double x, double y) {
 cv::Mat captured_frame(const CameraConfig& cfg, const World& world) {
   CameraModel cam(cfg, world, 7);
   cv::Mat decoded;
-  cam.advance_to(0.0, [](Stamp) { return Pose3::Identity(); },
-                 [&](Stamp, std::span<const std::uint8_t> bytes) {
-                   decoded = cv::imdecode(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), cv::IMREAD_COLOR);
-                 });
+  cam.advance_to(
+      0.0, [](Stamp) { return Pose3::Identity(); },
+      [&](Stamp, std::span<const std::uint8_t> bytes) {
+        decoded = cv::imdecode(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), cv::IMREAD_COLOR);
+      });
   return decoded;
 }
 

@@ -167,9 +167,10 @@ std::optional<Pose2> clear_view_of(const World& world, int index) {
     for (int j = 0; j < static_cast<int>(world.distractors().size()); ++j) {
       if (j == index) continue;
       const Distractor& d = world.distractors()[static_cast<std::size_t>(j)];
-      const double dist = d.type == DistractorType::Fence
-                              ? std::min({to_segment(eye, d.position, d.fence_end()), to_segment(target, d.position, d.fence_end())})
-                              : to_segment(d.position, eye, target);
+      const double dist =
+          d.type == DistractorType::Fence
+              ? std::min({to_segment(eye, d.position, d.fence_end()), to_segment(target, d.position, d.fence_end())})
+              : to_segment(d.position, eye, target);
       clear = clear && dist > 1.5 + (d.type == DistractorType::Fence ? 0.0 : d.footprint_radius());
     }
     if (clear) return Pose2{eye.x(), eye.y(), a + std::numbers::pi};

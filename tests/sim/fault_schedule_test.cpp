@@ -142,7 +142,7 @@ TEST(FaultSchedule, GnssOutageReportsNoFixOrNothing) {
     take(before, 1.005);
     take(during, 2.005);
     take(after, 3.0);
-    EXPECT_EQ(before.size(), 50u);  // 50 Hz epochs at t = 0 … 0.98
+    EXPECT_EQ(before.size(), 50u);         // 50 Hz epochs at t = 0 … 0.98
     for (int q : before) EXPECT_EQ(q, 4);  // RTK
     if (mode == "no_fix") {
       EXPECT_EQ(during.size(), 50u);

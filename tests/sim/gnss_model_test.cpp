@@ -191,8 +191,10 @@ TEST(GnssModel, ScheduledOutageLeavesAGap) {
   for (const auto& s : r.samples) {
     const double te = epoch_of(s, mc);
     EXPECT_FALSE(te >= 4.0 && te < 6.0) << te;
-    if (te < 4.0) before = std::max(before, te);
-    else after = std::min(after, te);
+    if (te < 4.0)
+      before = std::max(before, te);
+    else
+      after = std::min(after, te);
   }
   EXPECT_NEAR(before, 3.98, 1e-9);
   EXPECT_NEAR(after, 6.0, 1e-9);

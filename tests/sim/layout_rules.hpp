@@ -30,12 +30,18 @@ inline LayoutRows read_layout(const std::string& file) {
   LayoutRows l;
   for (const auto& r : read_track_csv(file)) {
     const V2 p(r.x, r.y);
-    if (r.tag == "blue") l.blue.push_back(p);
-    else if (r.tag == "yellow") l.yellow.push_back(p);
-    else if (r.tag == "orange") l.orange.push_back(p);
-    else if (r.tag == "big_orange") l.big_orange.push_back(p);
-    else if (r.tag == "car_start") l.start = p, l.yaw = r.direction, ++l.car_starts;
-    else ++l.unknown;
+    if (r.tag == "blue")
+      l.blue.push_back(p);
+    else if (r.tag == "yellow")
+      l.yellow.push_back(p);
+    else if (r.tag == "orange")
+      l.orange.push_back(p);
+    else if (r.tag == "big_orange")
+      l.big_orange.push_back(p);
+    else if (r.tag == "car_start")
+      l.start = p, l.yaw = r.direction, ++l.car_starts;
+    else
+      ++l.unknown;
   }
   return l;
 }
@@ -50,7 +56,8 @@ inline double point_segment(const V2& p, const V2& a, const V2& b) {
 }
 
 inline bool segments_cross(const V2& a, const V2& b, const V2& c, const V2& d) {
-  const double d1 = cross2(b - a, c - a), d2 = cross2(b - a, d - a), d3 = cross2(d - c, a - c), d4 = cross2(d - c, b - c);
+  const double d1 = cross2(b - a, c - a), d2 = cross2(b - a, d - a), d3 = cross2(d - c, a - c),
+               d4 = cross2(d - c, b - c);
   return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
 }
 
@@ -99,24 +106,25 @@ inline std::vector<V2> smooth_boundary(const std::vector<V2>& c, bool closed) {
 inline double distance_to_polyline(const V2& p, const std::vector<V2>& line, bool closed) {
   double best = std::numeric_limits<double>::infinity();
   const std::size_t n = line.size();
-  for (std::size_t i = 0; i + 1 < n + (closed ? 1 : 0); ++i) best = std::min(best, point_segment(p, line[i], line[(i + 1) % n]));
+  for (std::size_t i = 0; i + 1 < n + (closed ? 1 : 0); ++i)
+    best = std::min(best, point_segment(p, line[i], line[(i + 1) % n]));
   return best;
 }
 
 // What the rules constrain on a trackdrive/autocross layout, measured from its cones.
 struct CourseFigures {
-  double width_min = 0, width_max = 0;     // each cone to the other boundary's smooth curve
-  double cone_width_min = 0;               // each cone to the nearest cone of the other boundary
-  double gap_max = 0;                      // neighbouring cones along a boundary
+  double width_min = 0, width_max = 0;               // each cone to the other boundary's smooth curve
+  double cone_width_min = 0;                         // each cone to the nearest cone of the other boundary
+  double gap_max = 0;                                // neighbouring cones along a boundary
   double gap_mean_tight = 0, gap_mean_straight = 0;  // in turns tighter than 10 m / between cones in line
-  double gap_over_turn = 0;                // largest gap over 1 m / the radius of the turn it is in (rad)
-  double outer_radius_min = 0;             // tightest outside of any turn (half its outside diameter)
-  double straight_max = 0;                 // longest run of boundary cones in one line (2 cm)
-  double length = 0;                       // centre line: midpoints of the smooth boundaries
-  bool boundaries_cross = false;           // any two chords of the boundaries intersect
-  double same_boundary_parts_min = 0;      // cones of one boundary on different parts of the track
-  double left_right_min = 0;               // any left cone to any right cone
-  int slalom_lines = 0;                    // runs of ≥ 4 cones in line 7.5–12 m apart, each on alternate sides
+  double gap_over_turn = 0;                          // largest gap over 1 m / the radius of the turn it is in (rad)
+  double outer_radius_min = 0;                       // tightest outside of any turn (half its outside diameter)
+  double straight_max = 0;                           // longest run of boundary cones in one line (2 cm)
+  double length = 0;                                 // centre line: midpoints of the smooth boundaries
+  bool boundaries_cross = false;                     // any two chords of the boundaries intersect
+  double same_boundary_parts_min = 0;                // cones of one boundary on different parts of the track
+  double left_right_min = 0;                         // any left cone to any right cone
+  int slalom_lines = 0;  // runs of ≥ 4 cones in line 7.5–12 m apart, each on alternate sides
 };
 
 inline CourseFigures measure_course(const LayoutRows& l, bool closed) {
@@ -201,7 +209,8 @@ inline CourseFigures measure_course(const LayoutRows& l, bool closed) {
     for (std::size_t i = 0; i < s->size(); ++i)
       for (std::size_t j = i + 2; j < s->size(); ++j) {
         if (closed && i == 0 && j + 1 == s->size()) continue;
-        f.boundaries_cross = f.boundaries_cross || segments_cross((*s)[i].first, (*s)[i].second, (*s)[j].first, (*s)[j].second);
+        f.boundaries_cross =
+            f.boundaries_cross || segments_cross((*s)[i].first, (*s)[i].second, (*s)[j].first, (*s)[j].second);
       }
   // Parts of the track: two cones of one boundary are on different parts where the boundary between them is
   // more than π/2 times their distance (it turns through more than a half circle).
@@ -216,7 +225,8 @@ inline CourseFigures measure_course(const LayoutRows& l, bool closed) {
         double along = s[j] - s[i];
         if (closed) along = std::min(along, total - along);
         const double d = (c[i] - c[j]).norm();
-        if (along > 0.5 * std::numbers::pi * d + 0.5) f.same_boundary_parts_min = std::min(f.same_boundary_parts_min, d);
+        if (along > 0.5 * std::numbers::pi * d + 0.5)
+          f.same_boundary_parts_min = std::min(f.same_boundary_parts_min, d);
       }
   }
   f.left_right_min = std::numeric_limits<double>::infinity();

@@ -21,11 +21,11 @@ using test::make_cone;
 using test::make_track;
 
 struct Return {
-  Vec3 p;              // sensor frame
-  Vec3 dir;            // unit beam direction, sensor frame
+  Vec3 p;    // sensor frame
+  Vec3 dir;  // unit beam direction, sensor frame
   double distance;
   double azimuth_deg;
-  double t;            // firing time, s past the hour
+  double t;  // firing time, s past the hour
   int laser;
   int intensity;
 };
@@ -88,30 +88,33 @@ TEST(LidarGeometry, StaticSensorSeesTheConeSurfaceAndTheGroundWithinTheRangeNois
   std::vector<std::uint8_t> all;
   int cone_points = 0, ground_points = 0, stripe_sum = 0, stripe_n = 0, body_sum = 0, body_n = 0;
   double az_sum = 0, ground_sq = 0;
-  lidar.advance_to(1.0, [](Stamp) { return Pose3::Identity(); }, [&](Stamp, std::span<const std::uint8_t> pkt) {
-    for (const auto& r : decode(pkt)) {
-      const Vec3 p = mount() * r.p;
-      const double to_cone = small_cone_surface_distance(p, cx, cy);
-      const double to_ground = std::abs(p.z());
-      // Every return lies on one of the two surfaces, within the noise bound (plus 1 mm quantisation and the
-      // 0.01° azimuth resolution).
-      ASSERT_LE(std::min(to_cone, to_ground), 0.03 + 0.002) << p.transpose();
-      if (to_cone < to_ground && p.z() > 0.04) {
-        ++cone_points;
-        az_sum += r.azimuth_deg;
-        const double frac = p.z() / 0.325;
-        if (frac > 0.42 && frac < 0.58) stripe_sum += r.intensity, ++stripe_n;
-        if (frac < 0.32 || frac > 0.68) body_sum += r.intensity, ++body_n;
-      } else if (to_ground < to_cone) {
-        ++ground_points;
-        // Along-beam residual against the exact flat-ground distance from the beam origin (0, 0, v) + mount.
-        const Vec3 origin = mount() * Vec3(0, 0, vlp::kLaserTable[static_cast<std::size_t>(r.laser)].vertical_offset_m);
-        const Vec3 dir = mount().linear() * r.dir;
-        const double exact = -origin.z() / dir.z();
-        ground_sq += (r.distance - exact) * (r.distance - exact);
-      }
-    }
-  });
+  lidar.advance_to(
+      1.0, [](Stamp) { return Pose3::Identity(); },
+      [&](Stamp, std::span<const std::uint8_t> pkt) {
+        for (const auto& r : decode(pkt)) {
+          const Vec3 p = mount() * r.p;
+          const double to_cone = small_cone_surface_distance(p, cx, cy);
+          const double to_ground = std::abs(p.z());
+          // Every return lies on one of the two surfaces, within the noise bound (plus 1 mm quantisation and the
+          // 0.01° azimuth resolution).
+          ASSERT_LE(std::min(to_cone, to_ground), 0.03 + 0.002) << p.transpose();
+          if (to_cone < to_ground && p.z() > 0.04) {
+            ++cone_points;
+            az_sum += r.azimuth_deg;
+            const double frac = p.z() / 0.325;
+            if (frac > 0.42 && frac < 0.58) stripe_sum += r.intensity, ++stripe_n;
+            if (frac < 0.32 || frac > 0.68) body_sum += r.intensity, ++body_n;
+          } else if (to_ground < to_cone) {
+            ++ground_points;
+            // Along-beam residual against the exact flat-ground distance from the beam origin (0, 0, v) + mount.
+            const Vec3 origin =
+                mount() * Vec3(0, 0, vlp::kLaserTable[static_cast<std::size_t>(r.laser)].vertical_offset_m);
+            const Vec3 dir = mount().linear() * r.dir;
+            const double exact = -origin.z() / dir.z();
+            ground_sq += (r.distance - exact) * (r.distance - exact);
+          }
+        }
+      });
   // 10 turns; the cone (23 cm wide at 3.3 m, 4° of azimuth) is crossed by three rings at 0.2° steps.
   EXPECT_GT(cone_points, 250);
   EXPECT_GT(ground_points, 100000);
@@ -139,13 +142,15 @@ TEST(LidarGeometry, GroundReturnsLieOnTheSlopedPlane) {
   body.linear() = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), n).toRotationMatrix();
   body.translation() = Vec3(10, 5, 0.03 * 10 - 0.02 * 5);
   int checked = 0;
-  lidar.advance_to(0.2, [&](Stamp) { return body; }, [&](Stamp, std::span<const std::uint8_t> pkt) {
-    for (const auto& r : decode(pkt)) {
-      const Vec3 p = body * mount() * r.p;
-      ASSERT_NEAR(p.z(), 0.03 * p.x() - 0.02 * p.y(), 0.003) << p.transpose();  // 2 mm units, 0.01° azimuth
-      ++checked;
-    }
-  });
+  lidar.advance_to(
+      0.2, [&](Stamp) { return body; },
+      [&](Stamp, std::span<const std::uint8_t> pkt) {
+        for (const auto& r : decode(pkt)) {
+          const Vec3 p = body * mount() * r.p;
+          ASSERT_NEAR(p.z(), 0.03 * p.x() - 0.02 * p.y(), 0.003) << p.transpose();  // 2 mm units, 0.01° azimuth
+          ++checked;
+        }
+      });
   EXPECT_GT(checked, 20000);
 }
 
@@ -178,17 +183,19 @@ TEST(LidarGeometry, RangeLimits) {
   const World world(make_track({}), bare_config(), 1);
   LidarConfig cfg;
   cfg.range_noise = 0.0;
-  cfg.min_range = 2.0;  // cuts the steep lasers' ground rings (−15° meets the ground at 1.3 m)
-  cfg.max_range = 10.0; // cuts the shallow ones (−1° at 20 m)
+  cfg.min_range = 2.0;   // cuts the steep lasers' ground rings (−15° meets the ground at 1.3 m)
+  cfg.max_range = 10.0;  // cuts the shallow ones (−1° at 20 m)
   LidarModel lidar(cfg, world, 1);
   int n = 0;
-  lidar.advance_to(0.1, [](Stamp) { return Pose3::Identity(); }, [&](Stamp, std::span<const std::uint8_t> pkt) {
-    for (const auto& r : decode(pkt)) {
-      EXPECT_GE(r.distance, 2.0 - 0.001);
-      EXPECT_LE(r.distance, 10.0 + 0.001);
-      ++n;
-    }
-  });
+  lidar.advance_to(
+      0.1, [](Stamp) { return Pose3::Identity(); },
+      [&](Stamp, std::span<const std::uint8_t> pkt) {
+        for (const auto& r : decode(pkt)) {
+          EXPECT_GE(r.distance, 2.0 - 0.001);
+          EXPECT_LE(r.distance, 10.0 + 0.001);
+          ++n;
+        }
+      });
   EXPECT_GT(n, 1000);
 }
 

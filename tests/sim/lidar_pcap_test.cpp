@@ -64,10 +64,10 @@ TEST(LidarPcap, RecordsCarryThePayloadBehindRealSensorHeaders) {
     const auto& f = recs[i].frame;
     const auto& payload = payloads[i];
     ASSERT_EQ(f.size(), 14 + 20 + 8 + payload.size());
-    EXPECT_EQ(be16(f, 12), 0x0800u);                    // IPv4
-    EXPECT_EQ(f[14], 0x45);                             // version 4, 20-byte header
-    EXPECT_EQ(be16(f, 16), 20 + 8 + payload.size());    // total length
-    EXPECT_EQ(f[23], 17);                               // UDP
+    EXPECT_EQ(be16(f, 12), 0x0800u);                  // IPv4
+    EXPECT_EQ(f[14], 0x45);                           // version 4, 20-byte header
+    EXPECT_EQ(be16(f, 16), 20 + 8 + payload.size());  // total length
+    EXPECT_EQ(f[23], 17);                             // UDP
     EXPECT_EQ(std::vector<int>(f.begin() + 26, f.begin() + 30), (std::vector<int>{192, 168, 1, 201}));
     // The header checksum sums to 0xFFFF over the header, checksum included.
     unsigned sum = 0;
@@ -104,10 +104,12 @@ TEST(LidarPcap, SimulatedScanWrittenAndReadByTcpdump) {
   {
     PcapWriter w(path.string());
     LidarModel lidar(LidarConfig{}, world, 1);
-    lidar.advance_to(0.1, [](Stamp) { return Pose3::Identity(); }, [&](Stamp t, std::span<const std::uint8_t> b) {
-      w.write(t, b);
-      sent.emplace_back(b.begin(), b.end());
-    });
+    lidar.advance_to(
+        0.1, [](Stamp) { return Pose3::Identity(); },
+        [&](Stamp t, std::span<const std::uint8_t> b) {
+          w.write(t, b);
+          sent.emplace_back(b.begin(), b.end());
+        });
   }
   const auto recs = read_all(path);
   ASSERT_EQ(recs.size(), sent.size());
@@ -122,7 +124,8 @@ TEST(LidarPcap, SimulatedScanWrittenAndReadByTcpdump) {
   std::size_t lines = 0, udp_lines = 0;
   while (fgets(line, sizeof line, out)) {
     ++lines;
-    udp_lines += std::string(line).find("192.168.1.201.2368 > 255.255.255.255.2368: UDP, length 1206") != std::string::npos;
+    udp_lines +=
+        std::string(line).find("192.168.1.201.2368 > 255.255.255.255.2368: UDP, length 1206") != std::string::npos;
   }
   EXPECT_EQ(pclose(out), 0);
   EXPECT_EQ(lines, sent.size());

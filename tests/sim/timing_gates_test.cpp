@@ -13,8 +13,8 @@ TEST(TimingGates, Track1HasOneGateBetweenItsBigOrangeCones) {
   EXPECT_NEAR(g.gates()[0].centre.y(), 6.0, 1e-9);
   EXPECT_NEAR(g.gates()[0].half_width, 2.2, 1e-5);
   EXPECT_EQ(g.crossed({0.0, 5.9}, {0.3, 6.1}), 0u);
-  EXPECT_FALSE(g.crossed({0.0, 6.1}, {0.0, 5.9}));   // backwards
-  EXPECT_FALSE(g.crossed({5.0, 5.9}, {5.0, 6.1}));   // beside the gate
+  EXPECT_FALSE(g.crossed({0.0, 6.1}, {0.0, 5.9}));  // backwards
+  EXPECT_FALSE(g.crossed({5.0, 5.9}, {5.0, 6.1}));  // beside the gate
   EXPECT_FALSE(g.crossed({0.0, 1.0}, {0.0, 2.0}));
 }
 

@@ -107,7 +107,7 @@ TEST(VcuStandin, GoesReadyWhenTheStackRequestsItWithAMission) {
   EXPECT_EQ(b.vcu->mission(), Mission::Acceleration);
   const Stamp ready = b.make_ready(Mission::Acceleration);
   EXPECT_NEAR(ready, 0.51, 1e-9);  // at the step that received the next Command
-  EXPECT_TRUE(b.out().max_brake);     // service brake engaged in Ready
+  EXPECT_TRUE(b.out().max_brake);  // service brake engaged in Ready
   EXPECT_FALSE(b.out().drive_enabled);
   b.run_until(b.now() + 0.02);
   EXPECT_EQ(b.status().as_state, AsState::Ready);

@@ -18,9 +18,25 @@ namespace {
 using test::kDt;
 
 bool all_finite(const VehicleTruth& t) {
-  const double v[] = {t.t, t.pose.x, t.pose.y, t.pose.yaw, t.vx, t.vy, t.yaw_rate, t.ax, t.ay, t.roll, t.pitch,
-                      t.steering, t.wheel_speeds[0], t.wheel_speeds[1], t.wheel_speeds[2], t.wheel_speeds[3],
-                      t.motor_torque, t.brake_force, t.distance};
+  const double v[] = {t.t,
+                      t.pose.x,
+                      t.pose.y,
+                      t.pose.yaw,
+                      t.vx,
+                      t.vy,
+                      t.yaw_rate,
+                      t.ax,
+                      t.ay,
+                      t.roll,
+                      t.pitch,
+                      t.steering,
+                      t.wheel_speeds[0],
+                      t.wheel_speeds[1],
+                      t.wheel_speeds[2],
+                      t.wheel_speeds[3],
+                      t.motor_torque,
+                      t.brake_force,
+                      t.distance};
   for (double x : v)
     if (!std::isfinite(x)) return false;
   return true;

@@ -68,8 +68,8 @@ TEST(VehiclePhysics, SteadyCircleAtSpeedLateralAccelerationAndNegativeSideslip) 
   EXPECT_NEAR(c.ay, c.vx * c.yaw_rate, 0.01 * centripetal);
   // And the yaw rate is the angular speed around the circle.
   EXPECT_NEAR(c.yaw_rate, c.speed / c.cog_path.radius, 0.01 * c.yaw_rate);
-  EXPECT_GT(c.ay, 5.0);                   // a real test of the tyres, ...
-  EXPECT_LT(c.ay, p.mu * kG * 1.2);       // ... below what they can give with the downforce
+  EXPECT_GT(c.ay, 5.0);              // a real test of the tyres, ...
+  EXPECT_LT(c.ay, p.mu * kG * 1.2);  // ... below what they can give with the downforce
 
   // Sideslip at the CoG: the rear tyres must run at a slip angle α_r ≈ F_yr / C_r to carry their share of m·v²/R,
   // so the rear axle's velocity points outwards (to the right on this left turn) by α_r. The CoG sits l_r ahead of
@@ -228,8 +228,9 @@ TEST(VehiclePhysics, ZeroTo100IsBoundedByTractionTorqueAndPower) {
   auto accel = [&](double v) {
     const double down_rear = (1 - p.aero_front_share) * dynamic_pressure(p, v) * p.downforce_area;
     const double h_over_l = p.cog_height / p.wheelbase;
-    const double grip = p.mu * (p.mass * kG * p.cog_to_front_axle() / p.wheelbase + down_rear -
-                                resistance(p, v) * h_over_l) / (1 - p.mu * h_over_l);
+    const double grip = p.mu *
+                        (p.mass * kG * p.cog_to_front_axle() / p.wheelbase + down_rear - resistance(p, v) * h_over_l) /
+                        (1 - p.mu * h_over_l);
     return (std::min(motor_force(p, v), grip) - resistance(p, v)) / p.mass;
   };
   const double bound = test::simpson([&](double v) { return 1.0 / accel(v); }, 0.0, v_end);

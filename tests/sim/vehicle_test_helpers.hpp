@@ -70,7 +70,10 @@ inline double simpson(const std::function<double(double)>& g, double a, double b
 inline double bisect(const std::function<double(double)>& f, double lo, double hi) {
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if ((f(mid) > 0) == (f(lo) > 0)) lo = mid; else hi = mid;
+    if ((f(mid) > 0) == (f(lo) > 0))
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }

@@ -87,7 +87,8 @@ double clearance(const Distractor& d, const TrackModel& m) {
 Track shared_track(const std::string& name) { return load_track("../shared/tracks/" + name + ".csv"); }
 
 TEST(WorldDistractors, NeverOnTheTrackAndAtLeastTheOffsetAway) {
-  for (const char* name : {"epfl_track_1", "epfl_fsds_competition_2", "epfl_VSV_XS", "epfl_acceleration", "amz_fssim_thin"}) {
+  for (const char* name :
+       {"epfl_track_1", "epfl_fsds_competition_2", "epfl_VSV_XS", "epfl_acceleration", "amz_fssim_thin"}) {
     const Track track = shared_track(name);
     const TrackModel model = model_of(track);
     WorldConfig cfg;
@@ -96,8 +97,8 @@ TEST(WorldDistractors, NeverOnTheTrackAndAtLeastTheOffsetAway) {
       int fences = 0, round = 0;
       for (const auto& d : world.distractors()) {
         const double min_offset = d.type == DistractorType::Fence ? cfg.fence_offset_min : cfg.distractor_min_offset;
-        EXPECT_GT(clearance(d, model), min_offset - 1e-6) << name << " seed " << seed << " " << to_string(d.type)
-                                                         << " at " << d.position.transpose();
+        EXPECT_GT(clearance(d, model), min_offset - 1e-6)
+            << name << " seed " << seed << " " << to_string(d.type) << " at " << d.position.transpose();
         (d.type == DistractorType::Fence ? fences : round)++;
       }
       EXPECT_EQ(round, cfg.tyres + cfg.posts + cfg.tyre_stacks) << name << " seed " << seed;

@@ -73,7 +73,7 @@ TEST(WorldRaycast, RaysMissWhenTheyShould) {
   EXPECT_FALSE(world.raycast(Vec3(0, 0, 0.1), -Vec3::UnitX(), 50.0));   // away from it
   EXPECT_FALSE(world.raycast(Vec3(0, 0, 0.1), Vec3::UnitX(), 4.9));     // out of range (hit at 4.913)
   EXPECT_FALSE(world.raycast(Vec3(0, 0, 0.3), Vec3(1, 0, 1).normalized(), 50.0));  // into the sky
-  EXPECT_FALSE(world.raycast(Vec3(0, 0, -0.1), Vec3::UnitX(), 50.0));   // from below the ground
+  EXPECT_FALSE(world.raycast(Vec3(0, 0, -0.1), Vec3::UnitX(), 50.0));              // from below the ground
 }
 
 TEST(WorldRaycast, DownwardRayHitsTheSlopedGroundPlane) {
@@ -139,7 +139,8 @@ TEST(WorldRaycast, GridIndexAgreesWithTestingEveryCone) {
     int want = -1;
     double want_t = 40.0;
     for (int i = 0; i < static_cast<int>(cones.size()); ++i) {
-      const Vec3 base(cones[static_cast<std::size_t>(i)].position.x(), cones[static_cast<std::size_t>(i)].position.y(), 0);
+      const Vec3 base(cones[static_cast<std::size_t>(i)].position.x(), cones[static_cast<std::size_t>(i)].position.y(),
+                      0);
       // Upright cone on flat ground: the cone's frame is the map frame moved to the base.
       const auto h = intersect_frustum(o - base, d, 0.114, 0.025, 0.325, 1e-9, want_t);
       if (h) {

@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cone_at.hpp"
 #include "web/base64.hpp"
 #include "web/channels.hpp"
-#include "tests/cone_at.hpp"
 
 namespace fsd::web {
 namespace {
@@ -53,8 +53,8 @@ TEST(Base64, Rfc4648Vectors) {
 const auto cone = test::cone_at;
 
 TEST(Channels, ConeMapAsColouredTruncatedCylinders) {
-  const auto j = json::parse(cone_map_scene(12.25, {cone(1, 2, ConeColour::Blue), cone(3, -2, ConeColour::Yellow),
-                                                    cone(0, 0, ConeColour::BigOrange)}));
+  const auto j = json::parse(cone_map_scene(
+      12.25, {cone(1, 2, ConeColour::Blue), cone(3, -2, ConeColour::Yellow), cone(0, 0, ConeColour::BigOrange)}));
   ASSERT_EQ(j["entities"].size(), 1u);
   const auto& e = j["entities"][0];
   EXPECT_EQ(e["frame_id"], "map");
@@ -84,7 +84,7 @@ TEST(Channels, DetectionsArePlacedInTheMapByTheCarPose) {
   ASSERT_EQ(e["cubes"].size(), 2u);
   EXPECT_NEAR(e["cubes"][0]["pose"]["position"]["x"].get<double>(), 10.0, 1e-9);  // 2 m ahead = +y in the map
   EXPECT_NEAR(e["cubes"][0]["pose"]["position"]["y"].get<double>(), 7.0, 1e-9);
-  EXPECT_NEAR(e["cubes"][1]["pose"]["position"]["x"].get<double>(), 9.0, 1e-9);   // 1 m left = −x
+  EXPECT_NEAR(e["cubes"][1]["pose"]["position"]["x"].get<double>(), 9.0, 1e-9);  // 1 m left = −x
   EXPECT_NEAR(e["cubes"][1]["pose"]["position"]["y"].get<double>(), 6.0, 1e-9);
 }
 
@@ -140,11 +140,11 @@ TEST(Channels, PointCloudPacksSixteenBytesPerPoint) {
   EXPECT_EQ(x, 1.5f);
   EXPECT_EQ(y, -2.0f);
   EXPECT_EQ(data[12], 7);
-  EXPECT_EQ(data[13], 1);          // ground
+  EXPECT_EQ(data[13], 1);  // ground
   EXPECT_EQ(data[16 + 12], 255);
   std::memcpy(&x, &data[32], 4);
   EXPECT_EQ(x, 4.0f);
-  EXPECT_EQ(data[32 + 13], 0);     // not ground
+  EXPECT_EQ(data[32 + 13], 0);  // not ground
 
   CloudOptions few;
   few.max_points = 2;  // every 3rd point of each set: ground[0], objects[0]

@@ -129,8 +129,10 @@ TEST(ClientState, ConcurrentOffersAreDeliveredInOrderOrCounted) {
   std::vector<int> got;
   std::thread writer([&] {
     while (true) {
-      if (auto m = c.next()) got.push_back(std::stoi(*m->body));
-      else if (done) break;
+      if (auto m = c.next())
+        got.push_back(std::stoi(*m->body));
+      else if (done)
+        break;
     }
     while (auto m = c.next()) got.push_back(std::stoi(*m->body));
   });

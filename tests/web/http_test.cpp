@@ -61,12 +61,13 @@ TEST(Http, NoPathLeavesTheWebRoot) {
   auto cfg = TestServer::base_config();
   cfg.web_root = (root.base / "root").string();
   TestServer s(cfg);
-  for (const char* target : {"/../secret.txt", "/assets/../../secret.txt", "/%2e%2e/secret.txt", "/assets/..%2f..%2fsecret.txt",
-                             "/%2E%2E%2Fsecret.txt", "//etc/passwd", "/link.txt", "/..\\secret.txt", "/%00index.html",
-                             "/%zz", "/."}) {
+  for (const char* target :
+       {"/../secret.txt", "/assets/../../secret.txt", "/%2e%2e/secret.txt", "/assets/..%2f..%2fsecret.txt",
+        "/%2E%2E%2Fsecret.txt", "//etc/passwd", "/link.txt", "/..\\secret.txt", "/%00index.html", "/%zz", "/."}) {
     auto r = http_request(s.port(), http::verb::get, target);
     // 0: Beast's parser refused the target outright.
-    EXPECT_TRUE(r.status == 0u || r.status == 400u || r.status == 403u || r.status == 404u) << target << " → " << r.status;
+    EXPECT_TRUE(r.status == 0u || r.status == 400u || r.status == 403u || r.status == 404u)
+        << target << " → " << r.status;
     EXPECT_EQ(r.body.find("TOP SECRET"), std::string::npos) << target;
   }
 }
@@ -111,7 +112,8 @@ TEST(Http, ParamsPutNeedsTheBearerToken) {
   EXPECT_EQ(r.status, 401u);
   EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 5.0);
 
-  r = http_request(s.port(), http::verb::put, "/api/params", body, {{"Authorization", std::string("Bearer ") + kToken}});
+  r = http_request(s.port(), http::verb::put, "/api/params", body,
+                   {{"Authorization", std::string("Bearer ") + kToken}});
   ASSERT_EQ(r.status, 200u) << r.body;
   EXPECT_EQ(json::parse(r.body)["applied"], json::array({"control.target_speed"}));
   EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 6.5);
@@ -127,7 +129,8 @@ TEST(Http, ParamsPutNeedsTheBearerToken) {
 TEST(Http, ParamsPutIsBoundedAndAllOrNothing) {
   TestServer s;
   const std::vector<std::pair<std::string, std::string>> auth{{"Authorization", std::string("Bearer ") + kToken}};
-  auto r = http_request(s.port(), http::verb::put, "/api/params", R"({"control.target_speed": 7, "control.lookahead_points": 99})", auth);
+  auto r = http_request(s.port(), http::verb::put, "/api/params",
+                        R"({"control.target_speed": 7, "control.lookahead_points": 99})", auth);
   EXPECT_EQ(r.status, 422u);
   EXPECT_NE(r.body.find("control.lookahead_points"), std::string::npos);
   EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 5.0);
@@ -146,7 +149,7 @@ TEST(Http, ParamsPutRefusedWhenTuningIsDisabled) {
   cfg.token = "";
   TestServer s(cfg);
   auto r = http_request(s.port(), http::verb::put, "/api/params", R"({"control.target_speed": 7})",
-                              {{"Authorization", "Bearer "}});
+                        {{"Authorization", "Bearer "}});
   EXPECT_EQ(r.status, 403u);
   EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 5.0);
 }
@@ -156,7 +159,7 @@ TEST(Http, OversizeBodyIsRefused) {
   cfg.max_frame_bytes = 1024;
   TestServer s(cfg);
   auto r = http_request(s.port(), http::verb::put, "/api/params", std::string(4096, ' '),
-                              {{"Authorization", std::string("Bearer ") + kToken}});
+                        {{"Authorization", std::string("Bearer ") + kToken}});
   EXPECT_EQ(r.status, 413u);
 }
 

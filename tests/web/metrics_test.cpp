@@ -12,7 +12,10 @@ TEST(Metrics, RendersCountersGaugesAndCallbacks) {
   m.gauge("fsd_queue_depth", "Depth\nwith newline").set(2.5);
   m.gauge_callback("fsd_answer", "Answer", [] { return 42.0; });
   const auto text = m.render();
-  EXPECT_NE(text.find("# HELP fsd_frames_total Frames\n# TYPE fsd_frames_total counter\nfsd_frames_total{sensor=\"lidar\"} 4\n"), std::string::npos);
+  EXPECT_NE(
+      text.find(
+          "# HELP fsd_frames_total Frames\n# TYPE fsd_frames_total counter\nfsd_frames_total{sensor=\"lidar\"} 4\n"),
+      std::string::npos);
   EXPECT_NE(text.find("# HELP fsd_queue_depth Depth\\nwith newline\n"), std::string::npos);
   EXPECT_NE(text.find("fsd_queue_depth 2.5\n"), std::string::npos);
   EXPECT_NE(text.find("fsd_answer 42\n"), std::string::npos);

@@ -10,7 +10,8 @@ using nlohmann::json;
 
 TEST(Protocol, MessageDataHeaderIsLittleEndian) {
   const auto h = message_data_header(0x04030201u, 0x0807060504030201ull);
-  const std::array<std::uint8_t, 13> expected{0x01, 0x01, 0x02, 0x03, 0x04, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08};
+  const std::array<std::uint8_t, 13> expected{0x01, 0x01, 0x02, 0x03, 0x04, 0x01, 0x02,
+                                              0x03, 0x04, 0x05, 0x06, 0x07, 0x08};
   EXPECT_EQ(h, expected);
   const auto t = time_message(1'000'000'001ull);  // 0x3B9ACA01
   const std::array<std::uint8_t, 9> te{0x02, 0x01, 0xCA, 0x9A, 0x3B, 0, 0, 0, 0};
@@ -38,7 +39,12 @@ TEST(Protocol, ServerMessagesHaveTheSpecFields) {
   c.schema_name = "S";
   c.schema = "{}";
   j = json::parse(advertise({c}));
-  EXPECT_EQ(j["channels"][0], (json{{"id", 3}, {"topic", "/t"}, {"encoding", "json"}, {"schemaName", "S"}, {"schema", "{}"}, {"schemaEncoding", "jsonschema"}}));
+  EXPECT_EQ(j["channels"][0], (json{{"id", 3},
+                                    {"topic", "/t"},
+                                    {"encoding", "json"},
+                                    {"schemaName", "S"},
+                                    {"schema", "{}"},
+                                    {"schemaEncoding", "jsonschema"}}));
   j = json::parse(parameter_values(json::array({{{"name", "a"}, {"value", 1}}}), std::string("req")));
   EXPECT_EQ(j["op"], "parameterValues");
   EXPECT_EQ(j["id"], "req");
@@ -48,7 +54,8 @@ TEST(Protocol, ServerMessagesHaveTheSpecFields) {
 }
 
 TEST(Protocol, ParsesSubscribeAndUnsubscribe) {
-  auto r = parse_client_message(R"({"op":"subscribe","subscriptions":[{"id":0,"channelId":3},{"id":1,"channelId":5}]})");
+  auto r =
+      parse_client_message(R"({"op":"subscribe","subscriptions":[{"id":0,"channelId":3},{"id":1,"channelId":5}]})");
   ASSERT_TRUE(r.op);
   const auto& sub = std::get<SubscribeOp>(*r.op);
   ASSERT_EQ(sub.subscriptions.size(), 2u);
@@ -67,7 +74,8 @@ TEST(Protocol, ParsesParameterOps) {
   r = parse_client_message(R"({"op":"getParameters"})");
   ASSERT_TRUE(r.op);
   EXPECT_TRUE(std::get<GetParametersOp>(*r.op).names.empty());
-  r = parse_client_message(R"({"op":"setParameters","parameters":[{"name":"a","value":1.5},{"name":"b"}],"id":"y","token":"t"})");
+  r = parse_client_message(
+      R"({"op":"setParameters","parameters":[{"name":"a","value":1.5},{"name":"b"}],"id":"y","token":"t"})");
   ASSERT_TRUE(r.op);
   const auto& set = std::get<SetParametersOp>(*r.op);
   ASSERT_EQ(set.parameters.size(), 2u);

@@ -94,7 +94,8 @@ std::optional<WsMessage> WsClient::next(std::chrono::milliseconds timeout) {
 std::optional<nlohmann::json> WsClient::next_op(const std::string& op, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left <= 0ms) return std::nullopt;
     auto m = next(left);
     if (!m) return std::nullopt;
@@ -107,7 +108,8 @@ std::optional<nlohmann::json> WsClient::next_op(const std::string& op, std::chro
 std::optional<std::string> WsClient::next_binary(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left <= 0ms) return std::nullopt;
     auto m = next(left);
     if (!m) return std::nullopt;
@@ -158,7 +160,8 @@ HttpResult http_request(std::uint16_t port, http::verb method, const std::string
 }
 
 HttpResult http_request_or_throw(std::uint16_t port, http::verb method, const std::string& target,
-                                 const std::string& body, const std::vector<std::pair<std::string, std::string>>& headers) {
+                                 const std::string& body,
+                                 const std::vector<std::pair<std::string, std::string>>& headers) {
   net::io_context ioc;
   beast::tcp_stream stream(ioc);
   stream.expires_after(5s);

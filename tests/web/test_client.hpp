@@ -42,10 +42,10 @@ class WsClient {
   struct Options {
     std::string target = "/";
     std::vector<std::string> subprotocols{"foxglove.websocket.v1"};
-    std::string origin;        // Origin header when not empty
-    bool read = true;          // false: never read (a stalled client)
-    int receive_buffer = 0;    // SO_RCVBUF before connecting, when > 0
-    bool keep_time = false;    // keep the server's binary time messages (dropped by default, but counted)
+    std::string origin;      // Origin header when not empty
+    bool read = true;        // false: never read (a stalled client)
+    int receive_buffer = 0;  // SO_RCVBUF before connecting, when > 0
+    bool keep_time = false;  // keep the server's binary time messages (dropped by default, but counted)
   };
   // Connects and does the handshake. handshake_ok() tells whether the server accepted; status() gives the
   // HTTP status of the server's answer either way.
@@ -98,7 +98,8 @@ struct HttpResult {
 HttpResult http_request(std::uint16_t port, http::verb method, const std::string& target, const std::string& body = "",
                         const std::vector<std::pair<std::string, std::string>>& headers = {});
 HttpResult http_request_or_throw(std::uint16_t port, http::verb method, const std::string& target,
-                                 const std::string& body, const std::vector<std::pair<std::string, std::string>>& headers);
+                                 const std::string& body,
+                                 const std::vector<std::pair<std::string, std::string>>& headers);
 
 // A configuration with tunable parameters: "control.target_speed" (number 0…20 m/s, default 5),
 // "control.lookahead_points" (integer 1…50, default 10), "control.use_gnss" (boolean, default true).

@@ -207,7 +207,8 @@ TEST(WebSocket, GetParametersListsTheRegistry) {
 TEST(WebSocket, SetParametersWithoutTokenIsRefusedAndChangesNothing) {
   TestServer s;
   WsClient c(s.port());
-  ASSERT_TRUE(c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.target_speed","value":9.0}],"id":"s1"})"));
+  ASSERT_TRUE(
+      c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.target_speed","value":9.0}],"id":"s1"})"));
   const auto st = c.next_op("status");
   ASSERT_TRUE(st);
   EXPECT_EQ((*st)["level"], 2);
@@ -219,7 +220,8 @@ TEST(WebSocket, SetParametersWithoutTokenIsRefusedAndChangesNothing) {
   EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 5.0);
 
   // A wrong token in the message is refused the same way.
-  ASSERT_TRUE(c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.target_speed","value":9.0}],"token":"guess"})"));
+  ASSERT_TRUE(c.send_text(
+      R"({"op":"setParameters","parameters":[{"name":"control.target_speed","value":9.0}],"token":"guess"})"));
   ASSERT_TRUE(c.next_op("status"));
   EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 5.0);
   EXPECT_TRUE(s.params.history().empty());
@@ -228,12 +230,12 @@ TEST(WebSocket, SetParametersWithoutTokenIsRefusedAndChangesNothing) {
 TEST(WebSocket, SetParametersWithTokenInTheMessageChangesTheRegistry) {
   TestServer s;
   WsClient c(s.port());
-  ASSERT_TRUE(c.send_text(json{{"op", "setParameters"},
-                               {"parameters", {{{"name", "control.target_speed"}, {"value", 7.5}},
-                                               {{"name", "control.use_gnss"}, {"value", false}}}},
-                               {"id", "s2"},
-                               {"token", kToken}}
-                              .dump()));
+  ASSERT_TRUE(c.send_text(json{
+      {"op", "setParameters"},
+      {"parameters",
+       {{{"name", "control.target_speed"}, {"value", 7.5}}, {{"name", "control.use_gnss"}, {"value", false}}}},
+      {"id", "s2"},
+      {"token", kToken}}.dump()));
   const auto pv = c.next_op("parameterValues");
   ASSERT_TRUE(pv);
   EXPECT_EQ((*pv)["id"], "s2");
@@ -250,7 +252,8 @@ TEST(WebSocket, TokenInTheUrlAuthorisesTheConnection) {
   o.target = std::string("/?token=") + kToken;
   WsClient c(s.port(), o);
   ASSERT_TRUE(c.handshake_ok());
-  ASSERT_TRUE(c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.lookahead_points","value":12}],"id":"x"})"));
+  ASSERT_TRUE(
+      c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.lookahead_points","value":12}],"id":"x"})"));
   ASSERT_TRUE(c.next_op("parameterValues"));
   EXPECT_DOUBLE_EQ(*s.params.get("control.lookahead_points"), 12.0);
 }
@@ -272,11 +275,11 @@ TEST(WebSocket, WrongTokenInTheUrlLeavesTheConnectionReadOnly) {
 TEST(WebSocket, OutOfBoundsValuesAreRefusedAllOrNothing) {
   TestServer s;
   WsClient c(s.port());
-  ASSERT_TRUE(c.send_text(json{{"op", "setParameters"},
-                               {"parameters", {{{"name", "control.lookahead_points"}, {"value", 20}},
-                                               {{"name", "control.target_speed"}, {"value", 25.0}}}},
-                               {"token", kToken}}
-                              .dump()));
+  ASSERT_TRUE(c.send_text(json{
+      {"op", "setParameters"},
+      {"parameters",
+       {{{"name", "control.lookahead_points"}, {"value", 20}}, {{"name", "control.target_speed"}, {"value", 25.0}}}},
+      {"token", kToken}}.dump()));
   const auto st = c.next_op("status");
   ASSERT_TRUE(st);
   EXPECT_NE((*st)["message"].get<std::string>().find("control.target_speed"), std::string::npos);
@@ -289,7 +292,8 @@ TEST(WebSocket, TuningDisabledWithoutAConfiguredToken) {
   cfg.token = "";
   TestServer s(cfg);
   WsClient c(s.port());
-  ASSERT_TRUE(c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.target_speed","value":6}],"token":""})"));
+  ASSERT_TRUE(
+      c.send_text(R"({"op":"setParameters","parameters":[{"name":"control.target_speed","value":6}],"token":""})"));
   const auto st = c.next_op("status");
   ASSERT_TRUE(st);
   EXPECT_NE((*st)["message"].get<std::string>().find("disabled"), std::string::npos);
@@ -363,7 +367,8 @@ TEST(WebSocket, MessageRateIsLimited) {
   cfg.max_incoming_msgs_per_s = 5;
   TestServer s(cfg);
   WsClient c(s.port());
-  for (int i = 0; i < 12; ++i) ASSERT_TRUE(c.send_text(R"({"op":"getParameters","parameterNames":["control.use_gnss"]})"));
+  for (int i = 0; i < 12; ++i)
+    ASSERT_TRUE(c.send_text(R"({"op":"getParameters","parameterNames":["control.use_gnss"]})"));
   int replies = 0;
   bool rate_status = false;
   while (auto m = c.next(500ms)) {
