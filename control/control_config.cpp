@@ -1,5 +1,7 @@
 #include "control/control_config.hpp"
 
+#include "common/car.hpp"
+
 namespace fsd {
 
 const ConfigSection<MidlinePlannerConfig>& planner_section() {
@@ -70,8 +72,6 @@ const ConfigSection<TightTurnConfig>& tight_turn_section() {
           .number("min_turn_deg", &C::min_turn_deg, 10, 360, "deg", "Heading change of a turn worth shaping.", true)
           .number("lane_radius_max", &C::lane_radius_max, 1, 30, "m",
                   "Only turns whose lane centre radius is below this are shaped.", true)
-          .number("body_front", &C::body_front, 0.5, 5, "m", "Rear axle to the nose of the car.")
-          .number("body_half_width", &C::body_half_width, 0.2, 2, "m", "Half the car's width.")
           .number("cone_radius", &C::cone_radius, 0, 0.5, "m", "Half a cone's base.")
           .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and the cones.", true)
           .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.",
@@ -92,8 +92,6 @@ const ConfigSection<FollowerConfig>& follower_section() {
   static const auto s =
       ConfigSection<C>("control.follower")
           .string("type", &C::type, {"pure_pursuit", "stanley", "lqr"}, "Path-following law.")
-          .number("wheelbase", &C::wheelbase, 0.5, 5, "m", "Rear axle to front axle.")
-          .number("max_steer", &C::max_steer, 0.05, 1.0, "rad", "Front wheel angle limit.")
           .number("latency", &C::latency, 0, 1, "s", "Sensing-to-wheel delay the pose is predicted over.", true)
           .number("pp_gain", &C::pp_gain, 0, 5, "s", "Pure pursuit look-ahead per m/s (k in k·v + L0).", true)
           .number("pp_min", &C::pp_min, 0.5, 20, "m", "Pure pursuit look-ahead at standstill (L0).", true)
@@ -135,7 +133,6 @@ const ConfigSection<SpeedConfig>& speed_section() {
           .number("a_accel_max", &C::a_accel_max, 0.1, 30, "m/s²", "Traction acceleration limit.", true)
           .number("a_brake_max", &C::a_brake_max, 0.1, 30, "m/s²", "Service brake deceleration limit.", true)
           .number("power_max", &C::power_max, 0, 1e6, "W", "Power at the wheels; 0 = no power limit.")
-          .number("mass", &C::mass, 50, 2000, "kg", "Vehicle mass (for the power limit).")
           .number("v_max", &C::v_max, 0.5, 60, "m/s", "Target speed cap.", true)
           .number("v_max_realtime", &C::v_max_realtime, 0.5, 60, "m/s", "Cap when planning on what is seen (lap 1).",
                   true)
@@ -270,6 +267,7 @@ const ConfigSection<AutopilotConfig>& autopilot_section() {
 }
 
 void describe_control(ConfigSchema& schema) {
+  describe_car(schema);
   planner_section().describe(schema);
   tight_turn_section().describe(schema);
   follower_section().describe(schema);
@@ -289,6 +287,15 @@ void share_settings(AutopilotConfig& c) {
   c.planner.tight_turn.max_steer = c.follower.max_steer;
   c.trajectory.tight_turn = c.planner.tight_turn;
 }
+
+// The car's description (car.*), read by every part that needs the car's size, steering or mass.
+void describe_the_car(const CarDescription& car, AutopilotConfig& c) {
+  c.follower.wheelbase = car.wheelbase;
+  c.follower.max_steer = car.max_steer;
+  c.speed.mass = car.mass;
+  c.planner.tight_turn.body_front = car.nose();
+  c.planner.tight_turn.body_half_width = car.body_width / 2;
+}
 }  // namespace
 
 AutopilotConfig read_control(const Config& config) {
@@ -302,6 +309,7 @@ AutopilotConfig read_control(const Config& config) {
   c.laps = lap_counter_section().read(config);
   c.trajectory = trajectory_section().read(config);
   c.lap2 = lap2_section().read(config);
+  describe_the_car(read_car(config), c);
   share_settings(c);
   return c;
 }

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/car.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
 #include "daemon/settings.hpp"
@@ -29,7 +30,8 @@ void add_config_command(CLI::App& app, int& exit_code) {
   static std::string file;
   check->add_option("FILE", file, "configuration file")->required();
   check->callback([&exit_code] {
-    Config::load(config_schema(), file);  // throws ConfigError naming key and file
+    const Config cfg = Config::load(config_schema(), file);  // throws ConfigError naming key and file
+    read_car(cfg);  // the car's keys must describe one car (throws ConfigError)
     std::cout << file << ": ok\n";
     exit_code = kExitOk;
   });

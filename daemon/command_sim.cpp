@@ -44,7 +44,7 @@ int run_sim(const SimOptions& o) {
   if (track.duplicates_dropped > 0)
     logger("sim")->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
                         track.duplicates_dropped);
-  const auto vlp = vlp16_section().read(cfg);
+  const auto vlp = read_vlp16_config(cfg);
 
   boost::asio::io_context io;
   boost::asio::ip::udp::socket udp(io);

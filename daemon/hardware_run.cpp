@@ -112,6 +112,7 @@ struct HardwareRun::Impl {
 
   std::unique_ptr<Stack> stack;
   std::unique_ptr<Recorder> recorder;  // --record: taps the Stack on the control thread
+  std::unique_ptr<LogForwarding> record_log;  // the log lines into the recording (detached before the recorder goes)
   // Every driver thread hands its raw frames to the control thread through this queue, in arrival order.
   BoundedQueue<QueuedFrame> frames{kFrameQueue};
 
@@ -141,8 +142,8 @@ struct HardwareRun::Impl {
       : run(run_section().read(cfg)),
         mission(mission_of(run)),
         until_finished(opt.until_finished),
-        vlp_cfg(vlp16_section().read(cfg)),
-        gnss_cfg(gnss_section().read(cfg)),
+        vlp_cfg(read_vlp16_config(cfg)),
+        gnss_cfg(read_gnss_config(cfg)),
         vcu_cfg(vcu_section().read(cfg)),
         cam_cfg(camera_driver_section().read(cfg)) {
     if (const auto why = hardware_mission_refusal(mission)) throw std::invalid_argument(*why);
@@ -165,12 +166,14 @@ struct HardwareRun::Impl {
       RecordingContents rc;
       rc.config = &cfg.as_json();
       rc.run = {"car", false, so.mission, so.laps, so.simulator, so.start, std::nullopt, ""};
+      rc.car = web::car_shape_of(read_car(cfg));
       if (so.camera) {
         rc.run.camera_latency = so.camera->latency;
         rc.run.camera_calibration = to_json(so.camera->calibration).dump();
       }
       recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc);
       stack->add_tap(recorder.get());
+      record_log = std::make_unique<LogForwarding>(recorder->log_sink());  // before any thread of the run logs
     }
 
     auto to_stack = [this](RawChannel c) {

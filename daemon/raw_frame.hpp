@@ -5,6 +5,7 @@
 // very same decoders. In simulator runs the ground truth (the true state and cones, for the truth sources and the
 // scorecard) travels the same way, so that a recording of a simulated run replays against its own truth.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -14,6 +15,9 @@
 #include "common/wire/vcu_protocol.hpp"
 
 namespace fsd {
+
+struct TelemetrySnapshot;
+struct ParamChange;
 
 enum class RawChannel : std::uint8_t {
   Vlp16Data = 0,      // VLP-16 data packet (UDP 2368 payload, 1206 bytes)
@@ -45,6 +49,10 @@ class StackTap {
   virtual void on_cycle(Stamp now) = 0;
   // At the end of that cycle: the command and AS request it handed to the VCU session (the replay compares them).
   virtual void on_output(Stamp /*now*/, const ControlCommand& /*command*/, wire::vcu::AsRequest /*request*/) {}
+  // What the Stack made of it, every 4th cycle (the dashboard's snapshot), shared and never changed afterwards.
+  virtual void on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& /*snapshot*/) {}
+  // A live parameter change, in the cycle `now` that applied it.
+  virtual void on_param(Stamp /*now*/, const ParamChange& /*change*/) {}
 };
 
 }  // namespace fsd

@@ -16,6 +16,7 @@
 #include "common/mcap/byte_io.hpp"
 #include "common/mcap/fsd_profile.hpp"
 #include "common/mcap/writer.hpp"
+#include "daemon/derived_channels.hpp"
 #include "web/metrics.hpp"
 
 namespace fsd {
@@ -26,11 +27,15 @@ constexpr double kMiB = 1024.0 * 1024.0;
 
 // One thing the Stack did, on its way to the writer thread.
 struct Item {
-  enum class Kind : std::uint8_t { Frame, Cycle, Output } kind = Kind::Frame;
+  enum class Kind : std::uint8_t { Frame, Cycle, Output, Snapshot, Json } kind = Kind::Frame;
   RawChannel channel = RawChannel::Nmea;
   Stamp t = 0;
-  std::vector<std::uint8_t> bytes;  // the frame's, or the encoded command
+  std::vector<std::uint8_t> bytes;                    // the frame's, or the encoded command
+  std::shared_ptr<const TelemetrySnapshot> snapshot{};  // Snapshot: turned into derived messages by the writer
+  std::string topic{}, json{};                          // Json: one message of a derived channel
 };
+
+constexpr std::size_t kLogQueue = 1024;  // log lines between the logging threads and the writer
 
 }  // namespace
 
@@ -52,6 +57,8 @@ nlohmann::json to_json(const RecorderStats& s) {
           {"frames_written", s.frames_written},
           {"cycles_written", s.cycles_written},
           {"commands_written", s.commands_written},
+          {"derived_written", s.derived_written},
+          {"log_dropped", s.log_dropped},
           {"dropped", s.dropped},
           {"bytes", s.bytes},
           {"queue_high_water", s.queue_high_water},
@@ -74,6 +81,10 @@ struct Recorder::Impl {
   std::shared_ptr<spdlog::logger> log = logger("record");
 
   BoundedQueue<Item> queue;
+  BoundedQueue<Item> log_queue{kLogQueue};  // log lines, from any thread
+  std::atomic<Stamp> last_cycle{0};         // the run's clock for the log lines
+  DerivedChannels derived;
+  std::map<std::string, web::ChannelSpec> derived_specs;
   bool lossless = false;
   std::atomic<bool> closing{false};
   std::atomic<bool> failed_flag{false};   // the writer stopped on an error: nothing to wait for
@@ -86,11 +97,15 @@ struct Recorder::Impl {
   std::unique_ptr<mcap::FileSink> sink;
   std::unique_ptr<mcap::Writer> writer;
   std::map<RawChannel, std::uint16_t> raw_ids;
+  std::map<std::string, std::uint16_t> json_ids, json_schema_ids;  // by topic, by schema name and text
   std::uint16_t cycle_id = 0, command_id = 0;
   std::vector<Stamp> since_marker;  // exact times of the frames written since the last cycle marker
   std::uint64_t bytes_done = 0;     // of the finished parts
   std::uint64_t part_head = 0;      // the current part's bytes before its first message (metadata, track)
   bool failed = false;
+
+  std::mutex closing_m;
+  std::map<std::string, mcap::StringMap> closing_metadata;  // guarded by closing_m
 
   mutable std::mutex stats_m;
   RecorderStats st;  // guarded by stats_m
@@ -117,7 +132,9 @@ struct Recorder::Impl {
         settings(s),
         run(to_metadata(c.run)),
         queue(static_cast<std::size_t>(s.queue_frames)),
+        derived(c.car),
         lossless(lossless_) {
+    for (auto& spec : derived_channel_specs()) derived_specs.emplace(spec.topic, std::move(spec));
     if (c.config) config = flatten_config(*c.config);
     if (!c.track_file.empty()) {
       // The bytes the run's track was parsed from: the replay parses the very same (a reformatted copy would round).
@@ -147,6 +164,8 @@ struct Recorder::Impl {
     sink = std::make_unique<mcap::FileSink>(file);
     writer = std::make_unique<mcap::Writer>(*sink);
     raw_ids.clear();
+    json_ids.clear();
+    json_schema_ids.clear();
     cycle_id = command_id = 0;
     writer->write_metadata(std::string(mcap::kRecordingMetadata), mcap::recording_metadata());
     writer->write_metadata(std::string(mcap::kConfigMetadata), config);
@@ -170,6 +189,8 @@ struct Recorder::Impl {
                            {{"frames_written", std::to_string(s.frames_written)},
                             {"cycles_written", std::to_string(s.cycles_written)},
                             {"commands_written", std::to_string(s.commands_written)},
+                            {"derived_written", std::to_string(s.derived_written)},
+                            {"log_dropped", std::to_string(s.log_dropped)},
                             {"dropped", std::to_string(s.dropped)},
                             {"queue_high_water", std::to_string(s.queue_high_water)},
                             {"part", std::to_string(part)}});
@@ -201,9 +222,37 @@ struct Recorder::Impl {
     return id;
   }
 
+  std::uint16_t json_channel(const std::string& topic) {
+    if (auto it = json_ids.find(topic); it != json_ids.end()) return it->second;
+    const web::ChannelSpec& spec = derived_specs.at(topic);
+    auto [schema_it, fresh] = json_schema_ids.emplace(spec.schema_name + '\n' + spec.schema, 0);
+    if (fresh)
+      schema_it->second = writer->add_schema(spec.schema_name, "jsonschema",
+                                             {reinterpret_cast<const std::uint8_t*>(spec.schema.data()),
+                                              spec.schema.size()});
+    const auto schema = schema_it->second;
+    const auto id = writer->add_channel(topic, "json", schema);
+    json_ids[topic] = id;
+    return id;
+  }
+
+  void write_json(const std::string& topic, Stamp t, const std::string& json) {
+    const auto ns = to_ns(t);
+    writer->write_message(json_channel(topic), ns, ns,
+                          {reinterpret_cast<const std::uint8_t*>(json.data()), json.size()});
+    std::lock_guard lock(stats_m);
+    ++st.derived_written;
+  }
+
   void write(const Item& item) {
     const auto ns = to_ns(item.t);
     switch (item.kind) {
+      case Item::Kind::Snapshot:
+        for (const auto& m : derived.messages(*item.snapshot)) write_json(m.topic, m.t, m.payload);
+        break;
+      case Item::Kind::Json:
+        write_json(item.topic, item.t, item.json);
+        break;
       case Item::Kind::Frame: {
         writer->write_message(channel(item.channel), ns, ns, item.bytes);
         since_marker.push_back(item.t);
@@ -255,13 +304,26 @@ struct Recorder::Impl {
 
   void write_loop() {
     while (true) {
+      // The log lines first: they wait at most one pop of the main queue (100 ms).
+      while (auto line = log_queue.try_pop()) {
+        if (failed) continue;
+        try {
+          write(*line);
+        } catch (const std::exception& e) {
+          fail(e.what());
+          writer.reset();
+          sink.reset();
+        }
+      }
       auto item = queue.pop_for(std::chrono::milliseconds(100));
       if (!item) {
         if (closing.load() && queue.size() == 0) break;
         continue;
       }
       {
-        const std::uint64_t depth = queue.size() + 1;
+        // The item just taken and those behind it; the producer may refill the slot meanwhile, and a queue never
+        // holds more than its capacity.
+        const std::uint64_t depth = std::min<std::uint64_t>(queue.size() + 1, queue.capacity());
         std::lock_guard lock(stats_m);
         st.queue_high_water = std::max(st.queue_high_water, depth);
       }
@@ -280,6 +342,11 @@ struct Recorder::Impl {
     }
     if (!failed && writer) {
       try {
+        while (auto line = log_queue.try_pop()) write(*line);
+        {
+          std::lock_guard lock(closing_m);
+          for (const auto& [name, values] : closing_metadata) writer->write_metadata(name, values);
+        }
         finish_part();
       } catch (const std::exception& e) {
         fail(e.what());
@@ -304,6 +371,7 @@ struct Recorder::Impl {
     std::lock_guard lock(stats_m);
     RecorderStats s = st;
     s.dropped = queue.dropped() + refused.load();
+    s.log_dropped = log_queue.dropped();
     return s;
   }
 };
@@ -317,10 +385,52 @@ void Recorder::on_frame(const RawFrame& frame) {
   impl_->push({Item::Kind::Frame, frame.channel, frame.t, {frame.bytes.begin(), frame.bytes.end()}});
 }
 
-void Recorder::on_cycle(Stamp now) { impl_->push({Item::Kind::Cycle, RawChannel::Nmea, now, {}}); }
+void Recorder::on_cycle(Stamp now) {
+  impl_->last_cycle.store(now, std::memory_order_relaxed);
+  impl_->push({Item::Kind::Cycle, RawChannel::Nmea, now, {}});
+}
 
 void Recorder::on_output(Stamp now, const ControlCommand& command, wire::vcu::AsRequest request) {
   impl_->push({Item::Kind::Output, RawChannel::Nmea, now, encode_command({now, command, request})});
+}
+
+void Recorder::on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& snapshot) {
+  if (!snapshot) return;
+  Item item;
+  item.kind = Item::Kind::Snapshot;
+  item.t = snapshot->t;
+  item.snapshot = snapshot;
+  impl_->push(std::move(item));
+}
+
+void Recorder::on_param(Stamp now, const ParamChange& change) {
+  Item item;
+  item.kind = Item::Kind::Json;
+  item.t = now;
+  item.topic = kParamChangesTopic;
+  ParamChange at_now = change;
+  at_now.t = now;  // the run's clock: the cycle that applied it
+  item.json = param_change_json(at_now);
+  impl_->push(std::move(item));
+}
+
+void Recorder::on_log(web::LogLine line) {
+  if (impl_->closing.load(std::memory_order_relaxed)) return;
+  Item item;
+  item.kind = Item::Kind::Json;
+  item.t = impl_->last_cycle.load(std::memory_order_relaxed);
+  item.topic = web::topics::kLog;
+  item.json = web::log_json(item.t, line.level, line.name, line.message);
+  impl_->log_queue.push(std::move(item));
+}
+
+std::shared_ptr<spdlog::sinks::sink> Recorder::log_sink() {
+  return web::make_log_sink([this](web::LogLine line) { on_log(std::move(line)); });
+}
+
+void Recorder::add_closing_metadata(const std::string& name, mcap::StringMap values) {
+  std::lock_guard lock(impl_->closing_m);
+  impl_->closing_metadata[name] = std::move(values);
 }
 
 void Recorder::close() { impl_->close(); }

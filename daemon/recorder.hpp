@@ -1,11 +1,15 @@
 #pragma once
 // `fsd run --record FILE`: a StackTap that records every raw frame the Stack takes, a marker per control cycle and
-// the command the cycle computed to MCAP (daemon/recording_format.hpp says what goes where). The tap only copies
+// the command the cycle computed to MCAP (daemon/recording_format.hpp says what goes where), and beside them the
+// derived channels (daemon/derived_channels.hpp: pose, scene, AS status, faults, parameter changes) and the log
+// lines, JSON-encoded with the dashboard's schemas for Foxglove Studio. The tap only copies
 // into a bounded queue (the control thread never waits on the disk; when the queue is full the oldest item is
 // dropped and counted); a thread of the recorder's own writes the files. Files split at record.split_mb, always
 // after a whole cycle; each part carries the configuration, the run's metadata and the track, so it replays alone.
 // A write error (a full disk) stops the recording with one error line in the log, never the run. close() (or the
-// destructor) drains the queue and finishes the file with its summary.
+// destructor) drains the queue and finishes the file with its summary. The snapshots' JSON is built on the writer
+// thread, never on the control thread. Log lines come from any thread through a queue of their own (a burst of
+// them never pushes a raw frame out).
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -19,6 +23,8 @@
 #include "common/mcap/records.hpp"
 #include "daemon/raw_frame.hpp"
 #include "daemon/recording_format.hpp"
+#include "web/channels.hpp"
+#include "web/log_sink.hpp"
 
 namespace fsd {
 
@@ -34,6 +40,8 @@ const ConfigSection<RecordSettings>& record_section();
 
 struct RecorderStats {
   std::uint64_t frames_written = 0, cycles_written = 0, commands_written = 0;
+  std::uint64_t derived_written = 0;  // JSON messages: derived channels, parameter changes, log lines
+  std::uint64_t log_dropped = 0;      // log lines lost to a full log queue (not counted in `dropped`)
   std::uint64_t dropped = 0;  // items lost: the queue was full, or the recording had stopped on an error
   std::uint64_t bytes = 0;    // written to every file so far
   std::uint64_t queue_high_water = 0;
@@ -47,6 +55,7 @@ struct RecordingContents {
   nlohmann::json const* config = nullptr;  // the configuration the Stack was built from (Config::as_json)
   RecordedRun run;
   std::string track_file;  // the layout driven (simulator runs), attached as it is on disk
+  web::CarShape car;       // the body drawn on /vehicle/car (the car's description)
 };
 
 // The path of part `part` of a recording: part 0 is `first` itself, then "run-001.mcap", "run-002.mcap", ...
@@ -65,9 +74,19 @@ class Recorder final : public StackTap {
   void on_frame(const RawFrame& frame) override;
   void on_cycle(Stamp now) override;
   void on_output(Stamp now, const ControlCommand& command, wire::vcu::AsRequest request) override;
+  void on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& snapshot) override;
+  void on_param(Stamp now, const ParamChange& change) override;
+  // A log line from any thread (web::make_log_sink's handler); stamped with the newest cycle's time on the run's
+  // clock. Never blocks: when the log queue is full the line is counted in log_dropped.
+  void on_log(web::LogLine line);
+  // A sink that hands every log line at info and above to on_log (attach it with LogForwarding; detach it before
+  // the recorder goes away).
+  std::shared_ptr<spdlog::sinks::sink> log_sink();
 
   // Its counters on /metrics (fsd_record_*), updated by the writer thread; `metrics` must outlive the recorder.
   void set_metrics(web::Metrics& metrics);
+  // Metadata written into the last part when it is closed (before close(); the last call per name wins).
+  void add_closing_metadata(const std::string& name, mcap::StringMap values);
   // Writes what is queued and finishes the file (summary). Idempotent; later frames are not recorded.
   void close();
   RecorderStats stats() const;  // any thread

@@ -33,6 +33,9 @@ inline constexpr std::string_view kCommandTopic = "/stack/command";
 inline constexpr std::string_view kCycleSchema = "fsd.stack.cycle";
 inline constexpr std::string_view kCommandSchema = "fsd.stack.command";
 inline constexpr std::string_view kTrackAttachment = "track.csv";
+// Simulator runs, in the last part at its close: {"json": the live scorecard's "injected_faults"} (the virtual car's
+// fault windows and the truth around them: measured live, carried to the replay's scorecard).
+inline constexpr std::string_view kInjectedFaultsMetadata = "fsd.injected_faults";
 inline constexpr std::uint32_t kMaxCycleFrames = 1u << 20;  // frames between two cycles a decoder accepts
 
 std::string raw_topic(RawChannel c);  // "/raw/vlp16_data"

@@ -283,6 +283,11 @@ struct ReplayRun::Impl {
     nlohmann::json j;
     if (scoring) {
       j = scoring->card().to_json();
+      // The live run's measurement of its injected faults (the replay has the truth but not the car's schedule).
+      if (const auto* m = reader.metadata(kInjectedFaultsMetadata); m && m->count("json")) {
+        auto injected = nlohmann::json::parse(m->at("json"), nullptr, false);
+        if (!injected.is_discarded()) j["injected_faults"] = std::move(injected);
+      }
     } else {
       j["mode"] = "replay";
       j["mission"] = std::string(to_string(recorded.mission));

@@ -1,5 +1,7 @@
 #include "daemon/settings.hpp"
 
+#include "common/car.hpp"
+
 #include "control/control_config.hpp"
 #include "daemon/recorder.hpp"
 #include "drivers/camera/camera_source.hpp"
@@ -36,8 +38,8 @@ const ConfigSection<RunSettings>& run_section() {
           .string("colours", &RunSettings::colours, {"fsg", "fsac"},
                   "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
           .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera"},
-                  "Where cone detections come from: truth = the virtual car's cones within sensor range (simulator "
-                  "only); lidar = the LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
+                  "Where cone detections come from: truth = the virtual car's cones within sensor range (on the car, "
+                  "which has no truth: lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
                   "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
                   "drivers.camera.calibration on the car).")
           .string("localization_source", &RunSettings::localization_source, {"truth", "gnss", "fused"},
@@ -55,6 +57,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   auto schema = std::make_shared<ConfigSchema>();
   daemon_section().describe(*schema);
   run_section().describe(*schema);
+  describe_car(*schema);
   record_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);

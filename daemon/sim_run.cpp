@@ -56,7 +56,8 @@ struct SimRun::Impl {
   std::unique_ptr<Stack> stack;
   std::unique_ptr<SimScoring> scoring;
   Scorecard* card = nullptr;           // scoring's
-  std::unique_ptr<Recorder> recorder;  // --record
+  std::unique_ptr<Recorder> recorder;         // --record
+  std::unique_ptr<LogForwarding> record_log;  // the log lines into the recording (detached before the recorder goes)
   int truth_cones_hit = -1;
   std::shared_ptr<const std::vector<web::TruthCone>> dashboard_truth_cones;  // rebuilt when a cone falls
   int dashboard_cones_hit = -1;
@@ -110,8 +111,10 @@ struct SimRun::Impl {
       rc.run = {"sim",        headless, so.mission,         so.laps,
                 so.simulator, so.start, so.camera->latency, to_json(so.camera->calibration).dump()};
       rc.track_file = run.track;
+      rc.car = web::car_shape_of(read_car(used));
       recorder = std::make_unique<Recorder>(opt.record, record_section().read(cfg), rc, headless);
       stack->add_tap(recorder.get());
+      record_log = std::make_unique<LogForwarding>(recorder->log_sink());
     }
   }
 
@@ -178,8 +181,10 @@ struct SimRun::Impl {
       }
     }
     scoring->finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
-    card->set_section("injected_faults", faults->report());
+    const nlohmann::json injected = faults->report();
+    card->set_section("injected_faults", injected);
     if (recorder) {
+      recorder->add_closing_metadata(std::string(kInjectedFaultsMetadata), {{"json", injected.dump()}});
       recorder->close();
       card->set_section("recording", to_json(recorder->stats()));
     }

@@ -47,6 +47,7 @@ struct Stack::Impl {
   StackOptions opt;
   RunSettings run;
   std::string localization_source;  // run.localization_source as it applies to this run
+  std::string perception_source;    // run.perception_source as it applies to this run
   ColourConvention convention;
   std::shared_ptr<spdlog::logger> log = logger("stack");
   StepLog step_log{logger("run")};
@@ -99,7 +100,7 @@ struct Stack::Impl {
   // Feeder hooks.
   std::vector<StackTap*> taps;
   ParamRegistry* params = nullptr;
-  std::shared_ptr<BoundedQueue<std::string>> changed_keys = std::make_shared<BoundedQueue<std::string>>(1024);
+  std::shared_ptr<BoundedQueue<ParamChange>> changed_keys = std::make_shared<BoundedQueue<ParamChange>>(1024);
   std::uint64_t changes_dropped = 0;
   Telemetry* telemetry = nullptr;
   std::function<void(TelemetrySnapshot&)> telemetry_extras;
@@ -120,28 +121,31 @@ struct Stack::Impl {
         run(run_section().read(cfg)),
         convention(ColourConvention::named(run.colours)),
         wall(opt.wall_clock ? opt.wall_clock : steady_seconds),
-        vlp_cfg(vlp16_section().read(cfg)),
+        vlp_cfg(read_vlp16_config(cfg)),
         truth_perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5),
         cone_map(cone_map_section().read(cfg)),
         view(opt.mission, opt.laps) {
-    // The car has no ground truth: the truth sources stand for what the car has today (no detections; the
-    // GNSS-INS pose), and the log says so.
+    // The car has no ground truth: the truth sources stand for what the car has (its perception stages, with the
+    // camera when it is calibrated; the GNSS-INS pose), and the log says so.
     localization_source = run.localization_source;
     if (!opt.simulator && localization_source == "truth") {
       localization_source = "gnss";
       log->info("no ground truth on the car: run.localization_source = truth drives on the GNSS-INS pose");
     }
     if (localization_source == "fused") fused = std::make_unique<FusedLocalization>(cfg);
-    if (!opt.simulator && run.perception_source == "truth")
-      log->info("no ground truth on the car: run.perception_source = truth gives no cone detections");
-    if (run.perception_source != "truth") detector = make_detector(cfg);
+    perception_source = run.perception_source;
+    if (!opt.simulator && perception_source == "truth") {
+      perception_source = opt.camera ? "lidar_camera" : "lidar";
+      log->info("no ground truth on the car: run.perception_source = truth runs the {} stages", perception_source);
+    }
+    if (perception_source != "truth") detector = make_detector(cfg);
 
     lidar = std::make_unique<Vlp16ScanBuilder>(vlp_cfg, [this](Scan&& scan) {
       last_scan_end = firing_span(scan).last;
       last_scan = std::make_shared<const Scan>(std::move(scan));
       new_scan = true;
     });
-    gnss = std::make_unique<GnssDriver>(gnss_section().read(cfg), [this](const GnssSample& s) {
+    gnss = std::make_unique<GnssDriver>(read_gnss_config(cfg), [this](const GnssSample& s) {
       if (gnss_pending.size() < kMaxGnssPending) gnss_pending.push_back(s);
     });
     vcu = std::make_unique<VcuSession>(vcu_section().read(cfg), opt.start,
@@ -160,7 +164,7 @@ struct Stack::Impl {
 
   std::unique_ptr<LidarCameraDetector> make_detector(const Config& cfg) {
     std::unique_ptr<CameraStage> camera;
-    if (run.perception_source == "lidar_camera") {
+    if (perception_source == "lidar_camera") {
       if (!opt.camera)
         throw std::invalid_argument(
             "run.perception_source = lidar_camera needs the camera's calibration: set drivers.camera.calibration "
@@ -169,8 +173,8 @@ struct Stack::Impl {
       camera =
           std::make_unique<CameraStage>(opt.camera->calibration, load_cone_classifier_model(cc.classifier.model), cc);
     }
-    log->info("perception: {} (LiDAR mount x {:.2f} y {:.2f} z {:.2f} m)", run.perception_source, vlp_cfg.mount_x,
-              vlp_cfg.mount_y, vlp_cfg.mount_z);
+    log->info("perception: {} (LiDAR mount x {:.2f} y {:.2f} z {:.2f} m)", perception_source, vlp_cfg.mount.x,
+              vlp_cfg.mount.y, vlp_cfg.mount.z);
     return std::make_unique<LidarCameraDetector>(read_lidar_detector_config(cfg), vlp_cfg.body_from_sensor(),
                                                  std::move(camera));
   }
@@ -236,7 +240,7 @@ struct Stack::Impl {
 
   // Live parameter changes, on the Stack's thread: each changed key's current value into the typed config through
   // its section's member pointer. After an overflow of the queue every tunable key is applied again.
-  void apply_param_changes() {
+  void apply_param_changes(Stamp now) {
     if (!params) return;
     bool any = false;
     const std::uint64_t dropped = changed_keys->dropped();
@@ -245,8 +249,10 @@ struct Stack::Impl {
       while (changed_keys->try_pop()) {}
       for (const auto& p : params->list()) any |= apply_control_param(control, p.entry->key, p.value);
     }
-    while (auto key = changed_keys->try_pop())
-      if (auto v = params->get(*key)) any |= apply_control_param(control, *key, *v);
+    while (auto change = changed_keys->try_pop()) {
+      if (auto v = params->get(change->key)) any |= apply_control_param(control, change->key, *v);
+      for (auto* tap : taps) tap->on_param(now, *change);
+    }
     if (!any) return;
     control.mission.laps = opt.laps;
     plan_budget = control.planner.time_budget;
@@ -353,7 +359,7 @@ struct Stack::Impl {
     const double w_perception = wall();
     localize();  // first: the sensor sources place this cycle's scan by the newest pose
     cycle.perceived = perceive(now);
-    apply_param_changes();
+    apply_param_changes(now);
 
     const double w0 = wall();
     const bool planned = autopilot->plan(now);
@@ -412,12 +418,11 @@ struct Stack::Impl {
       if (metrics_extras) metrics_extras(fig);
       metrics->on_cycle(fig);
     }
-    if (!telemetry || cycles % kTelemetryEvery != 0) return;
+    if ((!telemetry && taps.empty()) || cycles % kTelemetryEvery != 0) return;
     TelemetrySnapshot s = view.snapshot(now, as_state(), cycle.out, *autopilot, vcu->status());
     if (state) {
       s.state = *state;
-      // The newest scan, placed by the estimated pose at its last firing and the configured mount
-      // (drivers.vlp16.mount_*).
+      // The newest scan, placed by the estimated pose at its last firing and the configured mount (car.lidar.*).
       if (last_scan) {
         s.scan = last_scan;
         s.lidar_pose = poses.at(last_scan_end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
@@ -427,7 +432,9 @@ struct Stack::Impl {
     if (last_detections) s.detections_pose = poses.at(last_detections->stamp);
     s.camera_jpeg = last_jpeg;
     if (telemetry_extras) telemetry_extras(s);
-    telemetry->publish(std::move(s));
+    const auto shared = std::make_shared<const TelemetrySnapshot>(std::move(s));
+    for (auto* tap : taps) tap->on_snapshot(shared);
+    if (telemetry) telemetry->publish(shared);
   }
 
   AsState as_state() const {
@@ -486,7 +493,7 @@ void Stack::add_tap(StackTap* tap) {
 
 void Stack::set_params(ParamRegistry* params) {
   impl_->params = params;
-  if (params) params->subscribe([q = impl_->changed_keys](const ParamChange& c) { q->push(c.key); });
+  if (params) params->subscribe([q = impl_->changed_keys](const ParamChange& c) { q->push(c); });
 }
 
 void Stack::set_telemetry(Telemetry* telemetry, std::function<void(TelemetrySnapshot&)> extras) {

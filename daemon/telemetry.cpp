@@ -40,11 +40,12 @@ nlohmann::json state_json(const TelemetrySnapshot& s) {
 
 }  // namespace
 
-Telemetry::Telemetry(web::WebServer& server, TelemetryRates rates, bool truth)
+Telemetry::Telemetry(web::WebServer& server, TelemetryRates rates, bool truth, web::CarShape car)
     : server_(server),
       ch_(web::add_standard_channels(server)),
       truth_ch_(truth ? std::optional(web::add_truth_channels(server)) : std::nullopt),
       rates_(rates),
+      car_(car),
       published_(
           server.metrics().counter("fsd_telemetry_snapshots_total", "Snapshots the control loop handed to telemetry")),
       skipped_(server.metrics().counter("fsd_telemetry_snapshots_skipped_total",
@@ -65,7 +66,11 @@ void Telemetry::stop() {
 }
 
 void Telemetry::publish(TelemetrySnapshot snapshot) {
-  latest_->set(std::make_shared<const TelemetrySnapshot>(std::move(snapshot)));
+  publish(std::make_shared<const TelemetrySnapshot>(std::move(snapshot)));
+}
+
+void Telemetry::publish(std::shared_ptr<const TelemetrySnapshot> snapshot) {
+  latest_->set(std::move(snapshot));
   published_.inc();
 }
 
@@ -105,7 +110,7 @@ void Telemetry::loop() {
     const bool fresh = seen != before;
     if (fresh && ready(state, now))
       server_.publish(ch_.vehicle_state, s.t, web::vehicle_state_json(s.state, s.target_speed));
-    if (fresh && ready(car, now)) server_.publish(ch_.car, s.t, web::car_scene(s.t, s.state.pose));
+    if (fresh && ready(car, now)) server_.publish(ch_.car, s.t, web::car_scene(s.t, s.state.pose, car_));
     if (fresh && ready(scene, now)) {
       if (s.cone_map) server_.publish(ch_.cone_map, s.t, web::cone_map_scene(s.t, *s.cone_map));
       // Drawn where they were seen: at the pose of their own instant (up to 100 ms before the snapshot's).
@@ -129,7 +134,7 @@ void Telemetry::loop() {
     if (truth_ch_) {
       if (fresh && s.truth && ready(truth_state, now)) {
         server_.publish(truth_ch_->vehicle_state, s.t, web::truth_state_json(*s.truth));
-        server_.publish(truth_ch_->car, s.t, web::truth_car_scene(s.t, s.truth->pose));
+        server_.publish(truth_ch_->car, s.t, web::truth_car_scene(s.t, s.truth->pose, car_));
       }
       // The cones change only when one falls: sent then (latched for late subscribers), at most at the scene rate.
       if (s.truth_cones && s.truth_cones != last_truth_cones && ready(truth_cones, now)) {
@@ -142,7 +147,9 @@ void Telemetry::loop() {
 
 LogForwarding::LogForwarding(web::WebServer& server, web::ChannelId log_channel, const Clock& clock,
                              spdlog::level::level_enum level)
-    : sink_(web::make_log_sink(server, log_channel, clock, level)) {
+    : LogForwarding(web::make_log_sink(server, log_channel, clock, level)) {}
+
+LogForwarding::LogForwarding(std::shared_ptr<spdlog::sinks::sink> sink) : sink_(std::move(sink)) {
   // The default logger's sinks are what fsd::logger() copies into loggers it creates later.
   auto attach = [this](const std::shared_ptr<spdlog::logger>& l) {
     auto& sinks = l->sinks();

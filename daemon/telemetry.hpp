@@ -49,10 +49,12 @@ struct TelemetryRates {
 
 class Telemetry {
  public:
-  // `truth`: also add the /truth/* channels (sim runs). The server must outlive the Telemetry.
-  Telemetry(web::WebServer& server, TelemetryRates rates = {}, bool truth = false);
+  // `truth`: also add the /truth/* channels (sim runs); `car`: the body drawn on /car and /truth/car. The server
+  // must outlive the Telemetry.
+  Telemetry(web::WebServer& server, TelemetryRates rates = {}, bool truth = false, web::CarShape car = {});
   ~Telemetry();                              // stops the thread
   void publish(TelemetrySnapshot snapshot);  // never blocks
+  void publish(std::shared_ptr<const TelemetrySnapshot> snapshot);
   void stop();
   const web::StandardChannels& channels() const { return ch_; }
 
@@ -62,6 +64,7 @@ class Telemetry {
   web::StandardChannels ch_;
   std::optional<web::TruthChannels> truth_ch_;
   TelemetryRates rates_;
+  web::CarShape car_;
   using Slot = LatestValue<std::shared_ptr<const TelemetrySnapshot>>;
   std::shared_ptr<Slot> latest_ = std::make_shared<Slot>();  // shared with the /api/state provider
   web::Counter& published_;
@@ -78,6 +81,8 @@ class LogForwarding {
  public:
   LogForwarding(web::WebServer& server, web::ChannelId log_channel, const Clock& clock,
                 spdlog::level::level_enum level = spdlog::level::info);
+  // Any sink (web::make_log_sink with a handler: the recorder's).
+  explicit LogForwarding(std::shared_ptr<spdlog::sinks::sink> sink);
   ~LogForwarding();
   LogForwarding(const LogForwarding&) = delete;
   LogForwarding& operator=(const LogForwarding&) = delete;

@@ -10,6 +10,7 @@
 namespace fsd {
 
 void describe_lidar_detector_config(ConfigSchema& schema) {
+  describe_car(schema);
   roi_section().describe(schema);
   ground_section().describe(schema);
   accumulation_section().describe(schema);
@@ -22,6 +23,7 @@ void describe_lidar_detector_config(ConfigSchema& schema) {
 LidarDetectorConfig read_lidar_detector_config(const Config& cfg) {
   LidarDetectorConfig c;
   c.roi = roi_section().read(cfg);
+  c.roi.cut_out(read_car(cfg));
   c.ground = ground_section().read(cfg);
   c.accumulation = accumulation_section().read(cfg);
   c.cluster = cluster_section().read(cfg);

@@ -11,11 +11,16 @@ const ConfigSection<RoiConfig>& roi_section() {
           .number("y_max", &RoiConfig::y_max, 0.0, 200.0, "m", "Region of interest: left edge.")
           .number("max_height", &RoiConfig::max_height, 0.2, 5.0, "m",
                   "Region of interest: points higher than this above the ground plane are dropped.")
-          .number("body_x_min", &RoiConfig::body_x_min, -10.0, 10.0, "m", "The car's own body (cut out): rear edge.")
-          .number("body_x_max", &RoiConfig::body_x_max, -10.0, 10.0, "m", "The car's own body: front edge.")
-          .number("body_y_min", &RoiConfig::body_y_min, -10.0, 10.0, "m", "The car's own body: right edge.")
-          .number("body_y_max", &RoiConfig::body_y_max, -10.0, 10.0, "m", "The car's own body: left edge.");
+          .number("body_margin", &RoiConfig::body_margin, 0.0, 2.0, "m",
+                  "The car's own body (car.body_length, car.rear_overhang, car.body_width) grown by this is cut out.");
   return s;
+}
+
+void RoiConfig::cut_out(const CarDescription& car) {
+  body_x_min = -car.rear_overhang - body_margin;
+  body_x_max = car.nose() + body_margin;
+  body_y_max = car.body_width / 2 + body_margin;
+  body_y_min = -body_y_max;
 }
 
 }  // namespace fsd

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/car.hpp"
 #include "common/config.hpp"
 #include "common/types.hpp"
 
@@ -16,9 +17,12 @@ struct RoiConfig {
   double x_min = -20.0, x_max = 20.0;
   double y_min = -20.0, y_max = 20.0;
   double max_height = 1.0;  // m above the ground plane
-  // The car's own body (the virtual car: 0.5 m behind the rear axle to 2.4 m ahead, 1.4 m wide), with a margin.
+  // The car's own body with a margin, cut out: by default the car's description (0.5 m behind the rear axle to
+  // 2.4 m ahead, 1.4 m wide) grown by body_margin; cut_out() sets it from a description.
+  double body_margin = 0.1;
   double body_x_min = -0.6, body_x_max = 2.5;
   double body_y_min = -0.8, body_y_max = 0.8;
+  void cut_out(const CarDescription& car);
 };
 const ConfigSection<RoiConfig>& roi_section();  // "perception.lidar.roi"
 

@@ -169,6 +169,14 @@ std::string detections_scene(Stamp t, const ConeDetections& detections, const Po
   return scene(json::array({e}));
 }
 
+CarShape car_shape_of(const CarDescription& car) {
+  CarShape s;
+  s.length = car.body_length;
+  s.width = car.body_width;
+  s.rear_overhang = car.rear_overhang;
+  return s;
+}
+
 std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
   json e = entity(t, "car");
   const double ahead = shape.length / 2 - shape.rear_overhang;  // box centre ahead of the rear axle

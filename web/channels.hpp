@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/car.hpp"
 #include "common/geometry.hpp"
 #include "common/time.hpp"
 #include "common/types.hpp"
@@ -68,6 +69,7 @@ struct CarShape {
   double length = 2.9, width = 1.4, height = 1.0;  // m
   double rear_overhang = 0.6;                      // m behind the rear axle (the vehicle frame's origin)
 };
+CarShape car_shape_of(const CarDescription& car);  // the body of the car's description (car.*)
 // The car as a box plus a heading arrow, entity "car".
 std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape = {});
 

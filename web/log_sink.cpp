@@ -30,33 +30,37 @@ LogLevel to_foxglove(spdlog::level::level_enum l) {
   }
 }
 
-class WebLogSink final : public spdlog::sinks::base_sink<std::mutex> {
+class HandlerSink final : public spdlog::sinks::base_sink<std::mutex> {
  public:
-  WebLogSink(WebServer& server, ChannelId channel, const Clock& clock)
-      : server_(server), channel_(channel), clock_(clock) {}
+  explicit HandlerSink(LogLineHandler handler) : handler_(std::move(handler)) {}
 
  protected:
   void sink_it_(const spdlog::details::log_msg& msg) override {
-    const Stamp t = clock_.now();
-    server_.publish(channel_, t,
-                    log_json(t, to_foxglove(msg.level), std::string(msg.logger_name.begin(), msg.logger_name.end()),
-                             std::string(msg.payload.begin(), msg.payload.end())));
+    handler_({to_foxglove(msg.level), std::string(msg.logger_name.begin(), msg.logger_name.end()),
+              std::string(msg.payload.begin(), msg.payload.end())});
   }
   void flush_() override {}
 
  private:
-  WebServer& server_;
-  ChannelId channel_;
-  const Clock& clock_;
+  LogLineHandler handler_;
 };
 
 }  // namespace
 
-std::shared_ptr<spdlog::sinks::sink> make_log_sink(WebServer& server, ChannelId log_channel, const Clock& clock,
-                                                   spdlog::level::level_enum level) {
-  auto sink = std::make_shared<WebLogSink>(server, log_channel, clock);
+std::shared_ptr<spdlog::sinks::sink> make_log_sink(LogLineHandler handler, spdlog::level::level_enum level) {
+  auto sink = std::make_shared<HandlerSink>(std::move(handler));
   sink->set_level(level);
   return sink;
+}
+
+std::shared_ptr<spdlog::sinks::sink> make_log_sink(WebServer& server, ChannelId log_channel, const Clock& clock,
+                                                   spdlog::level::level_enum level) {
+  return make_log_sink(
+      [&server, log_channel, &clock](LogLine l) {
+        const Stamp t = clock.now();
+        server.publish(log_channel, t, log_json(t, l.level, l.name, l.message));
+      },
+      level);
 }
 
 }  // namespace fsd::web

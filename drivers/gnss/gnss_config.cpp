@@ -28,12 +28,6 @@ const ConfigSection<GnssConfig>& gnss_section() {
                   "Oldest differential corrections for GNSS good (when min_fix needs corrections).", true)
           .boolean("require_heading", &GnssConfig::require_heading,
                    "GNSS good needs a heading (HDT or PASHR) in the same epoch.", true)
-          .number("antenna_x", &GnssConfig::antenna_x, -10.0, 10.0, "m",
-                  "Antenna phase centre ahead of the rear-axle centre (vehicle frame x).")
-          .number("antenna_y", &GnssConfig::antenna_y, -10.0, 10.0, "m",
-                  "Antenna phase centre left of the rear-axle centre (vehicle frame y).")
-          .number("antenna_z", &GnssConfig::antenna_z, -10.0, 10.0, "m",
-                  "Antenna phase centre above the ground below the rear axle (vehicle frame z).")
           .integer("max_line_length", &GnssConfig::max_line_length, 82, 4096, "characters",
                    "Longest accepted sentence from '$' to the checksum; longer lines are dropped and counted.")
           .boolean("require_checksum", &GnssConfig::require_checksum, "Reject sentences without a '*HH' checksum.")
@@ -43,6 +37,15 @@ const ConfigSection<GnssConfig>& gnss_section() {
           .number("latency_s", &GnssConfig::latency_s, 0.0, 1.0, "s",
                   "Receiver output latency subtracted from the receive time to stamp a sample.");
   return s;
+}
+
+GnssConfig read_gnss_config(const Config& config) {
+  GnssConfig c = gnss_section().read(config);
+  const Lever antenna = read_car(config).gnss_antenna;
+  c.antenna_x = antenna.x;
+  c.antenna_y = antenna.y;
+  c.antenna_z = antenna.z;
+  return c;
 }
 
 int fix_rank(int gga_quality) {

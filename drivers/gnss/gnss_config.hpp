@@ -2,6 +2,7 @@
 // Configuration of the GNSS-INS driver (section "drivers.gnss").
 #include <string>
 
+#include "common/car.hpp"
 #include "common/config.hpp"
 
 namespace fsd {
@@ -25,10 +26,11 @@ struct GnssConfig {
   double max_diff_age_s = 3.0;  // checked when min_fix needs corrections and the receiver reports an age
   bool require_heading = true;  // HDT or PASHR heading present in the epoch
 
-  // Antenna phase centre in the vehicle frame (x forward, y left, z up from the rear-axle centre on the ground).
-  double antenna_x = 0.5;
-  double antenna_y = 0.0;
-  double antenna_z = 1.2;
+  // Antenna phase centre in the vehicle frame (x forward, y left, z up from the rear-axle centre on the ground):
+  // the car's description, car.gnss_antenna.
+  double antenna_x = CarDescription{}.gnss_antenna.x;
+  double antenna_y = CarDescription{}.gnss_antenna.y;
+  double antenna_z = CarDescription{}.gnss_antenna.z;
 
   int max_line_length = 120;  // characters from '$' to the checksum; longer lines are dropped
   bool require_checksum = true;
@@ -38,6 +40,8 @@ struct GnssConfig {
 };
 
 const ConfigSection<GnssConfig>& gnss_section();
+// The section plus the antenna of the car's description (car.gnss_antenna).
+GnssConfig read_gnss_config(const Config& config);
 
 // Ordering of GGA fix qualities for "min_fix": 0 none/manual/simulator, 1 single (and dead reckoning),
 // 2 DGPS/PPS, 3 RTK float, 4 RTK fixed.

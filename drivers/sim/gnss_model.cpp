@@ -42,9 +42,6 @@ const ConfigSection<GnssModelConfig>& gnss_model_section() {
                   "Height of the map origin above the WGS-84 ellipsoid.")
           .number("geoid_separation_m", &C::geoid_separation_m, -150.0, 150.0, "m",
                   "Geoid above the ellipsoid at the track: GGA altitude = ellipsoidal height - separation.")
-          .number("antenna_x", &C::antenna_x, -10.0, 10.0, "m", "Antenna ahead of the rear-axle centre.")
-          .number("antenna_y", &C::antenna_y, -10.0, 10.0, "m", "Antenna left of the rear-axle centre.")
-          .number("antenna_z", &C::antenna_z, -10.0, 10.0, "m", "Antenna above the ground below the rear axle.")
           .string("mode", &C::mode, {"rtk", "single"}, "Solution: rtk (GGA quality 4) or single point (quality 1).")
           .number("rtk_sigma_m", &C::rtk_sigma_m, 0.0, 1.0, "m",
                   "RTK position noise per horizontal axis (1.5x vertical).")

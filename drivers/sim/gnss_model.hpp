@@ -37,7 +37,7 @@ struct GnssModelConfig {
   double origin_lon_deg = 8.5658;
   double origin_height_m = 150.0;    // above the WGS-84 ellipsoid (≈ 102 m above sea level)
   double geoid_separation_m = 47.6;  // geoid above the ellipsoid there; GGA altitude = height - separation
-  double antenna_x = 0.5;            // antenna phase centre in the vehicle frame
+  double antenna_x = 0.5;            // antenna phase centre in the vehicle frame: car.gnss_antenna + sim.mismatch
   double antenna_y = 0.0;
   double antenna_z = 1.2;
 

@@ -35,13 +35,6 @@ const ConfigSection<LidarConfig>& lidar_section() {
   using C = LidarConfig;
   static const auto s =
       ConfigSection<C>("sim.lidar")
-          .number("x", &C::x, -5.0, 5.0, "m",
-                  "Mount position on the body frame (rear-axle centre on the ground): forward.")
-          .number("y", &C::y, -2.0, 2.0, "m", "Mount position: left.")
-          .number("z", &C::z, 0.05, 3.0, "m", "Mount position: height above the ground.")
-          .number("roll", &C::roll, -0.5, 0.5, "rad", "Mount roll (Z-Y-X).")
-          .number("pitch", &C::pitch, -0.5, 0.5, "rad", "Mount pitch, positive tilts the sensor's front down.")
-          .number("yaw", &C::yaw, -3.15, 3.15, "rad", "Mount yaw.")
           .number("rotation_hz", &C::rotation_hz, 5.0, 20.0, "Hz", "Rotation rate (VLP-16: 300..1200 rpm).")
           .number(
               "range_noise", &C::range_noise, 0.0, 0.5, "m",

@@ -34,6 +34,7 @@ namespace fsd::sim {
 
 struct LidarConfig {
   // Mount on the vehicle body frame (rear-axle centre on the ground): on the nose, ahead of the front wheels.
+  // From the car's description (car.lidar) plus sim.mismatch.lidar_* (drivers/sim/model_mismatch.hpp).
   double x = 2.0, y = 0.0, z = 0.35;
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad, Z-Y-X
   double rotation_hz = 10.0;

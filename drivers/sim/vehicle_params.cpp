@@ -8,18 +8,12 @@ const ConfigSection<VehicleParams>& vehicle_section() {
   using P = VehicleParams;
   static const auto s =
       ConfigSection<P>("sim.vehicle")
-          .number("mass", &P::mass, 100.0, 600.0, "kg", "Mass of the car with the driverless kit.")
           .number("yaw_inertia", &P::yaw_inertia, 20.0, 500.0, "kg·m²", "Yaw moment of inertia about the CoG.")
-          .number("wheelbase", &P::wheelbase, 1.525, 2.0, "m", "Distance front to rear axle (rules: ≥ 1525 mm).")
           .number("track_width", &P::track_width, 0.8, 1.6, "m", "Distance between the wheel centres of one axle.")
           .number("cog_height", &P::cog_height, 0.1, 0.6, "m", "Height of the centre of gravity above the ground.")
           .number("cog_to_rear_axle", &P::cog_to_rear_axle, 0.3, 1.5, "m",
                   "Longitudinal distance from the rear axle forward to the CoG.")
           .number("wheel_radius", &P::wheel_radius, 0.15, 0.35, "m", "Loaded rolling radius of the wheels.")
-          .number("body_length", &P::body_length, 1.8, 4.0, "m",
-                  "Body outline length, nose to tail, for cone contacts.")
-          .number("body_width", &P::body_width, 0.8, 2.0, "m", "Body outline width over the tyres, for cone contacts.")
-          .number("rear_overhang", &P::rear_overhang, 0.0, 1.5, "m", "Body outline behind the rear axle.")
           .number("mu", &P::mu, 0.2, 2.5, "", "Tyre-road friction coefficient (peak of the magic formula).")
           .number("tyre_front_b", &P::tyre_front_b, 1.0, 40.0, "1/rad", "Pacejka stiffness factor B, front axle.")
           .number("tyre_front_c", &P::tyre_front_c, 0.5, 2.0, "", "Pacejka shape factor C, front axle.")
@@ -54,7 +48,6 @@ const ConfigSection<VehicleParams>& vehicle_section() {
           .number("steer_dead_time", &P::steer_dead_time, 0.0, 0.5, "s", "Steering actuator dead time.")
           .number("steer_max_rate", &P::steer_max_rate, 0.1, 10.0, "rad/s",
                   "Steering actuator rate limit (wheel angle).")
-          .number("steer_max_angle", &P::steer_max_angle, 0.1, 0.6, "rad", "Largest front wheel angle.")
           .number("speed_kp", &P::speed_kp, 0.0, 20.0, "1/s", "VCU speed controller: proportional gain.")
           .number("speed_ki", &P::speed_ki, 0.0, 20.0, "1/s²", "VCU speed controller: integral gain.")
           .number("speed_integral_limit", &P::speed_integral_limit, 0.0, 20.0, "m/s²",

@@ -1,6 +1,8 @@
 #pragma once
 // Parameters of the virtual car: a Formula Student electric car with rear-wheel drive, wings and a driverless kit.
-// Defaults are plausible values for such a car; every field is a configuration key under "sim.vehicle".
+// Defaults are plausible values for such a car. The fields the car's own description has (mass, wheelbase, body,
+// steering lock) come from "car.*" plus "sim.mismatch.*" (drivers/sim/model_mismatch.hpp); every other field is a
+// configuration key under "sim.vehicle".
 #include <string>
 
 #include "common/config.hpp"

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/logging.hpp"
+#include "drivers/sim/model_mismatch.hpp"
 
 namespace fsd::sim {
 
@@ -17,6 +18,7 @@ const ConfigSection<SimRunConfig>& sim_run_section() {
 }
 
 void describe_virtual_car_config(ConfigSchema& schema) {
+  describe_car(schema);
   sim_run_section().describe(schema);
   vehicle_section().describe(schema);
   world_section().describe(schema);
@@ -24,6 +26,7 @@ void describe_virtual_car_config(ConfigSchema& schema) {
   gnss_model_section().describe(schema);
   vcu_standin_section().describe(schema);
   camera_section().describe(schema);
+  model_mismatch_section().describe(schema);
   describe_fault_schedule(schema);
 }
 
@@ -37,6 +40,7 @@ VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
   s.vcu = vcu_standin_section().read(cfg);
   s.camera = camera_section().read(cfg);
   s.faults = read_fault_schedule(cfg);
+  apply_car(read_car(cfg), model_mismatch_section().read(cfg), s.vehicle, s.lidar, s.gnss);
   return s;
 }
 

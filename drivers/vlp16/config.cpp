@@ -21,19 +21,14 @@ const ConfigSection<Vlp16Config>& vlp16_section() {
           .string(
               "laser_table", &Vlp16Config::laser_table, {},
               "Laser calibration CSV (laser_id,vert_angle_deg,vert_offset_correction_m[,firing_order_in_sequence]); "
-              "empty = the VLP-16 manual's table built in.")
-          .number("mount_x", &Vlp16Config::mount_x, -5.0, 5.0, "m", "Sensor origin ahead of the rear-axle centre.")
-          .number("mount_y", &Vlp16Config::mount_y, -2.0, 2.0, "m", "Sensor origin left of the rear-axle centre.")
-          .number("mount_z", &Vlp16Config::mount_z, 0.0, 3.0, "m", "Sensor origin above the ground.")
-          .number("mount_roll", &Vlp16Config::mount_roll, -0.5, 0.5, "rad", "Mount roll (Z-Y-X).")
-          .number("mount_pitch", &Vlp16Config::mount_pitch, -0.5, 0.5, "rad",
-                  "Mount pitch, nose down positive (Z-Y-X).")
-          .number("mount_yaw", &Vlp16Config::mount_yaw, -3.15, 3.15, "rad", "Mount yaw (Z-Y-X).");
+              "empty = the VLP-16 manual's table built in.");
   return s;
 }
 
-Pose3 Vlp16Config::body_from_sensor() const {
-  return pose_zyx(Vec3(mount_x, mount_y, mount_z), mount_yaw, mount_pitch, mount_roll);
+Vlp16Config read_vlp16_config(const Config& config) {
+  Vlp16Config c = vlp16_section().read(config);
+  c.mount = read_car(config).lidar;
+  return c;
 }
 
 }  // namespace fsd

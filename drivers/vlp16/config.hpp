@@ -2,6 +2,7 @@
 // Configuration of the VLP-16 driver (section "drivers.vlp16").
 #include <string>
 
+#include "common/car.hpp"
 #include "common/config.hpp"
 #include "common/geometry.hpp"
 
@@ -17,12 +18,13 @@ struct Vlp16Config {
   double max_range = 130.0;            // m; farther returns are dropped
   std::string laser_table;             // CSV like ../shared/data/vlp16/vlp16_lasers.csv; "" = built-in table
   // Mount on the vehicle body frame (rear-axle centre on the ground, x forward, z up): what the stack places the
-  // points with. The default is the virtual car's (sim.lidar), on the nose ahead of the front wheels.
-  double mount_x = 2.0, mount_y = 0.0, mount_z = 0.35;          // m
-  double mount_roll = 0.0, mount_pitch = 0.0, mount_yaw = 0.0;  // rad, Z-Y-X
-  Pose3 body_from_sensor() const;                               // body ← sensor
+  // points with. The car's description (car.lidar): on the nose ahead of the front wheels.
+  SensorMount mount = CarDescription{}.lidar;
+  Pose3 body_from_sensor() const { return mount.body_from_sensor(); }  // body ← sensor
 };
 
 const ConfigSection<Vlp16Config>& vlp16_section();
+// The section plus the mount of the car's description (car.lidar).
+Vlp16Config read_vlp16_config(const Config& config);
 
 }  // namespace fsd

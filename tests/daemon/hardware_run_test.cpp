@@ -483,10 +483,11 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
                  R"({"drivers": {"vcu": {"device": ")" + dev.vcu().slave_path() + R"("}, "gnss": {"device": ")" +
                      dev.gnss().slave_path() + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
                      std::to_string(lidar_port) + R"(, "position_port": )" + std::to_string(position_port) +
-                     R"(, "mount_x": 1.5, "mount_z": 0.8, "mount_yaw": 0.1},
+                     R"(},
                       "camera": {"enabled": true, "source": ")" +
                      video + R"(", "width": 160, "height": 120,
                                  "fps": 20, "loop_file": true}},
+          "car": {"lidar": {"x": 1.5, "z": 0.8, "yaw": 0.1}},
           "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}}, "run": {"stats_period": 0.5},
           "web": {"bind": "127.0.0.1", "port": 0}})");
   const std::string report_path = scratch_path("hw_sigterm_report.json");
@@ -570,6 +571,8 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   EXPECT_NE(out.find("AS Ready -> Driving"), std::string::npos) << out;
   EXPECT_NE(out.find("stopping (signal)"), std::string::npos) << out;
   EXPECT_NE(out.find("VCU link stopped after 3 safe commands"), std::string::npos) << out;
+  // No ground truth on the car: the default truth source runs the perception stages (no camera calibration here).
+  EXPECT_NE(out.find("run.perception_source = truth runs the lidar stages"), std::string::npos) << out;
 
   // Without --until-finished a signal is a normal end; the camera delivered its frames at about 20 fps.
   const auto r = nlohmann::json::parse(slurp(report_path));

@@ -44,7 +44,6 @@ json without_wall_time(json j) {
   j.erase("wall_time_s");
   j.erase("latency_ms");
   j.erase("recording");
-  j.erase("injected_faults");  // the virtual car's fault schedule: measured live only
   if (j.contains("replay")) {
     j["replay"].erase("wall_time_s");
     j["replay"].erase("speed_x");
@@ -352,8 +351,11 @@ TEST(Recording, LargeRecordingsSplitIntoPartsThatEachReplay) {
   for (const auto& f : st["files"]) total += std::filesystem::file_size(f.get<std::string>());
   EXPECT_EQ(static_cast<double>(total), st["bytes"].get<double>());
   for (const auto& f : st["files"]) {
-    // A part ends after the first whole cycle past 50 KiB: a cycle's frames are well under a KiB here.
-    EXPECT_LE(std::filesystem::file_size(f.get<std::string>()), 60u * 1024) << f;
+    // A part ends after the first whole cycle past 50 KiB of messages. A cycle's frames are well under a KiB here,
+    // but a cycle may also carry the derived scene of the paths (up to ~40 KiB of JSON on this layout,
+    // daemon/derived_channels); every part also holds the configuration (~35 KiB of metadata) and the derived
+    // channels' schemas twice (data section and summary, ~10 KiB each).
+    EXPECT_LE(std::filesystem::file_size(f.get<std::string>()), 128u * 1024) << f;
     EXPECT_EQ(test::run_fsd("mcap info " + f.get<std::string>(), &out), 0) << out;
   }
   // The second part alone replays (it carries the configuration); it starts mid-run, so its commands differ.

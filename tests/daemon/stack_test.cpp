@@ -62,6 +62,41 @@ TEST(Stack, ALiveParameterChangeReachesTheAutopilotAtTheNextCycle) {
   EXPECT_EQ(stack.autopilot().config().speed.realtime().v_max, read_control(changed).speed.realtime().v_max);
 }
 
+// Sees what a recorder sees of parameter changes and snapshots.
+struct WatchingTap final : StackTap {
+  std::vector<std::pair<Stamp, ParamChange>> changes;
+  std::vector<Stamp> snapshots;
+  void on_frame(const RawFrame&) override {}
+  void on_cycle(Stamp) override {}
+  void on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& s) override { snapshots.push_back(s->t); }
+  void on_param(Stamp now, const ParamChange& c) override { changes.emplace_back(now, c); }
+};
+
+TEST(Stack, TapsSeeEachParameterChangeInTheCycleThatAppliedItAndEveryFourthCycle) {
+  Config cfg(config_schema());
+  StackOptions so;
+  so.simulator = true;
+  Stack stack(cfg, so);
+  WatchingTap tap;
+  stack.add_tap(&tap);
+  ParamRegistry params(cfg);
+  stack.set_params(&params);
+  for (int i = 1; i <= 3; ++i) stack.step(0.01 * i);
+  ASSERT_TRUE(params.set("control.speed.v_max", 7.5, "web 10.0.0.2 (token ok)").ok);
+  EXPECT_FALSE(params.set("control.speed.v_max", 1e9, "web 10.0.0.3").ok);  // refused: never applied, never seen
+  EXPECT_TRUE(tap.changes.empty());
+  for (int i = 4; i <= 8; ++i) stack.step(0.01 * i);
+  ASSERT_EQ(tap.changes.size(), 1u);
+  EXPECT_DOUBLE_EQ(tap.changes[0].first, 0.04);
+  EXPECT_EQ(tap.changes[0].second.key, "control.speed.v_max");
+  EXPECT_EQ(tap.changes[0].second.new_value, 7.5);
+  EXPECT_EQ(tap.changes[0].second.who, "web 10.0.0.2 (token ok)");
+  // Without a dashboard the snapshots still go to the taps: cycles 4 and 8 of 100 Hz.
+  ASSERT_EQ(tap.snapshots.size(), 2u);
+  EXPECT_DOUBLE_EQ(tap.snapshots[0], 0.04);
+  EXPECT_DOUBLE_EQ(tap.snapshots[1], 0.08);
+}
+
 TEST(Stack, MalformedTruthFramesAreCountedAndIgnored) {
   Config cfg(config_schema());
   StackOptions so;

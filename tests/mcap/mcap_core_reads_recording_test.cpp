@@ -1,6 +1,6 @@
 // A recording made by `fsd run --sim --record` (the recorder's thread, splitting, metadata, attachment) read by
 // @mcap/core's independent readers (tests/mcap/mcap_core_read.mjs): the counts the run reported, one command per
-// cycle marker, the configuration the run was given, and the track attached byte for byte as it is on disk.
+// cycle marker, the derived JSON channels, the configuration the run was given, and the track attached byte for byte as it is on disk.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -54,7 +54,7 @@ TEST(McapCoreReadsRecording, AFileRecordedByTheDaemon) {
   const json& ix = got["indexed"];
   EXPECT_EQ(ix["header"]["profile"], "fsd");
   const auto total = rec["frames_written"].get<std::uint64_t>() + rec["cycles_written"].get<std::uint64_t>() +
-                     rec["commands_written"].get<std::uint64_t>();
+                     rec["commands_written"].get<std::uint64_t>() + rec["derived_written"].get<std::uint64_t>();
   EXPECT_EQ(ix["statistics"]["message_count"], std::to_string(total));
   EXPECT_EQ(ix["messages"].size(), total);
   EXPECT_EQ(got["stream"]["messages"].size(), total);
@@ -70,6 +70,11 @@ TEST(McapCoreReadsRecording, AFileRecordedByTheDaemon) {
   EXPECT_EQ(per_topic["/raw/truth_cones"], 1u);  // no cone fell
   EXPECT_GT(per_topic["/raw/nmea"], 0u);
   EXPECT_GT(per_topic["/raw/vcu_rx"], 0u);
+  // The derived channels for Foxglove Studio: the state at every snapshot (every 4th cycle), the log.
+  EXPECT_EQ(per_topic["/vehicle/state"], 50u);
+  EXPECT_EQ(per_topic["/vehicle/car"], 50u);
+  EXPECT_GT(per_topic["/as/status"], 0u);
+  EXPECT_GT(per_topic["/log"], 0u);
 
   std::map<std::string, json> metadata;
   for (const auto& m : ix["metadata"]) metadata[m["name"].get<std::string>()] = m["metadata"];

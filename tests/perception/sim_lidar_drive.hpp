@@ -69,8 +69,7 @@ class SimLidarDrive {
                setup.start_fraction * sim::ReferenceLine(track_).length()),
         lidar_(setup.lidar, world_, setup.seed) {
     Vlp16Config vc;
-    vc.mount_x = setup.lidar.x, vc.mount_y = setup.lidar.y, vc.mount_z = setup.lidar.z;
-    vc.mount_roll = setup.lidar.roll, vc.mount_pitch = setup.lidar.pitch, vc.mount_yaw = setup.lidar.yaw;
+    vc.mount = {setup.lidar.x, setup.lidar.y, setup.lidar.z, setup.lidar.roll, setup.lidar.pitch, setup.lidar.yaw};
     mount_ = vc.body_from_sensor();
     builder_ = std::make_unique<Vlp16ScanBuilder>(vc, [this](Scan&& s) {
       if (++emitted_ > 1) scans_.push_back(std::move(s));
