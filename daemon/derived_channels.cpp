@@ -32,8 +32,7 @@ std::vector<web::ChannelSpec> derived_channel_specs() {
 }
 
 std::string param_change_json(const ParamChange& c) {
-  return nlohmann::json{{"t", c.t}, {"key", c.key}, {"old", c.old_value}, {"new", c.new_value}, {"who", c.who}}
-      .dump();
+  return nlohmann::json{{"t", c.t}, {"key", c.key}, {"old", c.old_value}, {"new", c.new_value}, {"who", c.who}}.dump();
 }
 
 std::vector<DerivedMessage> DerivedChannels::messages(const TelemetrySnapshot& s) {

@@ -111,7 +111,7 @@ struct HardwareRun::Impl {
   CameraDriverConfig cam_cfg;
 
   std::unique_ptr<Stack> stack;
-  std::unique_ptr<Recorder> recorder;  // --record: taps the Stack on the control thread
+  std::unique_ptr<Recorder> recorder;         // --record: taps the Stack on the control thread
   std::unique_ptr<LogForwarding> record_log;  // the log lines into the recording (detached before the recorder goes)
   // Every driver thread hands its raw frames to the control thread through this queue, in arrival order.
   BoundedQueue<QueuedFrame> frames{kFrameQueue};

@@ -30,7 +30,7 @@ struct Item {
   enum class Kind : std::uint8_t { Frame, Cycle, Output, Snapshot, Json } kind = Kind::Frame;
   RawChannel channel = RawChannel::Nmea;
   Stamp t = 0;
-  std::vector<std::uint8_t> bytes;                    // the frame's, or the encoded command
+  std::vector<std::uint8_t> bytes;                      // the frame's, or the encoded command
   std::shared_ptr<const TelemetrySnapshot> snapshot{};  // Snapshot: turned into derived messages by the writer
   std::string topic{}, json{};                          // Json: one message of a derived channel
 };
@@ -227,9 +227,9 @@ struct Recorder::Impl {
     const web::ChannelSpec& spec = derived_specs.at(topic);
     auto [schema_it, fresh] = json_schema_ids.emplace(spec.schema_name + '\n' + spec.schema, 0);
     if (fresh)
-      schema_it->second = writer->add_schema(spec.schema_name, "jsonschema",
-                                             {reinterpret_cast<const std::uint8_t*>(spec.schema.data()),
-                                              spec.schema.size()});
+      schema_it->second =
+          writer->add_schema(spec.schema_name, "jsonschema",
+                             {reinterpret_cast<const std::uint8_t*>(spec.schema.data()), spec.schema.size()});
     const auto schema = schema_it->second;
     const auto id = writer->add_channel(topic, "json", schema);
     json_ids[topic] = id;

@@ -42,8 +42,8 @@ struct RecorderStats {
   std::uint64_t frames_written = 0, cycles_written = 0, commands_written = 0;
   std::uint64_t derived_written = 0;  // JSON messages: derived channels, parameter changes, log lines
   std::uint64_t log_dropped = 0;      // log lines lost to a full log queue (not counted in `dropped`)
-  std::uint64_t dropped = 0;  // items lost: the queue was full, or the recording had stopped on an error
-  std::uint64_t bytes = 0;    // written to every file so far
+  std::uint64_t dropped = 0;          // items lost: the queue was full, or the recording had stopped on an error
+  std::uint64_t bytes = 0;            // written to every file so far
   std::uint64_t queue_high_water = 0;
   std::vector<std::string> files;
   std::string error;  // why the recording stopped early; empty when it did not

@@ -39,7 +39,8 @@ const ConfigSection<RunSettings>& run_section() {
                   "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
           .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera"},
                   "Where cone detections come from: truth = the virtual car's cones within sensor range (on the car, "
-                  "which has no truth: lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
+                  "which has no truth: lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the "
+                  "LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
                   "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
                   "drivers.camera.calibration on the car).")
           .string("localization_source", &RunSettings::localization_source, {"truth", "gnss", "fused"},

@@ -55,7 +55,7 @@ struct SimRun::Impl {
   std::unique_ptr<SimFaults> faults;
   std::unique_ptr<Stack> stack;
   std::unique_ptr<SimScoring> scoring;
-  Scorecard* card = nullptr;           // scoring's
+  Scorecard* card = nullptr;                  // scoring's
   std::unique_ptr<Recorder> recorder;         // --record
   std::unique_ptr<LogForwarding> record_log;  // the log lines into the recording (detached before the recorder goes)
   int truth_cones_hit = -1;
