@@ -86,7 +86,8 @@ int run_sim(const SimOptions& o) {
     car.advance_to(t);
   }
   if (pcap) pcap->flush();
-  std::cout << "fsd sim: " << car.lidar_packets() << " LiDAR packets in " << car.now() << " s" << std::endl;
+  std::cout << "fsd sim: " << car.lidar_packets() << " LiDAR packets in " << car.now() << " s, " << car.cones_hit()
+            << " cone(s) hit" << std::endl;
   return kExitOk;
 }
 

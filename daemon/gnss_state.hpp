@@ -1,6 +1,6 @@
 #pragma once
-// The vehicle state from GNSS-INS alone, for `fsd run` on the car while LiDAR odometry and the cone map have not
-// landed (DESIGN.md §3 fuses both): pose from the rear-axle ENU position and the heading, body velocity from the
+// The vehicle state from GNSS-INS alone (run.localization_source = gnss, and truth on the car; `fused` adds the
+// wheel speeds through the fusion filter): pose from the rear-axle ENU position and the heading, body velocity from the
 // ground speed and the course, yaw rate from ROT, steering from the VCU's measured wheel angle.
 #include "common/types.hpp"
 

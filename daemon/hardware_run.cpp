@@ -86,18 +86,6 @@ Mission mission_of(const RunSettings& run) {
 
 }  // namespace
 
-std::optional<std::string> hardware_mission_refusal(Mission m) {
-  switch (m) {
-    case Mission::Inspection:
-      return std::nullopt;
-    case Mission::EbsTest:
-      return "mission 'ebs_test' needs perception (it drives a straight fitted to the cones and brakes at a "
-             "distance along it): not available in this version; use --sim";
-    default:
-      return "mission '" + std::string(to_string(m)) + "' needs perception: not available in this version; use --sim";
-  }
-}
-
 struct HardwareRun::Impl {
   RunSettings run;
   Mission mission;
@@ -146,7 +134,6 @@ struct HardwareRun::Impl {
         gnss_cfg(read_gnss_config(cfg)),
         vcu_cfg(vcu_section().read(cfg)),
         cam_cfg(camera_driver_section().read(cfg)) {
-    if (const auto why = hardware_mission_refusal(mission)) throw std::invalid_argument(*why);
     require_serial_device("drivers.vcu.device", vcu_cfg.device);
     require_serial_device("drivers.gnss.device", gnss_cfg.device);
     if (cam_cfg.enabled) require_camera_source(cam_cfg);
@@ -297,7 +284,6 @@ struct HardwareRun::Impl {
         "camera {}",
         to_string(mission), vlp_cfg.address, lidar_rx->port(), position_rx->port(), gnss_cfg.device, gnss_cfg.baud,
         vcu_cfg.device, vcu_cfg.baud, camera ? cam_cfg.source : std::string("off"));
-    log->info("no perception in this version: state from GNSS-INS only, no cone detections");
     vcu->start();
     gnss_port->start();
     lidar_rx->start();

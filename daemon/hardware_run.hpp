@@ -8,9 +8,9 @@
 //   VCU tty ◄─► VcuLink (port thread, 100 Hz sender) ───┼─► frame queue ─► control thread (100 Hz): Stack::feed…, step
 //   camera ─► CameraSource thread (JPEG) ───────────────┘                  │
 //                                 the Stack's VcuSession ◄─ command, AS request
-// The VcuLink's sender writes the Commands from the Stack's session at its own rate. Perception has not landed:
-// the vehicle state comes from GNSS-INS alone and there is no cone source, so only missions that need no cones run
-// (inspection); the others are refused at start. With a dashboard the Stack hands a snapshot to the telemetry every
+// The VcuLink's sender writes the Commands from the Stack's session at its own rate. The cones come from the
+// Stack's perception stages on the LiDAR (and the camera when calibrated), the pose from the GNSS-INS (or the
+// fusion filter), so every mission runs. With a dashboard the Stack hands a snapshot to the telemetry every
 // 4th cycle and its figures to /metrics (both without waiting); tuned parameters apply at the next cycle.
 // SIGINT/SIGTERM (or, with --until-finished, AS Finished or Emergency) ends the run: the control thread stops, the
 // VCU link sends its safe-stop Commands (speed 0, brake) before its port closes, then the other drivers stop.
@@ -31,13 +31,10 @@ class ParamRegistry;
 class RunMetrics;
 class Telemetry;
 
-// Why `mission` cannot run on the car in this version, or nullopt when it can.
-std::optional<std::string> hardware_mission_refusal(Mission mission);
-
 class HardwareRun {
  public:
   // Checks everything that can be checked before touching the car, throwing std::invalid_argument naming the
-  // key: the mission (see hardware_mission_refusal), the serial devices and the camera source exist, the LiDAR's
+  // key: the mission, the serial devices and the camera source exist, the LiDAR's
   // UDP port can be bound (it is bound here).
   HardwareRun(const Config& config, const RunOptions& options);
   ~HardwareRun();

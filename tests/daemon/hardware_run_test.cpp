@@ -243,28 +243,6 @@ TEST(HardwareStats, RatesLineFromTwoSnapshots) {
   EXPECT_NE(rates_line(a, b).find("camera 20.0 fps"), std::string::npos);
 }
 
-TEST(HardwareRun, OnlyInspectionRunsWithoutPerception) {
-  EXPECT_FALSE(hardware_mission_refusal(Mission::Inspection));
-  for (Mission m :
-       {Mission::Trackdrive, Mission::Autocross, Mission::Acceleration, Mission::Skidpad, Mission::EbsTest}) {
-    const auto why = hardware_mission_refusal(m);
-    ASSERT_TRUE(why) << to_string(m);
-    EXPECT_NE(why->find("needs perception"), std::string::npos) << *why;
-    EXPECT_NE(why->find("use --sim"), std::string::npos) << *why;
-  }
-}
-
-// Refused before any device is touched: the default config's /dev/ttyVCU does not exist here either.
-TEST(HardwareRun, MissionsNeedingConesAreRefusedWithExitTwo) {
-  for (const char* m : {"trackdrive", "autocross", "acceleration", "skidpad", "ebs_test"}) {
-    Fsd run({"run", "--mission", m}, scratch_path(std::string("refuse_") + m + ".log"));
-    EXPECT_EQ(run.wait(20s), 2) << m;
-    const std::string out = run.output();
-    EXPECT_NE(out.find(std::string("mission '") + m + "' needs perception"), std::string::npos) << out;
-    EXPECT_NE(out.find("use --sim"), std::string::npos) << out;
-  }
-}
-
 TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
   const std::string vcu_missing =
       write_file("hw_missing_vcu.json", R"({"drivers": {"vcu": {"device": "/nonexistent/ttyVCU_test"}}})");
@@ -288,6 +266,49 @@ TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
   Fsd c({"run", "--config", cfg, "--mission", "inspection"}, scratch_path("not_tty.log"));
   EXPECT_EQ(c.wait(20s), 2);
   EXPECT_NE(c.output().find("is not a character device"), std::string::npos) << c.output();
+}
+
+// A mission that needs cones, on the car's own perception: fsd sim plays the car on the acceleration layout (its
+// LiDAR over UDP, GNSS-INS and VCU over ptys), fsd run finds the lane with its LiDAR stages and drives it. The
+// truth is fsd sim's: the cones it counts as hit, and how far the car went from the start.
+TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
+  const int port = free_udp_port();
+  const std::string sim_cfg = write_file("hw_acc_sim.json", R"({"sim": {"enable_camera": false,
+                                 "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0}},
+                         "drivers": {"vlp16": {"data_port": )" + std::to_string(port) +
+                                                                "}}}");
+  Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_acceleration.csv", "--duration", "90"},
+          scratch_path("hw_acc_sim.log"));
+  const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
+  const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
+  ASSERT_FALSE(gnss.empty()) << sim.output();
+  ASSERT_FALSE(vcu.empty()) << sim.output();
+  // Watchdogs at 1 s as in the inspection test below: this test is about the wiring on a loaded machine.
+  const std::string run_cfg = write_file(
+      "hw_acc_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"("}, "gnss": {"device": ")" + gnss +
+                             R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
+                             R"(, "position_port": )" + std::to_string(free_udp_port()) +
+                             R"(}}, "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
+                             "web": {"bind": "127.0.0.1", "port": 0}})");
+  const std::string report_path = scratch_path("hw_acc_report.json");
+  std::remove(report_path.c_str());
+  Fsd run({"run", "--config", run_cfg, "--mission", "acceleration", "--until-finished", "--report", report_path},
+          scratch_path("hw_acc_run.log"));
+  const int rc = run.wait(90s);
+  const std::string log = run.output();
+  sim.signal(SIGTERM);
+  const std::string hit = sim.wait_for(std::regex("LiDAR packets in \\S+ s, (\\d+) cone\\(s\\) hit"), 20s);
+  EXPECT_EQ(sim.wait(20s), 0);
+  ASSERT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("run.perception_source = truth runs the lidar stages"), std::string::npos) << log;
+  const auto r = nlohmann::json::parse(slurp(report_path));
+  EXPECT_EQ(r["as_state"], "Finished");
+  EXPECT_TRUE(r["mission_succeeded"]);
+  // The 75 m lane driven and the stop inside the rules' 100 m after it (the layout's lane is 75 m).
+  EXPECT_GT(r["max_distance_from_start_m"].get<double>(), 75.0);
+  EXPECT_LT(r["max_distance_from_start_m"].get<double>(), 175.0);
+  ASSERT_FALSE(hit.empty()) << sim.output();
+  EXPECT_EQ(std::stoi(hit), 0) << sim.output();
 }
 
 // The inspection mission end to end: fsd sim plays the car (its VCU stand-in owns the AS state and moves the car
