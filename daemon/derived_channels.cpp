@@ -11,11 +11,11 @@ const char* const kParamChangeSchema = R"({"type": "object", "title": "fsd.Param
   "key": {"type": "string"}, "old": {"type": "number"}, "new": {"type": "number"},
   "who": {"type": "string", "description": "the client: web address and token state, cli, ..."}}})";
 
-// The dashboard's channels a recording carries: everything but the point cloud and the camera picture, whose
-// bytes the raw VLP-16 packets and JPEG frames already hold.
+// The dashboard's channels a recording carries: everything but the camera picture, whose bytes the raw JPEG
+// frames already hold. The point cloud only as perception split it (ground and obstacles), thinned: the raw
+// VLP-16 packets hold every point.
 bool recorded(const std::string& topic) {
-  return topic != web::topics::kPointCloud && topic != web::topics::kCameraImage &&
-         topic != web::topics::kCameraDetections;
+  return topic != web::topics::kCameraImage && topic != web::topics::kCameraDetections;
 }
 }  // namespace
 
@@ -57,6 +57,14 @@ std::vector<DerivedMessage> DerivedChannels::messages(const TelemetrySnapshot& s
       paths_ = s.paths;
       out.push_back({topics::kPaths, s.t, web::paths_scene(s.t, *s.paths)});
     }
+  }
+  if (s.cloud && s.cloud != cloud_ && due(cloud_at_, rates_.cloud_hz)) {
+    cloud_ = s.cloud;
+    cloud_at_ = s.t;
+    web::CloudOptions thin;
+    thin.max_points = rates_.cloud_points;
+    out.push_back(
+        {topics::kPointCloud, s.t, web::point_cloud(s.t, s.cloud_pose, s.cloud->ground, s.cloud->obstacles, thin)});
   }
   if (due(status_at_, rates_.status_hz) || s.as.as_state != as_state_) {
     status_at_ = s.t;

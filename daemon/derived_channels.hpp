@@ -30,11 +30,14 @@ std::vector<web::ChannelSpec> derived_channel_specs();
 std::string param_change_json(const ParamChange& c);
 
 // Turns the Stack's snapshots (every 4th cycle) into recorded messages: the vehicle state and the car at every
-// snapshot, the detections when they changed (at most detections_hz), the cone map and the paths when they changed
+// snapshot, the detections when they changed (at most detections_hz), perception's split of the newest scan (at
+// most cloud_hz, thinned), the cone map and the paths when they changed
 // (at most map_hz: they are the big ones, tens of kB of JSON each, and change slowly), the AS status at status_hz
 // and whenever it changes state, the fault list whenever it grows or changes. Runs on the recorder's writer thread.
 struct DerivedRates {
   double detections_hz = 4, map_hz = 1, status_hz = 5;
+  double cloud_hz = 1;              // perception's labelled cloud (ground / obstacles), when it runs
+  std::size_t cloud_points = 2000;  // ... thinned to this many points (~45 kB of JSON)
 };
 
 class DerivedChannels {
@@ -48,7 +51,8 @@ class DerivedChannels {
   std::shared_ptr<const std::vector<Cone>> cone_map_;
   std::shared_ptr<const ConeDetections> detections_;
   std::shared_ptr<const web::PathSet> paths_;
-  Stamp detections_at_ = -1e300, map_at_ = -1e300, status_at_ = -1e300;
+  std::shared_ptr<const LabelledCloud> cloud_;
+  Stamp detections_at_ = -1e300, map_at_ = -1e300, status_at_ = -1e300, cloud_at_ = -1e300;
   AsState as_state_ = AsState::Off;
   std::size_t faults_ = 0;
   std::string last_fault_;

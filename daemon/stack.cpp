@@ -86,6 +86,7 @@ struct Stack::Impl {
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
   std::shared_ptr<const ConeDetections> last_detections;
+  std::shared_ptr<const LabelledCloud> last_cloud;  // the sensor sources' split of the newest scan
   std::function<void(const ConeDetections&, const Pose2&)> detections_hook;
 
   // Control.
@@ -295,6 +296,8 @@ struct Stack::Impl {
     std::optional<CameraImage> image = camera_image_near(last_scan_end);
     LidarDetection d = detector->detect(*last_scan, pose_at, image ? &*image : nullptr);
     const Pose2 pose = *poses.at(d.detections.stamp);
+    last_cloud = std::make_shared<const LabelledCloud>(
+        LabelledCloud{d.detections.stamp, std::move(d.ground_points), std::move(d.obstacle_points)});
     map_detections(now, std::move(d.detections), pose, d.camera_rejected, w0);
     return true;
   }
@@ -427,6 +430,10 @@ struct Stack::Impl {
         s.scan = last_scan;
         s.lidar_pose = poses.at(last_scan_end).value_or(state->pose).to_pose3() * vlp_cfg.body_from_sensor();
       }
+    }
+    if (last_cloud) {
+      s.cloud = last_cloud;
+      s.cloud_pose = poses.at(last_cloud->stamp).value_or(state ? state->pose : Pose2{}).to_pose3();
     }
     s.detections = last_detections;
     if (last_detections) s.detections_pose = poses.at(last_detections->stamp);

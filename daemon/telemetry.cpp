@@ -93,6 +93,7 @@ void Telemetry::loop() {
   };
   std::uint64_t seen = 0;
   std::shared_ptr<const Scan> last_scan;
+  std::shared_ptr<const LabelledCloud> last_cloud;
   std::shared_ptr<const std::vector<std::uint8_t>> last_image;
   std::shared_ptr<const std::vector<web::TruthCone>> last_truth_cones;
   std::shared_ptr<const TelemetrySnapshot> snap;
@@ -119,7 +120,11 @@ void Telemetry::loop() {
                         web::detections_scene(s.t, *s.detections, s.detections_pose.value_or(s.state.pose)));
       if (s.paths) server_.publish(ch_.paths, s.t, web::paths_scene(s.t, *s.paths));
     }
-    if (fresh && s.scan && s.scan != last_scan && ready(cloud, now)) {
+    if (fresh && s.cloud && s.cloud != last_cloud && ready(cloud, now)) {
+      // Perception ran: the ground and the obstacles apart, as the detector split them.
+      last_cloud = s.cloud;
+      server_.publish(ch_.point_cloud, s.t, web::point_cloud(s.t, s.cloud_pose, s.cloud->ground, s.cloud->obstacles));
+    } else if (fresh && !s.cloud && s.scan && s.scan != last_scan && ready(cloud, now)) {
       last_scan = s.scan;
       server_.publish(ch_.point_cloud, s.t, web::point_cloud(s.t, s.lidar_pose, {}, s.scan->points));
     }

@@ -25,6 +25,12 @@ namespace web {
 class WebServer;
 }
 
+// Perception's split of a scan (vehicle frame, deskewed, at `stamp`): the ground and what was clustered.
+struct LabelledCloud {
+  Stamp stamp = 0;
+  std::vector<Point> ground, obstacles;
+};
+
 struct TelemetrySnapshot {
   Stamp t = 0;
   VehicleState state;  // the stack's own estimate (what it drives on)
@@ -34,6 +40,8 @@ struct TelemetrySnapshot {
   std::optional<Pose2> detections_pose;               // the car's estimated pose at detections->stamp
   std::shared_ptr<const web::PathSet> paths;
   std::shared_ptr<const Scan> scan;                              // sensor frame
+  std::shared_ptr<const LabelledCloud> cloud;                    // perception's split of the newest scan, if any
+  Pose3 cloud_pose = Pose3::Identity();                          // map ← vehicle at cloud->stamp
   std::shared_ptr<const std::vector<std::uint8_t>> camera_jpeg;  // the newest camera frame as sent
   Pose3 lidar_pose = Pose3::Identity();                          // map ← sensor at the scan
   web::AsStatusView as;
