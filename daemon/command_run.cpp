@@ -1,6 +1,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -15,11 +16,13 @@
 #include "daemon/commands.hpp"
 #include "daemon/dashboard.hpp"
 #include "daemon/hardware_run.hpp"
+#include "daemon/map_export.hpp"
 #include "daemon/recording_reader.hpp"
 #include "daemon/replay_run.hpp"
 #include "daemon/run_options.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
+#include "daemon/stack.hpp"
 
 namespace fsd {
 
@@ -62,15 +65,29 @@ int finish(int rc, const std::string& path, const nlohmann::json& report) {
   return rc;
 }
 
-// A report that could not be written would be found missing only after the run: checked before anything starts.
-void require_writable_report(const std::string& path) {
+// A report or map that could not be written would be found missing only after the run: checked before anything
+// starts.
+void require_writable(const char* flag, const std::string& path) {
   if (path.empty()) return;
   std::ofstream f(path, std::ios::app);
-  if (!f) throw std::invalid_argument("--report " + path + ": cannot be written (" + std::strerror(errno) + ")");
+  if (!f)
+    throw std::invalid_argument(std::string(flag) + " " + path + ": cannot be written (" + std::strerror(errno) + ")");
+}
+
+// --map-out: the Stack's cone map at the end of the run, as a track file.
+void export_map(const std::string& path, const Stack& stack) {
+  if (path.empty()) return;
+  const Pose2 start = stack.first_pose().value_or(Pose2{});
+  const std::string name = std::filesystem::path(path).stem().string();
+  const MapExport m = map_as_track(stack.cone_map(), start, stack.convention(), name);
+  write_map_csv(path, m);
+  logger("run")->info("cone map: {} cone(s) written to {}{}", m.track.cones.size(), path,
+                      m.without_role ? " (" + std::to_string(m.without_role) + " without a colour left out)" : "");
 }
 
 int run_command(const RunOptions& o) {
-  require_writable_report(o.report);
+  require_writable("--report", o.report);
+  require_writable("--map-out", o.map_out);
   if (!o.replay.empty() && (o.sim || !o.record.empty() || o.track || o.mission || o.laps || o.seed))
     throw std::invalid_argument(
         "--replay takes the run from the recording: --sim, --record, --track, --mission, "
@@ -119,7 +136,14 @@ int run_command(const RunOptions& o) {
     }
     const int rc = run.run(g_stop);
     if (dashboard) dashboard->stop();
-    return finish(rc, o.report, report(run));
+    const int done = finish(rc, o.report, report(run));
+    try {
+      export_map(o.map_out, run.stack());
+    } catch (const std::exception& e) {  // checked writable at the start; the disk may have filled since
+      std::cerr << "fsd run: " << e.what() << "\n";
+      return kExitBadInput;
+    }
+    return done;
   };
   if (replay) return drive(*replay, replay->simulator(), [](const ReplayRun& r) { return r.report(); });
   if (!o.sim) {
@@ -152,6 +176,8 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--until-finished", o.until_finished,
                 "stop when the mission is over; exit 1 if it failed (not finished, cones hit, no stop)");
   cmd->add_option("--report", o.report, "write the scorecard (JSON) here at the end");
+  cmd->add_option("--map-out", o.map_out,
+                  "write the cone map here at the end, as a track file (EUFS CSV: drive it with --sim --track)");
   cmd->callback([&exit_code] { exit_code = run_command(o); });
 }
 

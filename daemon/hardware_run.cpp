@@ -368,4 +368,6 @@ void HardwareRun::set_metrics(RunMetrics* metrics) {
 }
 void HardwareRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
+const Stack& HardwareRun::stack() const { return *impl_->stack; }
+
 }  // namespace fsd

@@ -28,6 +28,7 @@
 namespace fsd {
 
 class ParamRegistry;
+class Stack;
 class RunMetrics;
 class Telemetry;
 
@@ -51,6 +52,7 @@ class HardwareRun {
   // The dashboard's parts, before run(); each must outlive the run. Null: none (--headless).
   void set_telemetry(Telemetry* telemetry);
   void set_metrics(RunMetrics* metrics);
+  const Stack& stack() const;              // after run(): the map, the start pose
   void set_params(ParamRegistry* params);  // live tuning of the autopilot's settings
 
  private:

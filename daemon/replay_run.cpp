@@ -320,4 +320,6 @@ void ReplayRun::set_telemetry(Telemetry* telemetry) {
 void ReplayRun::set_metrics(RunMetrics* metrics) { impl_->stack->set_metrics(metrics); }
 void ReplayRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
+const Stack& ReplayRun::stack() const { return *impl_->stack; }
+
 }  // namespace fsd

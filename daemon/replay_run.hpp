@@ -21,6 +21,7 @@ namespace fsd {
 class Telemetry;
 class RunMetrics;
 class ParamRegistry;
+class Stack;
 
 class ReplayRun {
  public:
@@ -43,6 +44,7 @@ class ReplayRun {
   nlohmann::json report() const;
   void set_telemetry(Telemetry* telemetry);
   void set_metrics(RunMetrics* metrics);
+  const Stack& stack() const;  // after run(): the map, the start pose
   void set_params(ParamRegistry* params);
 
  private:

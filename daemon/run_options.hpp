@@ -17,7 +17,8 @@ struct RunOptions {
   double rate = 1.0;           // --rate: a replay with the dashboard at this multiple of real time
   bool headless = false;
   bool until_finished = false;
-  std::string report;  // scorecard JSON path, empty: none
+  std::string report;   // scorecard JSON path, empty: none
+  std::string map_out;  // --map-out: the cone map at the end as a track CSV (daemon/map_export.hpp), empty: none
 };
 
 }  // namespace fsd

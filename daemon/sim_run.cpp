@@ -209,4 +209,6 @@ void SimRun::set_metrics(RunMetrics* metrics) {
 }
 void SimRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
+const Stack& SimRun::stack() const { return *impl_->stack; }
+
 }  // namespace fsd

@@ -21,6 +21,7 @@ namespace fsd {
 class Telemetry;
 class RunMetrics;
 class ParamRegistry;
+class Stack;
 
 // Per-cycle view of the run for the dashboard and logs.
 struct SimRunHooks {
@@ -39,6 +40,7 @@ class SimRun {
   // Per-cycle figures for /metrics (latencies, loop rate, AS state); wait-free on the loop's side.
   void set_metrics(RunMetrics* metrics);
   // Live tuning: changes of the registry's control.* parameters reach the autopilot at the next cycle.
+  const Stack& stack() const;  // after run(): the map, the start pose
   void set_params(ParamRegistry* params);
 
  private:

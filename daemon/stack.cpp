@@ -48,6 +48,7 @@ struct Stack::Impl {
   RunSettings run;
   std::string localization_source;  // run.localization_source as it applies to this run
   std::string perception_source;    // run.perception_source as it applies to this run
+  std::optional<Pose2> first_pose;
   ColourConvention convention;
   std::shared_ptr<spdlog::logger> log = logger("stack");
   StepLog step_log{logger("run")};
@@ -361,6 +362,7 @@ struct Stack::Impl {
     if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
     const double w_perception = wall();
     localize();  // first: the sensor sources place this cycle's scan by the newest pose
+    if (state && !first_pose) first_pose = state->pose;
     cycle.perceived = perceive(now);
     apply_param_changes(now);
 
@@ -531,5 +533,7 @@ StackCounters Stack::counters() const {
   std::lock_guard lock(impl_->counters_m);
   return impl_->counters;
 }
+std::optional<Pose2> Stack::first_pose() const { return impl_->first_pose; }
+const ColourConvention& Stack::convention() const { return impl_->convention; }
 
 }  // namespace fsd

@@ -29,6 +29,7 @@
 #include "common/camera_geometry.hpp"
 #include "common/config.hpp"
 #include "common/latency_stats.hpp"
+#include "common/track.hpp"
 #include "common/types.hpp"
 #include "control/autopilot.hpp"
 #include "daemon/fault_record.hpp"
@@ -124,6 +125,8 @@ class Stack {
   const Autopilot& autopilot() const;
   Autopilot& autopilot();
   const std::vector<Cone>& cone_map() const;         // mapped cones, map frame
+  std::optional<Pose2> first_pose() const;           // the first pose the Stack had (the run's start, map frame)
+  const ColourConvention& convention() const;        // run.colours
   const std::optional<VehicleState>& state() const;  // what the autopilot was given last
   AsState as_state() const;                          // as the VCU reports it
   std::vector<FaultRecord> faults() const;           // the VCU link's, then the supervisor's
