@@ -8,6 +8,7 @@
 
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
+#include "daemon/localize_mcap.hpp"
 #include "daemon/localize_replay.hpp"
 #include "daemon/settings.hpp"
 #include "drivers/logs/sensor_csv.hpp"
@@ -18,8 +19,37 @@ namespace {
 
 struct LocalizeArgs {
   LocalizeLogFiles files;
-  std::string out, outage, filter, config;
+  std::string out, outage, filter, config, mcap;
 };
+
+// --mcap: the recording's NMEA and VCU frames through the fusion filter (daemon/localize_mcap.hpp).
+int localize_mcap(const LocalizeArgs& a) {
+  if (!a.files.imu.empty() || !a.files.speed.empty() || !a.files.wheels.empty() || !a.files.gps.empty() ||
+      !a.outage.empty() || !a.config.empty()) {
+    std::cerr << "fsd localize: --mcap takes the sensors and the configuration from the recording: --imu, --speed, "
+                 "--wheels, --gps, --gps-outage and --config do not apply\n";
+    return kExitBadInput;
+  }
+  McapLocalization r;
+  try {
+    r = localize_recording(a.mcap, a.filter);
+  } catch (const std::exception& e) {  // McapError, RecordingError, ConfigError: the file is not a usable recording
+    std::cerr << "fsd localize: " << a.mcap << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (r.states.empty()) {
+    std::cerr << "fsd localize: " << a.mcap << ": no pose: " << r.gnss_samples << " GNSS-INS sample(s) in " << r.cycles
+              << " cycle(s) gave the filter no position and heading\n";
+    return kExitMissionFailed;
+  }
+  if (!write_trajectory_csv(a.out, r.states)) {
+    std::cerr << "fsd localize: cannot write " << a.out << "\n";
+    return kExitBadInput;
+  }
+  std::cout << "fsd localize: " << a.mcap << ": " << r.states.size() << " poses from " << r.gnss_samples
+            << " GNSS-INS samples and " << r.vcu_statuses << " VCU statuses over " << r.cycles << " cycles\n";
+  return kExitOk;
+}
 
 // "A:B" seconds after the first GNSS sample, 0 ≤ A < B.
 std::optional<std::pair<double, double>> parse_outage(const std::string& s) {
@@ -35,6 +65,11 @@ std::optional<std::pair<double, double>> parse_outage(const std::string& s) {
 }
 
 int localize(const LocalizeArgs& a) {
+  if (!a.mcap.empty()) return localize_mcap(a);
+  if (a.files.imu.empty() || a.files.speed.empty()) {
+    std::cerr << "fsd localize: --imu and --speed are required (or --mcap FILE)\n";
+    return kExitBadInput;
+  }
   LocalizeOptions opt;
   const Config cfg = a.config.empty() ? Config(config_schema()) : Config::load(config_schema(), a.config);
   opt.config = fusion::read_fusion_config(cfg);
@@ -83,11 +118,14 @@ int localize(const LocalizeArgs& a) {
 void add_localize_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "localize",
-      "Fusion of recorded sensor logs (CSV in the format of ../shared/data/amz_2017) into a trajectory "
-      "t_unix_s,east_m,north_m,yaw_rad in the ENU frame of the first GNSS fix");
+      "Fusion of recorded sensor logs (CSV in the format of ../shared/data/amz_2017, or an fsd recording with "
+      "--mcap) into a trajectory t_unix_s,east_m,north_m,yaw_rad in the ENU frame of the first GNSS fix (--mcap: "
+      "the run's map frame and clock)");
   static LocalizeArgs args;
-  cmd->add_option("--imu", args.files.imu, "IMU log: t_unix_s,gyro_x/y/z_rad_s,acc_x/y/z_m_s2")->required();
-  cmd->add_option("--speed", args.files.speed, "optical ground speed log: t_unix_s,vx_m_s,vy_m_s")->required();
+  cmd->add_option("--imu", args.files.imu, "IMU log: t_unix_s,gyro_x/y/z_rad_s,acc_x/y/z_m_s2");
+  cmd->add_option("--speed", args.files.speed, "optical ground speed log: t_unix_s,vx_m_s,vy_m_s");
+  cmd->add_option("--mcap", args.mcap, "an fsd recording (fsd run --record): its NMEA and VCU frames instead of CSV")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--wheels", args.files.wheels, "wheel log: t_unix_s,fl_rpm,fr_rpm,rl_rpm,rr_rpm (motor rpm)");
   cmd->add_option("--gps", args.files.gps, "GNSS log: t_unix_s,lat_deg,lon_deg,east_m,north_m");
   cmd->add_option("--gps-outage", args.outage, "A:B: GNSS ignored from A to B seconds after the first GNSS sample");

@@ -20,10 +20,6 @@
 
 namespace fsd {
 
-namespace {
-
-// The recorded configuration, then the --config file's keys over it. A key this fsd does not know (a recording of
-// another version) is left out with a warning; a value it refuses is an error.
 Config replay_config(const mcap::StringMap& recorded, const std::string& config_file, spdlog::logger& log) {
   const auto schema = config_schema();
   Config cfg(schema);
@@ -54,6 +50,8 @@ Config replay_config(const mcap::StringMap& recorded, const std::string& config_
   }
   return cfg;
 }
+
+namespace {
 
 // Compares what the Stack hands the VCU session each cycle with the recording's.
 struct OutputTap final : StackTap {

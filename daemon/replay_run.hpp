@@ -13,7 +13,10 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <spdlog/logger.h>
+
 #include "common/config.hpp"
+#include "common/mcap/records.hpp"
 #include "daemon/run_options.hpp"
 
 namespace fsd {
@@ -22,6 +25,10 @@ class Telemetry;
 class RunMetrics;
 class ParamRegistry;
 class Stack;
+
+// The recorded configuration (fsd.config), then the keys of `config_file` (may be empty) over it. A key this fsd does
+// not know (a recording of another version) is left out with a warning; a value it refuses is a ConfigError.
+Config replay_config(const mcap::StringMap& recorded, const std::string& config_file, spdlog::logger& log);
 
 class ReplayRun {
  public:

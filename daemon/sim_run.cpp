@@ -34,6 +34,9 @@ Config stack_config(const Config& cfg, const sim::VirtualCarSettings& car) {
   c.set("drivers.gnss.origin_lat_deg", car.gnss.origin_lat_deg, "the virtual car");
   c.set("drivers.gnss.origin_lon_deg", car.gnss.origin_lon_deg, "the virtual car");
   c.set("drivers.gnss.origin_height_m", car.gnss.origin_height_m, "the virtual car");
+  // The receiver's latency from epoch to first byte, as a team takes it from the datasheet: unaccounted, every fix
+  // is placed 10 ms late (0.2 m at 20 m/s).
+  c.set("drivers.gnss.latency_s", car.gnss.latency_s, "the virtual car");
   return c;
 }
 

@@ -552,23 +552,32 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
     EXPECT_GT(b64.size(), 200u);
   }
   {
-    // The real capture's points on the dashboard, placed by the configured mount on the car standing at the
-    // GNSS origin heading east (the stand-in's truth, RTK noise of 2 cm): 1.5 m ahead, 0.8 m up, yawed 0.1 rad.
+    // The real capture's points on the dashboard, on the car standing at the GNSS origin heading east (the
+    // stand-in's truth, RTK noise of 2 cm). Once perception has run on a scan the cloud is its split (ground and
+    // obstacles) in the vehicle frame, drawn at the car's pose; before that the raw scan at the configured mount:
+    // 1.5 m ahead, 0.8 m up, yawed 0.1 rad. Both must be placed right, and perception must run on the real capture.
     Vlp16Replayer lidar(lidar_port, position_port);
     test::WsClient browser(port);
     ASSERT_TRUE(browser.handshake_ok());
     const auto subs = test::subscribe(browser, {"/lidar/points"});
     ASSERT_EQ(subs.size(), 1u);
-    const auto cloud = test::next_on(browser, subs.at("/lidar/points"), 10s);
-    ASSERT_TRUE(cloud) << run.output();
-    const auto& pos = (*cloud)["pose"]["position"];
-    EXPECT_NEAR(pos["x"].get<double>(), 1.5, 0.2);
-    EXPECT_NEAR(pos["y"].get<double>(), 0.0, 0.2);
-    EXPECT_NEAR(pos["z"].get<double>(), 0.8, 1e-9);
-    const auto& q = (*cloud)["pose"]["orientation"];
-    EXPECT_NEAR(2.0 * std::atan2(q["z"].get<double>(), q["w"].get<double>()), 0.1, 0.05);
-    // About 19.6 k valid points a revolution, downsampled for the browser: thousands of 16-byte points.
-    EXPECT_GT((*cloud)["data"].get<std::string>().size(), 4u * 1000 * 16 / 3);
+    bool perceived = false;
+    for (int k = 0; k < 20 && !perceived; ++k) {
+      const auto cloud = test::next_on(browser, subs.at("/lidar/points"), 10s);
+      ASSERT_TRUE(cloud) << run.output();
+      const auto& pos = (*cloud)["pose"]["position"];
+      const auto& q = (*cloud)["pose"]["orientation"];
+      const double yaw = 2.0 * std::atan2(q["z"].get<double>(), q["w"].get<double>());
+      perceived = pos["z"].get<double>() == 0.0;
+      const double x = perceived ? 0.0 : 1.5, z = perceived ? 0.0 : 0.8, heading = perceived ? 0.0 : 0.1;
+      EXPECT_NEAR(pos["x"].get<double>(), x, 0.2);
+      EXPECT_NEAR(pos["y"].get<double>(), 0.0, 0.2);
+      EXPECT_NEAR(pos["z"].get<double>(), z, 1e-9);
+      EXPECT_NEAR(yaw, heading, 0.05);
+      // Thousands of 16-byte points (a revolution has about 19.6 k valid ones; perception keeps its 20 m box).
+      EXPECT_GT((*cloud)["data"].get<std::string>().size(), 4u * 1000 * 16 / 3);
+    }
+    EXPECT_TRUE(perceived) << "no cloud from perception on the real capture";
   }
   run.signal(SIGTERM);
   const int rc = run.wait(10s);
