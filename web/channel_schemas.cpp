@@ -200,9 +200,14 @@ json faults() {
   return object("fsd.Faults", {{"timestamp", time_type()}, {"faults", array_of(fault, "recent faults, newest last")}});
 }
 
-ChannelSpec spec(const char* topic, const json& schema, const std::string& description, bool latched = false) {
-  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(), ChannelOptions{latched}};
+ChannelSpec spec(const char* topic, const json& schema, const std::string& description, bool latched = false,
+                 std::size_t backlog = 0) {
+  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(),
+          ChannelOptions{latched, backlog}};
 }
+
+// Log lines a new subscriber gets at once: what happened before the page was opened (the dashboard shows 60).
+constexpr std::size_t kLogBacklog = 100;
 
 }  // namespace
 
@@ -226,7 +231,7 @@ std::vector<ChannelSpec> standard_channels() {
       spec(topics::kVehicleState, vehicle_state(), "Motion state of the car (SI units)"),
       spec(topics::kAsStatus, as_status(), "Autonomous-system state, mission, laps", true),
       spec(topics::kFaults, faults(), "Recent faults", true),
-      spec(topics::kLog, log(), "Log lines"),
+      spec(topics::kLog, log(), "Log lines (the latest 100 sent to a new subscriber)", false, kLogBacklog),
   };
 }
 
