@@ -76,8 +76,8 @@ ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_n
     auto c = std::make_unique<Channel>();
     c->info = info;
     c->options = options;
-    c->keep = std::min(std::max(options.backlog, options.latched ? std::size_t{1} : std::size_t{0}),
-                       limits_.telemetry_queue);
+    c->keep =
+        std::min(std::max(options.backlog, options.latched ? std::size_t{1} : std::size_t{0}), limits_.telemetry_queue);
     channels_[n] = std::move(c);
     channel_count_.store(n + 1);  // publishes the new slot
   }

@@ -105,7 +105,7 @@ class Hub : public std::enable_shared_from_this<Hub> {
   };
   using PeerList = std::vector<std::shared_ptr<Peer>>;
 
-  Channel* channel(ChannelId id) const;  // nullptr for an unknown id; lock-free
+  Channel* channel(ChannelId id) const;     // nullptr for an unknown id; lock-free
   static void keep(Channel& c, Latched m);  // on the drain: appends to the kept messages, oldest out
   std::shared_ptr<const PeerList> peers() const;
   void push(Peer& peer, std::string text);

@@ -9,8 +9,8 @@
 namespace fsd::web {
 
 struct JsonText {
-  nlohmann::json value;       // discarded when the text did not parse
-  std::string error;          // why not, empty when it parsed
+  nlohmann::json value;  // discarded when the text did not parse
+  std::string error;     // why not, empty when it parsed
   bool number_out_of_range = false;
 };
 JsonText parse_json_text(std::string_view text);
