@@ -177,18 +177,20 @@ json truth_state() {
 }
 
 json as_status() {
-  return object("fsd.AsStatus", {{"timestamp", time_type()},
-                                 {"as_state", str("Off, Ready, Driving, Emergency, Finished")},
-                                 {"mission", str("mission name")},
-                                 {"lap", integer("laps completed")},
-                                 {"laps_total", integer("laps of the mission")},
-                                 {"lap_times", array_of(json{{"type", "number"}}, "s, completed laps")},
-                                 {"lap_time", num("s, the lap in progress")},
-                                 {"control_mode", str("what steers the car now")},
-                                 {"res_go", boolean("RES go received")},
-                                 {"res_emergency", boolean("RES emergency pressed")},
-                                 {"ebs_active", boolean("emergency brake engaged")},
-                                 {"finished", boolean("mission finished")}});
+  return object("fsd.AsStatus",
+                {{"timestamp", time_type()},
+                 {"as_state", str("Off, Ready, Driving, Emergency, Finished")},
+                 {"mission", str("mission name")},
+                 {"lap", integer("the lap being driven (1 on the first; after the finish the last one driven)")},
+                 {"laps_completed", integer("laps completed")},
+                 {"laps_total", integer("laps of the mission")},
+                 {"lap_times", array_of(json{{"type", "number"}}, "s, completed laps")},
+                 {"lap_time", num("s, the lap in progress")},
+                 {"control_mode", str("what steers the car now")},
+                 {"res_go", boolean("RES go received")},
+                 {"res_emergency", boolean("RES emergency pressed")},
+                 {"ebs_active", boolean("emergency brake engaged")},
+                 {"finished", boolean("mission finished")}});
 }
 
 json faults() {
