@@ -32,7 +32,16 @@ class DashboardView {
   Mission mission_;
   int trackdrive_laps_;
   std::vector<Vec2> lap1_trail_, later_trail_;
-  std::optional<Stamp> lap_started_;  // go, then each line crossing
+  // The lap shown: the one being driven (1 on the first lap), after the finish the last one driven.
+  int lap_being_driven(bool finished) const;
+  // The lap clock: runs while Driving, frozen when the car stopped, after the finish the last lap's time.
+  double lap_clock(Stamp now, bool finished) const;
+
+  std::optional<Stamp> lap_started_;    // go, then each line crossing
+  std::optional<Stamp> clock_stopped_;  // when the car left Driving (the clock shows the lap until then)
+  std::optional<double> last_lap_time_;
+  std::size_t laps_done_ = 0;
+  bool finished_ = false;
 };
 
 }  // namespace fsd

@@ -21,6 +21,7 @@ nlohmann::json state_json(const TelemetrySnapshot& s) {
       {"as_state", std::string(to_string(s.as.as_state))},
       {"mission", std::string(to_string(s.as.mission))},
       {"lap", s.as.lap},
+      {"laps_completed", s.as.laps_completed},
       {"laps_total", s.as.laps_total},
       {"lap_times", s.as.lap_times},
       {"control_mode", s.as.control_mode},

@@ -177,18 +177,20 @@ json truth_state() {
 }
 
 json as_status() {
-  return object("fsd.AsStatus", {{"timestamp", time_type()},
-                                 {"as_state", str("Off, Ready, Driving, Emergency, Finished")},
-                                 {"mission", str("mission name")},
-                                 {"lap", integer("laps completed")},
-                                 {"laps_total", integer("laps of the mission")},
-                                 {"lap_times", array_of(json{{"type", "number"}}, "s, completed laps")},
-                                 {"lap_time", num("s, the lap in progress")},
-                                 {"control_mode", str("what steers the car now")},
-                                 {"res_go", boolean("RES go received")},
-                                 {"res_emergency", boolean("RES emergency pressed")},
-                                 {"ebs_active", boolean("emergency brake engaged")},
-                                 {"finished", boolean("mission finished")}});
+  return object("fsd.AsStatus",
+                {{"timestamp", time_type()},
+                 {"as_state", str("Off, Ready, Driving, Emergency, Finished")},
+                 {"mission", str("mission name")},
+                 {"lap", integer("the lap being driven (1 on the first; after the finish the last one driven)")},
+                 {"laps_completed", integer("laps completed")},
+                 {"laps_total", integer("laps of the mission")},
+                 {"lap_times", array_of(json{{"type", "number"}}, "s, completed laps")},
+                 {"lap_time", num("s, the lap in progress")},
+                 {"control_mode", str("what steers the car now")},
+                 {"res_go", boolean("RES go received")},
+                 {"res_emergency", boolean("RES emergency pressed")},
+                 {"ebs_active", boolean("emergency brake engaged")},
+                 {"finished", boolean("mission finished")}});
 }
 
 json faults() {
@@ -200,9 +202,14 @@ json faults() {
   return object("fsd.Faults", {{"timestamp", time_type()}, {"faults", array_of(fault, "recent faults, newest last")}});
 }
 
-ChannelSpec spec(const char* topic, const json& schema, const std::string& description, bool latched = false) {
-  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(), ChannelOptions{latched}};
+ChannelSpec spec(const char* topic, const json& schema, const std::string& description, bool latched = false,
+                 std::size_t backlog = 0) {
+  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(),
+          ChannelOptions{latched, backlog}};
 }
+
+// Log lines a new subscriber gets at once: what happened before the page was opened (the dashboard shows 60).
+constexpr std::size_t kLogBacklog = 100;
 
 }  // namespace
 
@@ -226,7 +233,7 @@ std::vector<ChannelSpec> standard_channels() {
       spec(topics::kVehicleState, vehicle_state(), "Motion state of the car (SI units)"),
       spec(topics::kAsStatus, as_status(), "Autonomous-system state, mission, laps", true),
       spec(topics::kFaults, faults(), "Recent faults", true),
-      spec(topics::kLog, log(), "Log lines"),
+      spec(topics::kLog, log(), "Log lines (the latest 100 sent to a new subscriber)", false, kLogBacklog),
   };
 }
 

@@ -353,6 +353,7 @@ std::string as_status_json(Stamp t, const AsStatusView& s) {
               {"as_state", std::string(to_string(s.as_state))},
               {"mission", std::string(to_string(s.mission))},
               {"lap", s.lap},
+              {"laps_completed", s.laps_completed},
               {"laps_total", s.laps_total},
               {"lap_times", s.lap_times},
               {"lap_time", s.lap_time},

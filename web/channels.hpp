@@ -107,7 +107,8 @@ std::string vehicle_state_json(const VehicleState& state, double target_speed);
 struct AsStatusView {
   AsState as_state = AsState::Off;
   Mission mission = Mission::None;
-  int lap = 0;  // laps completed
+  int lap = 0;  // the lap being driven (1 on the first; after the finish the last one driven)
+  int laps_completed = 0;
   int laps_total = 0;
   std::vector<double> lap_times;  // s, completed laps
   double lap_time = 0;            // s, the lap in progress

@@ -5,6 +5,7 @@
 
 #include "common/logging.hpp"
 #include "web/auth.hpp"
+#include "web/json_text.hpp"
 #include "web/params_json.hpp"
 #include "web/url.hpp"
 
@@ -77,7 +78,7 @@ HttpResponse HttpApi::handle(const HttpRequest& req, const std::string& peer) {
 
 HttpResponse HttpApi::route(const HttpRequest& req, const std::string& peer) {
   const auto target = split_target(std::string_view(req.target().data(), req.target().size()));
-  const std::string_view path = target.path;
+  const std::string path = collapse_slashes(target.path);
   const auto method = req.method();
   const bool get = method == http::verb::get || method == http::verb::head;
 
@@ -143,12 +144,15 @@ HttpResponse HttpApi::api_params_put(const HttpRequest& req, const std::string& 
     res.set(http::field::www_authenticate, "Bearer realm=\"fsd\"");
     return res;
   }
-  const json body = json::parse(req.body(), nullptr, false);
-  if (body.is_discarded() || !body.is_object() || body.empty())
+  const auto body = parse_json_text(req.body());
+  if (body.number_out_of_range)
+    return json_response(req, http::status::unprocessable_entity,
+                         {{"error", "nothing changed"}, {"errors", json::array({body.error})}});
+  if (!body.value.is_object() || body.value.empty())
     return json_response(req, http::status::bad_request,
                          {{"error", "the body must be a JSON object {\"key\": value, ...}"}});
   std::vector<std::pair<std::string, json>> changes;
-  for (auto it = body.begin(); it != body.end(); ++it) changes.emplace_back(it.key(), it.value());
+  for (auto it = body.value.begin(); it != body.value.end(); ++it) changes.emplace_back(it.key(), it.value());
   const auto result = apply_parameters(hub_.params(), changes, "web " + peer + " (token ok)");
   if (!result.ok) {
     hub_.note_param_refusal();

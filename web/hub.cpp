@@ -1,5 +1,6 @@
 #include "web/hub.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "common/logging.hpp"
@@ -75,6 +76,8 @@ ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_n
     auto c = std::make_unique<Channel>();
     c->info = info;
     c->options = options;
+    c->keep =
+        std::min(std::max(options.backlog, options.latched ? std::size_t{1} : std::size_t{0}), limits_.telemetry_queue);
     channels_[n] = std::move(c);
     channel_count_.store(n + 1);  // publishes the new slot
   }
@@ -114,13 +117,26 @@ void Hub::drain() {
   bool any = false;
   while (outbox_.try_pop(m)) {
     Channel* c = channel(m.channel);
-    if (c->options.latched) c->last.store(std::make_shared<const Latched>(Latched{m.payload, m.ns}));
+    if (c->keep > 0) keep(*c, Latched{m.payload, m.ns});
     for (const auto& p : *list)
       if (p->state->offer(m.channel, m.ns, m.payload)) any = p->wake_pending = true;
   }
   if (!any) return;
   for (const auto& p : *list)
     if (p->wake_pending.exchange(false)) p->wake();
+}
+
+void Hub::keep(Channel& c, Latched m) {
+  // Copy-on-write, so a subscribe on another I/O thread reads a whole list; at most `keep` pointers copied.
+  const auto old = c.kept.load();
+  auto next = std::make_shared<std::vector<Latched>>();
+  next->reserve(c.keep);
+  if (old) {
+    const std::size_t first = old->size() + 1 > c.keep ? old->size() + 1 - c.keep : 0;
+    next->assign(old->begin() + static_cast<std::ptrdiff_t>(first), old->end());
+  }
+  next->push_back(std::move(m));
+  c.kept.store(std::move(next));
 }
 
 void Hub::publish_time(Stamp t) {
@@ -204,7 +220,7 @@ void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
       send_status(peer, StatusLevel::Error, "subscribe: unknown channel " + std::to_string(s.channel_id));
       continue;
     }
-    const auto latched = c->last.load();
+    const auto kept = c->kept.load();
     switch (peer.state->subscribe(s.id, s.channel_id)) {
       case ClientState::SubscribeResult::IdInUse:
         send_status(peer, StatusLevel::Error, "subscribe: subscription id " + std::to_string(s.id) + " is in use");
@@ -216,7 +232,10 @@ void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
       case ClientState::SubscribeResult::Ok:
         break;
     }
-    if (latched && peer.state->offer(s.channel_id, latched->ns, latched->payload)) peer.wake();
+    bool wake = false;
+    if (kept)
+      for (const auto& m : *kept) wake = peer.state->offer(s.channel_id, m.ns, m.payload) || wake;
+    if (wake) peer.wake();
   }
 }
 

@@ -30,6 +30,9 @@ struct ChannelOptions {
   // The last message is kept and sent to each new subscriber at once (maps, paths, AS state: things that
   // change rarely but that a client connecting late must see).
   bool latched = false;
+  // The last `backlog` messages are kept and sent to each new subscriber (the log: a page opened after an
+  // event shows the lines before it). Bounded by the client's telemetry queue; latched is a backlog of 1.
+  std::size_t backlog = 0;
 };
 
 // One connected WebSocket client as the hub sees it.
@@ -97,11 +100,13 @@ class Hub : public std::enable_shared_from_this<Hub> {
   struct Channel {
     foxglove::ChannelInfo info;
     ChannelOptions options;
-    std::atomic<std::shared_ptr<const Latched>> last;  // latched channels only
+    std::size_t keep = 0;                                           // messages kept: 1 latched, or the backlog
+    std::atomic<std::shared_ptr<const std::vector<Latched>>> kept;  // oldest first; only the drain writes it
   };
   using PeerList = std::vector<std::shared_ptr<Peer>>;
 
-  Channel* channel(ChannelId id) const;  // nullptr for an unknown id; lock-free
+  Channel* channel(ChannelId id) const;     // nullptr for an unknown id; lock-free
+  static void keep(Channel& c, Latched m);  // on the drain: appends to the kept messages, oldest out
   std::shared_ptr<const PeerList> peers() const;
   void push(Peer& peer, std::string text);
   void on_param_change(const ParamChange& change);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "web/json_text.hpp"
+
 namespace fsd::web::foxglove {
 
 using nlohmann::json;
@@ -167,8 +169,9 @@ std::uint64_t to_nanoseconds(Stamp t) {
 }
 
 ParseResult parse_client_message(std::string_view text) {
-  const json msg = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
-  if (msg.is_discarded()) return fail("malformed JSON");
+  const auto parsed = parse_json_text(text);
+  if (parsed.value.is_discarded()) return fail(parsed.error);
+  const json& msg = parsed.value;
   if (!msg.is_object()) return fail("a message must be a JSON object");
   const auto op_it = msg.find("op");
   if (op_it == msg.end() || !op_it->is_string()) return fail("a message needs a string field 'op'");

@@ -17,6 +17,10 @@ struct Target {
 };
 Target split_target(std::string_view target);
 
+// The path with each run of '/' made one: "//api/state" (what a base URL ending in '/' plus "/api/state" gives)
+// is "/api/state".
+std::string collapse_slashes(std::string_view path);
+
 // The decoded value of `name` in a query string "a=1&b=2"; nullopt when absent or malformed.
 std::optional<std::string> query_param(std::string_view query, std::string_view name);
 

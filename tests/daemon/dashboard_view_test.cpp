@@ -31,8 +31,52 @@ TEST(DashboardView, LapTimeRunsFromGoThenFromEachCrossing) {
   view.on_cycle(40.01, AsState::Driving, out, 1, Vec2(0, 0), 2);
   out.lap.reset();
   EXPECT_DOUBLE_EQ(view.snapshot(41.0, AsState::Driving, out, ap, {}).as.lap_time, 1.0);
+}
+
+TEST(DashboardView, LapIsTheOneBeingDrivenAndAfterTheFinishTheLastOne) {
+  const auto ap = idle_autopilot(Mission::Trackdrive);
+  DashboardView view(Mission::Trackdrive, 2);
+  ControlOutput out;
+  view.on_cycle(1.0, AsState::Driving, out, 0, Vec2(0, 0), 0);
+  auto s = view.snapshot(2.0, AsState::Driving, out, ap, {});
+  EXPECT_EQ(s.as.lap, 1);
+  EXPECT_EQ(s.as.laps_completed, 0);
+  out.lap = LapEvent{1, 30.0, 29.0};
+  view.on_cycle(30.0, AsState::Driving, out, 1, Vec2(0, 0), 1);
+  out.lap.reset();
+  s = view.snapshot(31.0, AsState::Driving, out, ap, {});
+  EXPECT_EQ(s.as.lap, 2);
+  EXPECT_EQ(s.as.laps_completed, 1);
+  EXPECT_DOUBLE_EQ(s.as.lap_time, 1.0);
+  // The second crossing finishes the mission: lap 2/2 with its own time, not "lap 2/2 0:00.00".
+  out.lap = LapEvent{2, 55.5, 25.5};
   out.finished = true;
-  EXPECT_EQ(view.snapshot(42.0, AsState::Driving, out, ap, {}).as.lap_time, 0.0);
+  view.on_cycle(55.5, AsState::Driving, out, 2, Vec2(0, 0), 2);
+  out.lap.reset();
+  view.on_cycle(60.0, AsState::Finished, out, 2, Vec2(0, 0), 3);
+  for (const double t : {56.0, 70.0}) {
+    s = view.snapshot(t, AsState::Finished, out, ap, {});
+    EXPECT_EQ(s.as.lap, 2);
+    EXPECT_EQ(s.as.laps_completed, 2);
+    EXPECT_DOUBLE_EQ(s.as.lap_time, 25.5);
+    EXPECT_TRUE(s.as.finished);
+  }
+}
+
+TEST(DashboardView, LapClockFreezesWhenTheCarStops) {
+  const auto ap = idle_autopilot(Mission::Trackdrive);
+  DashboardView view(Mission::Trackdrive, 2);
+  const ControlOutput out;
+  view.on_cycle(5.0, AsState::Driving, out, 0, Vec2(0, 0), 0);
+  view.on_cycle(12.0, AsState::Driving, out, 0, Vec2(0, 0), 1);
+  view.on_cycle(12.01, AsState::Emergency, out, 0, Vec2(0, 0), 2);
+  for (const double t : {12.5, 20.0, 100.0}) {
+    const auto s = view.snapshot(t, AsState::Emergency, out, ap, {});
+    EXPECT_DOUBLE_EQ(s.as.lap_time, 7.01) << "at " << t;
+    EXPECT_EQ(s.as.lap, 1);
+  }
+  view.on_cycle(101.0, AsState::Emergency, out, 0, Vec2(0, 0), 3);  // still stopped: still frozen
+  EXPECT_DOUBLE_EQ(view.snapshot(102.0, AsState::Emergency, out, ap, {}).as.lap_time, 7.01);
 }
 
 TEST(DashboardView, TrailsSplitAtTheFirstLapAndStayBounded) {

@@ -144,6 +144,39 @@ TEST(Http, ParamsPutIsBoundedAndAllOrNothing) {
   EXPECT_TRUE(s.params.history().empty());
 }
 
+TEST(Http, ParamsPutOfAnOverflowingNumberSaysItIsOutOfRange) {
+  TestServer s;
+  const std::vector<std::pair<std::string, std::string>> auth{{"Authorization", std::string("Bearer ") + kToken}};
+  for (const char* number : {"1e999", "-1e999"}) {
+    const auto r = http_request(s.port(), http::verb::put, "/api/params",
+                                std::string(R"({"control.target_speed": )") + number + "}", auth);
+    EXPECT_EQ(r.status, 422u) << r.body;
+    const auto body = json::parse(r.body);
+    ASSERT_EQ(body["errors"].size(), 1u) << r.body;
+    const auto error = body["errors"][0].get<std::string>();
+    EXPECT_NE(error.find(number), std::string::npos) << error;
+    EXPECT_NE(error.find("out of range"), std::string::npos) << error;
+    EXPECT_EQ(error.find("JSON object"), std::string::npos) << error;
+  }
+  EXPECT_DOUBLE_EQ(*s.params.get("control.target_speed"), 5.0);
+  EXPECT_TRUE(s.params.history().empty());
+}
+
+TEST(Http, RepeatedSlashesInThePathAreOne) {
+  TestServer s;
+  s.server->set_state_provider([] { return json{{"as_state", "Ready"}}; });
+  for (const char* target : {"//api/state", "///api//state", "/api/state/"}) {
+    const auto r = http_request(s.port(), http::verb::get, target);
+    if (std::string(target) == "/api/state/") {
+      EXPECT_EQ(r.status, 404u) << target;  // a trailing slash is another path
+      continue;
+    }
+    EXPECT_EQ(r.status, 200u) << target;
+    EXPECT_EQ(json::parse(r.body), (json{{"as_state", "Ready"}})) << target;
+  }
+  EXPECT_EQ(http_request(s.port(), http::verb::get, "//healthz").body, "ok\n");
+}
+
 TEST(Http, ParamsPutRefusedWhenTuningIsDisabled) {
   auto cfg = TestServer::base_config();
   cfg.token = "";

@@ -93,6 +93,7 @@ TEST(Protocol, ParsesParameterOps) {
 TEST(Protocol, RejectsMalformedMessagesWithAReason) {
   const std::pair<const char*, const char*> cases[] = {
       {"{", "malformed JSON"},
+      {R"({"op":"setParameters","parameters":[{"name":"a","value":1e999}]})", "'1e999' is out of range"},
       {"[1,2]", "JSON object"},
       {R"({"opx":"subscribe"})", "'op'"},
       {R"({"op":7})", "'op'"},

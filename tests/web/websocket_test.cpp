@@ -162,6 +162,31 @@ TEST(WebSocket, LatchedChannelSendsItsLastMessageToNewSubscribers) {
   EXPECT_FALSE(late.next_binary(300ms));  // only the last one
 }
 
+TEST(WebSocket, BacklogChannelSendsItsRecentMessagesToNewSubscribersInOrder) {
+  TestServer s;
+  const auto log = s.server->add_channel("/log", "L", "{}", ChannelOptions{false, 3});
+  const auto marker = s.server->add_channel("/marker", "K", "{}");
+  WsClient first(s.port());
+  subscribe(first, 1, marker);
+  for (int i = 1; i <= 5; ++i) s.server->publish(log, i, "\"line " + std::to_string(i) + "\"");
+  s.server->publish(marker, 6.0, "\"m\"");
+  ASSERT_TRUE(first.next_binary());  // taken in order: the five lines are in by now
+
+  WsClient late(s.port());  // opened after the lines: gets the last three, oldest first, and no more
+  ASSERT_TRUE(late.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 4}, {"channelId", log}}}}}.dump()));
+  for (int i = 3; i <= 5; ++i) {
+    const auto m = late.next_binary();
+    ASSERT_TRUE(m) << "line " << i;
+    EXPECT_EQ(u32_le(*m, 1), 4u);
+    EXPECT_EQ(m->substr(13), "\"line " + std::to_string(i) + "\"");
+  }
+  EXPECT_FALSE(late.next_binary(300ms));
+  s.server->publish(log, 7.0, "\"live\"");  // and then the live ones
+  const auto m = late.next_binary();
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->substr(13), "\"live\"");
+}
+
 TEST(WebSocket, SubscribeErrorsAreReported) {
   TestServer s;
   const auto ch = s.server->add_channel("/a", "A", "{}");

@@ -2,7 +2,8 @@
 // a 3D view, live plots, the AS state banner, laps, faults, log, camera and the parameter panel.
 import './style.css';
 import { FoxgloveClient, seconds, fromBase64 } from './foxglove.js';
-import { Scene3D } from './scene3d.js';
+import { createView3D } from './view3d.js';
+import { showFaultsInBanner } from './banner_faults.js';
 import { TimePlot } from './plots.js';
 import { ParamPanel } from './params.js';
 
@@ -29,7 +30,7 @@ const TRUTH = { cones: '/truth/cones', car: '/truth/car', state: '/truth/vehicle
 const wsUrl = new URLSearchParams(location.search).get('ws') ??
   `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
 
-const scene = new Scene3D($('view3d'));
+const { scene, sceneArrived } = createView3D($('view3d'), $('view3d-message'));
 const plots = {
   speed: new TimePlot($('plot-speed'), {
     title: 'Speed', unit: 'km/h', minRange: 5,
@@ -43,7 +44,7 @@ function truthSeries(label) {
   return { label, color: '#f5f5f5', dash: [2, 3], hidden: true };
 }
 
-const hook = (window.__fsd = { connected: false, topics: {}, status: [], scene: () => scene.counts(), plots: {}, truth: { on: false, samples: 0 } });
+const hook = (window.__fsd = { webgl: scene.webgl, connected: false, topics: {}, status: [], scene: () => scene.counts(), plots: {}, truth: { on: false, samples: 0 } });
 
 function onVehicleState(m) {
   const t = seconds(m.timestamp);
@@ -75,8 +76,8 @@ function onAsStatus(m) {
   banner.className = `banner ${AS_CLASS[m.as_state] ?? 'as-off'}`;
   $('as-state').textContent = m.as_state.toUpperCase();
   $('mission').textContent = m.mission;
-  const lap = m.finished ? m.lap : m.lap + 1;
-  $('lap').textContent = m.laps_total > 0 ? `lap ${Math.min(lap, m.laps_total)}/${m.laps_total}` : `lap ${lap}`;
+  // m.lap is the lap being driven (after the finish the last one); the clock is frozen once the car stopped.
+  $('lap').textContent = m.laps_total > 0 ? `lap ${m.lap}/${m.laps_total}` : `lap ${m.lap}`;
   $('lap-time').textContent = fmtTime(m.lap_time);
   $('control-mode').textContent = m.control_mode || '–';
   $('res-ebs').textContent = `${m.res_emergency ? 'RES EMERGENCY' : m.res_go ? 'GO' : '–'} / ${m.ebs_active ? 'EBS ACTIVE' : 'released'}`;
@@ -105,6 +106,8 @@ function onFaults(m) {
   }
   list.replaceChildren(...items);
   $('fault-count').textContent = m.faults.filter((f) => f.active).length;
+  showFaultsInBanner($('banner-faults'), m.faults);
+  hook.faults = m.faults;
 }
 
 const LOG_LEVEL = ['?', 'debug', 'info', 'warn', 'error', 'fatal'];
@@ -149,12 +152,20 @@ function onImageBoxes(m) {
   }
 }
 
+function sceneUpdate(topic, m) {
+  sceneArrived();
+  scene.applySceneUpdate(topic, m);
+}
+
 const handlers = {
-  [TOPICS.cones]: (m) => scene.applySceneUpdate(TOPICS.cones, m),
-  [TOPICS.detections]: (m) => scene.applySceneUpdate(TOPICS.detections, m),
-  [TOPICS.car]: (m) => scene.applySceneUpdate(TOPICS.car, m),
-  [TOPICS.paths]: (m) => scene.applySceneUpdate(TOPICS.paths, m),
-  [TOPICS.cloud]: (m) => scene.applyPointCloud(m),
+  [TOPICS.cones]: (m) => sceneUpdate(TOPICS.cones, m),
+  [TOPICS.detections]: (m) => sceneUpdate(TOPICS.detections, m),
+  [TOPICS.car]: (m) => sceneUpdate(TOPICS.car, m),
+  [TOPICS.paths]: (m) => sceneUpdate(TOPICS.paths, m),
+  [TOPICS.cloud]: (m) => {
+    sceneArrived();
+    scene.applyPointCloud(m);
+  },
   [TOPICS.state]: onVehicleState,
   [TOPICS.as]: onAsStatus,
   [TOPICS.faults]: onFaults,
@@ -203,6 +214,8 @@ const client = new FoxgloveClient(wsUrl, Object.values(TOPICS), {
     }
   },
 });
+// ~60 rows would push the faults and the log thousands of pixels down on a phone or a tablet in portrait.
+$('params-panel').open = !matchMedia('(max-width: 1000px)').matches;
 panel = new ParamPanel({ table: $('params'), tokenInput: $('token'), applyButton: $('apply'), feedback: $('params-feedback'), client });
 hook.params = panel;
 client.connect();
