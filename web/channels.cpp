@@ -135,11 +135,10 @@ StandardChannels add_standard_channels(WebServer& server) {
   c.paths = ids[3];
   c.point_cloud = ids[4];
   c.camera_image = ids[5];
-  c.camera_detections = ids[6];
-  c.vehicle_state = ids[7];
-  c.as_status = ids[8];
-  c.faults = ids[9];
-  c.log = ids[10];
+  c.vehicle_state = ids[6];
+  c.as_status = ids[7];
+  c.faults = ids[8];
+  c.log = ids[9];
   return c;
 }
 

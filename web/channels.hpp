@@ -19,12 +19,13 @@ namespace fsd::web {
 class WebServer;
 
 namespace topics {
-inline constexpr const char* kConeMap = "/map/cones";                   // foxglove.SceneUpdate, latched
-inline constexpr const char* kDetections = "/perception/cones";         // foxglove.SceneUpdate
-inline constexpr const char* kCar = "/vehicle/car";                     // foxglove.SceneUpdate
-inline constexpr const char* kPaths = "/planning/paths";                // foxglove.SceneUpdate, latched
-inline constexpr const char* kPointCloud = "/lidar/points";             // foxglove.PointCloud
-inline constexpr const char* kCameraImage = "/camera/image";            // foxglove.CompressedImage
+inline constexpr const char* kConeMap = "/map/cones";            // foxglove.SceneUpdate, latched
+inline constexpr const char* kDetections = "/perception/cones";  // foxglove.SceneUpdate
+inline constexpr const char* kCar = "/vehicle/car";              // foxglove.SceneUpdate
+inline constexpr const char* kPaths = "/planning/paths";         // foxglove.SceneUpdate, latched
+inline constexpr const char* kPointCloud = "/lidar/points";      // foxglove.PointCloud
+inline constexpr const char* kCameraImage = "/camera/image";     // foxglove.CompressedImage
+// Not advertised: the camera stage does not hand its boxes out yet (an advertised channel must deliver).
 inline constexpr const char* kCameraDetections = "/camera/detections";  // foxglove.ImageAnnotations
 inline constexpr const char* kVehicleState = "/vehicle/state";          // fsd.VehicleState
 inline constexpr const char* kAsStatus = "/as/status";                  // fsd.AsStatus, latched
@@ -46,8 +47,8 @@ struct ChannelSpec {
 std::vector<ChannelSpec> standard_channels();
 
 struct StandardChannels {
-  ChannelId cone_map = 0, detections = 0, car = 0, paths = 0, point_cloud = 0, camera_image = 0, camera_detections = 0,
-            vehicle_state = 0, as_status = 0, faults = 0, log = 0;
+  ChannelId cone_map = 0, detections = 0, car = 0, paths = 0, point_cloud = 0, camera_image = 0, vehicle_state = 0,
+            as_status = 0, faults = 0, log = 0;
 };
 StandardChannels add_standard_channels(WebServer& server);
 

@@ -10,90 +10,28 @@
 //   node tests/browser/dashboard.spec.mjs     (from the project root; FSD_BINARY names the fsd binary)
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
-import { createRequire } from 'node:module';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { artifacts, chromiumArgs, chromiumPath, requireDev, requireToolsOrSkip, root, startDaemon, stopDaemon, waitFor } from './harness.mjs';
 
-const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const chromiumPath = process.env.FSD_CHROMIUM ?? '/usr/bin/chromium';
-const dashboard = path.join(root, 'web/dashboard');
-const fsdBinary = process.env.FSD_BINARY ?? path.join(root, 'build/daemon/fsd');
-const artifacts = path.join(root, 'test-artifacts');
+const { chromium } = requireToolsOrSkip();
 const TOKEN = 'pit-lane-test-token';
 const VMAX = 'control.speed.v_max';  // the target speed cap: its effect shows in /vehicle/state's target_speed
-
-for (const [what, file] of [['chromium', chromiumPath], ['playwright-core', path.join(dashboard, 'node_modules/playwright-core')],
-                            ['the built dashboard', path.join(dashboard, 'dist/index.html')], ['fsd', fsdBinary]]) {
-  if (!fs.existsSync(file)) {
-    console.log(`skipped: ${what} not found (${file}); deploy/install-deps.sh and the build provide it`);
-    process.exit(77);
-  }
-}
-const requireDev = createRequire(path.join(dashboard, 'package.json'));
-const { chromium } = requireDev('playwright-core');
 
 // Loopback only; the token comes from the environment, as on the car. The test must hold real time on a
 // shared 2-core CI machine next to Chromium rendering WebGL in software: the camera model (a rendering and a
 // JPEG 20 times a second, 3/4 of the virtual car's CPU) is off, and the planner's real-time budget is relaxed,
 // since a plan there can take over 25 ms and the supervisor would rightly stop the car (AS Emergency), which
 // is not what this test is about.
-const configFile = path.join(os.tmpdir(), `fsd-browser-test-${process.pid}.json`);
-fs.writeFileSync(configFile, JSON.stringify({
-  web: { bind: '127.0.0.1' }, sim: { enable_camera: false }, control: { planner: { time_budget: 0.5 } },
-}));
-
-// Starts `fsd run --sim`; resolves with { proc, port, log } once it prints the dashboard's address.
-function startDaemon(port = 0) {
-  return new Promise((resolve, reject) => {
-    const proc = spawn(fsdBinary, ['run', '--sim', '--port', String(port), '--config', configFile],
-                       { cwd: root, env: { ...process.env, FSD_WEB_TOKEN: TOKEN }, stdio: ['ignore', 'pipe', 'pipe'] });
-    const d = { proc, port: 0, log: '' };
-    let out = '';
-    const timer = setTimeout(() => reject(new Error(`fsd did not start: ${out}\n${d.log}`)), 20000);
-    proc.stdout.on('data', (chunk) => {
-      out += chunk;
-      const m = /dashboard at http:\/\/[\w.]+:(\d+)\//.exec(out);
-      if (m && !d.port) {
-        clearTimeout(timer);
-        d.port = Number(m[1]);
-        resolve(d);
-      }
-    });
-    proc.stderr.on('data', (chunk) => { d.log += chunk; });
-    proc.on('exit', (code) => reject(new Error(`fsd exited with ${code}: ${out}\n${d.log}`)));
-  });
-}
-
-function stopDaemon(d) {
-  return new Promise((resolve) => {
-    if (d.proc.exitCode !== null) return resolve();
-    d.proc.on('exit', resolve);
-    d.proc.kill('SIGTERM');
-  });
-}
-
-async function waitFor(page, fn, arg, what, timeout = 15000) {
-  try {
-    await page.waitForFunction(fn, arg, { timeout, polling: 100 });
-  } catch (e) {
-    throw new Error(`timed out waiting for ${what}`);
-  }
-}
+const CONFIG = { web: { bind: '127.0.0.1' }, sim: { enable_camera: false }, control: { planner: { time_budget: 0.5 } } };
+const ENV = { FSD_WEB_TOKEN: TOKEN };
 
 let daemon, browser, page;
 const requests = [];
 
 before(async () => {
-  fs.mkdirSync(artifacts, { recursive: true });
-  daemon = await startDaemon();
-  browser = await chromium.launch({
-    executablePath: chromiumPath,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-           '--disable-sync', '--no-first-run'],
-  });
+  daemon = await startDaemon(CONFIG, { env: ENV });
+  browser = await chromium.launch({ executablePath: chromiumPath, args: chromiumArgs });
   page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
   page.on('request', (r) => requests.push(r.url()));
   page.on('pageerror', (e) => console.log('page error:', e.message));
@@ -103,7 +41,6 @@ before(async () => {
 after(async () => {
   await browser?.close();
   if (daemon) await stopDaemon(daemon);
-  fs.rmSync(configFile, { force: true });
 });
 
 // Pixels of the 3D canvas in the cone colours (the renderer keeps its drawing buffer for this).
@@ -378,7 +315,7 @@ test('the page reconnects by itself when the daemon comes back', async () => {
   await waitFor(page, () => !window.__fsd.connected, null, 'the disconnect');
   assert.match(await page.textContent('#link-text'), /reconnecting|connecting/);
   assert.equal(await page.textContent('#as-state'), 'NO LINK');
-  daemon = await startDaemon(port);
+  daemon = await startDaemon(CONFIG, { env: ENV, port });
   assert.equal(daemon.port, port);
   await waitFor(page, () => window.__fsd.connected, null, 'the reconnect', 20000);
   await waitFor(page, () => (window.__fsd.scene().topics['/map/cones']?.cylinders ?? 0) > 0, null, 'cones after the reconnect');

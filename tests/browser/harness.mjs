@@ -14,6 +14,9 @@ export const artifacts = path.join(root, 'test-artifacts');
 const dashboard = path.join(root, 'web/dashboard');
 const fsdBinary = process.env.FSD_BINARY ?? path.join(root, 'build/daemon/fsd');
 
+// require() from the dashboard's node_modules (playwright-core, @foxglove/ws-protocol).
+export const requireDev = createRequire(path.join(dashboard, 'package.json'));
+
 export function requireToolsOrSkip() {
   for (const [what, file] of [['chromium', chromiumPath], ['playwright-core', path.join(dashboard, 'node_modules/playwright-core')],
                               ['the built dashboard', path.join(dashboard, 'dist/index.html')], ['fsd', fsdBinary]]) {
@@ -23,19 +26,19 @@ export function requireToolsOrSkip() {
     }
   }
   fs.mkdirSync(artifacts, { recursive: true });
-  return createRequire(path.join(dashboard, 'package.json'))('playwright-core');
+  return requireDev('playwright-core');
 }
 
 export const chromiumArgs = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
                              '--disable-component-update', '--disable-sync', '--no-first-run'];
 
-// Starts `fsd run --sim` with `config` (an object, written to a temporary file); resolves with
-// { proc, port, out, log } once it prints the dashboard's address.
-export function startDaemon(config, env = {}) {
+// Starts `fsd run --sim` with `config` (an object, written to a temporary file) on `port` (0: any free one);
+// resolves with { proc, port, out, log } once it prints the dashboard's address.
+export function startDaemon(config, { env = {}, port = 0 } = {}) {
   const configFile = path.join(os.tmpdir(), `fsd-browser-${process.pid}-${Date.now()}.json`);
   fs.writeFileSync(configFile, JSON.stringify(config));
   return new Promise((resolve, reject) => {
-    const proc = spawn(fsdBinary, ['run', '--sim', '--port', '0', '--config', configFile],
+    const proc = spawn(fsdBinary, ['run', '--sim', '--port', String(port), '--config', configFile],
                        { cwd: root, env: { ...process.env, ...env }, stdio: ['ignore', 'pipe', 'pipe'] });
     const d = { proc, port: 0, out: '', log: '', configFile };
     const timer = setTimeout(() => reject(new Error(`fsd did not start: ${d.out}\n${d.log}`)), 20000);

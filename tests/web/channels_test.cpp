@@ -209,7 +209,7 @@ TEST(Channels, StatusFaultsLogAndImageAnnotations) {
 
 TEST(Channels, StandardChannelsHaveUniqueTopicsAndValidSchemas) {
   const auto specs = standard_channels();
-  ASSERT_EQ(specs.size(), 11u);
+  ASSERT_EQ(specs.size(), 10u);
   std::set<std::string> topics;
   for (const auto& s : specs) {
     topics.insert(s.topic);

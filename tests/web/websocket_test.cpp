@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <map>
 
 #include "tests/web/test_client.hpp"
+#include "web/channels.hpp"
 #include "web/hub.hpp"
 
 namespace fsd::web::test {
@@ -185,6 +187,28 @@ TEST(WebSocket, BacklogChannelSendsItsRecentMessagesToNewSubscribersInOrder) {
   const auto m = late.next_binary();
   ASSERT_TRUE(m);
   EXPECT_EQ(m->substr(13), "\"live\"");
+}
+
+TEST(WebSocket, StandardChannelsAreAdvertisedUnderTheirIdsAndOnlyThoseThatArePublished) {
+  TestServer s;
+  const auto c = add_standard_channels(*s.server);
+  WsClient client(s.port());
+  const auto adv = client.next_op("advertise");
+  ASSERT_TRUE(adv);
+  std::map<std::string, ChannelId> advertised;
+  for (const auto& ch : (*adv)["channels"]) advertised[ch["topic"].get<std::string>()] = ch["id"].get<ChannelId>();
+  // /camera/detections is left out: nothing hands the camera's boxes to the telemetry yet.
+  const std::map<std::string, ChannelId> expected{{topics::kConeMap, c.cone_map},
+                                                  {topics::kDetections, c.detections},
+                                                  {topics::kCar, c.car},
+                                                  {topics::kPaths, c.paths},
+                                                  {topics::kPointCloud, c.point_cloud},
+                                                  {topics::kCameraImage, c.camera_image},
+                                                  {topics::kVehicleState, c.vehicle_state},
+                                                  {topics::kAsStatus, c.as_status},
+                                                  {topics::kFaults, c.faults},
+                                                  {topics::kLog, c.log}};
+  EXPECT_EQ(advertised, expected);
 }
 
 TEST(WebSocket, SubscribeErrorsAreReported) {
