@@ -33,10 +33,14 @@ const ConfigSection<OdometryConfig>& odometry_section() {
           .number("max_neighbour_dist", &C::max_neighbour_dist, 0.05, 10.0, "m",
                   "Neighbours farther than this define nothing.")
           .number("huber_delta", &C::huber_delta, 0.001, 10.0, "m", "Corner of the Huber kernel on the residuals.")
+          .number("blob_radius", &C::blob_radius, 0.0, 2.0, "m",
+                  "Edge neighbours not on a line but spread less than this: matched to a vertical line (a cone).")
           .number("min_information", &C::min_information, 0.0, 1e6, "",
                   "Eigenvalue of the normal matrix (rotations scaled by 10 m) below which the scene is degenerate.")
           .number("degenerate_sigma", &C::degenerate_sigma, 0.01, 1e3, "m|rad",
                   "Standard deviation reported along a degenerate direction.")
+          .integer("deskew_passes", &C::deskew_passes, 1, 5, "",
+                   "Registrations per scan; each after the first deskews with the motion the previous one found.")
           .integer("keyframes", &C::keyframes, 1, 50, "", "Keyframes in the local map.")
           .number("keyframe_distance", &C::keyframe_distance, 0.0, 100.0, "m",
                   "Distance travelled since the last keyframe that makes a new one ...")

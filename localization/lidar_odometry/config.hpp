@@ -8,7 +8,7 @@ namespace fsd::lidar_odometry {
 struct FeatureConfig {
   int neighbours = 5;                 // points each side of a point in its ring for the smoothness c (eq. 5)
   int sectors = 6;                    // each ring is split into this many azimuth sectors, features picked per sector
-  int edges_per_sector = 4;           // sharpest points kept per sector ...
+  int edges_per_sector = 10;          // sharpest points kept per sector ...
   double edge_threshold = 0.1;        // ... with c above this
   int planes_per_sector = 40;         // flattest points kept per sector ...
   double plane_threshold = 0.05;      // ... with c below this
@@ -25,10 +25,12 @@ struct OdometryConfig {
   int knn = 5;                      // neighbours that define a line or a plane
   double max_neighbour_dist = 1.0;  // m: farther neighbours define nothing
   double huber_delta = 0.1;         // m: the robust kernel's corner
-  double min_information = 20.0;    // eigenvalue of the normal matrix (rotation per 10 m) below which: degenerate
+  double blob_radius = 0.2;         // m: edge neighbours not on a line but within this spread: a vertical post
+  double min_information = 1.0;     // eigenvalue of the normal matrix (rotation per 10 m) below which: degenerate
   double degenerate_sigma = 10.0;   // m or rad: the σ reported along a degenerate direction
-  int keyframes = 5;                // keyframes of the local map
-  double keyframe_distance = 1.0;   // m travelled ...
+  int deskew_passes = 2;            // registrations per scan, each deskewed with the motion the previous one found
+  int keyframes = 10;               // keyframes of the local map
+  double keyframe_distance = 2.0;   // m travelled ...
   double keyframe_angle = 0.17;     // ... or rad turned since the last keyframe makes a new one
   double map_voxel = 0.15;          // m: one map feature per voxel
 };

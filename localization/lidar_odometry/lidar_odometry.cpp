@@ -58,10 +58,16 @@ OdometryOutput LidarOdometry::process(const Scan& scan) {
     out.stamp = stamp_;
     return out;
   }
-  const auto edges = deskew(f.edges, t), planes = deskew(f.planes, t);
-  const Pose3 guess = pose_ * motion(velocity_, dt);
-  const Alignment a = registration_.align(edges, planes, map_, guess);
-  const Pose3 delta = pose_.inverse() * a.pose;
+  auto edges = deskew(f.edges, t), planes = deskew(f.planes, t);
+  Alignment a = registration_.align(edges, planes, map_, pose_ * motion(velocity_, dt));
+  Pose3 delta = pose_.inverse() * a.pose;
+  for (int pass = 1; pass < cfg_.odometry.deskew_passes; ++pass) {
+    // The deskew used the previous scan's motion; redo it with this scan's own and register again from there.
+    velocity_ = twist_of(delta, dt);
+    edges = deskew(f.edges, t), planes = deskew(f.planes, t);
+    a = registration_.align(edges, planes, map_, a.pose);
+    delta = pose_.inverse() * a.pose;
+  }
   out.has_increment = true;
   out.increment.t0 = stamp_;
   out.increment.t1 = t;

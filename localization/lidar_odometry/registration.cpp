@@ -70,9 +70,17 @@ Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<
         Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
         for (std::size_t i = 0; i < k; ++i) C += (mp[idx[i]] - mean) * (mp[idx[i]] - mean).transpose();
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e3(C);
-        // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one).
-        if (e3.eigenvalues()[2] < 3 * e3.eigenvalues()[1]) continue;
-        const Vec3 u1 = e3.eigenvectors().col(0), u2 = e3.eigenvectors().col(1);
+        // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
+        // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
+        // through the blob's centre, as long as the blob is narrow.
+        Vec3 u1, u2;
+        if (e3.eigenvalues()[2] >= 3 * e3.eigenvalues()[1]) {
+          u1 = e3.eigenvectors().col(0), u2 = e3.eigenvectors().col(1);
+        } else if (e3.eigenvalues()[2] < cfg_.blob_radius * cfg_.blob_radius * double(k)) {
+          u1 = Vec3::UnitX(), u2 = Vec3::UnitY();
+        } else {
+          continue;
+        }
         const Vec3 dq = q - mean;
         const double r1 = u1.dot(dq), r2 = u2.dot(dq);
         const double w = huber(std::hypot(r1, r2), cfg_.huber_delta);

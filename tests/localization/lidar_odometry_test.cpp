@@ -2,6 +2,8 @@
 // rendered by the virtual car's VLP-16 model with the simulator's true poses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -180,8 +182,9 @@ TEST(LidarOdometry, ScansOfFlatGroundOnlyAreFlaggedDegenerate) {
 }
 
 struct DriveResult {
-  double distance = 0, end_error = 0, drift_pct = 0, kitti_pct = 0;
+  double distance = 0, end_error = 0, drift_pct = 0, kitti_pct = 0, yaw_error_deg = 0;
   int degenerate = 0, scans = 0;
+  std::vector<double> ms;  // wall time per scan (informative only: the machine is shared)
 };
 
 // Drives one lap of `track` and integrates the odometry from the true starting pose.
@@ -198,7 +201,9 @@ DriveResult drive_lap(const std::string& track, double speed) {
     const Scan scan = drive.next();
     const Stamp t = firing_span(scan).last;
     if (!odo.started()) odo.start_at(drive.body_pose(t));
+    const auto c0 = std::chrono::steady_clock::now();
     const auto out = odo.process(scan);
+    r.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
     r.degenerate += out.diagnostics.degenerate;
     ++r.scans;
     poses.emplace_back(drive.body_pose(t), out.pose);
@@ -208,6 +213,7 @@ DriveResult drive_lap(const std::string& track, double speed) {
     r.distance += (poses[i].first.translation() - poses[i - 1].first.translation()).norm();
   r.end_error = (poses.back().first.translation() - poses.back().second.translation()).head<2>().norm();
   r.drift_pct = 100 * r.end_error / r.distance;
+  r.yaw_error_deg = rad2deg(wrap_angle(to_pose2(poses.back().second).yaw - to_pose2(poses.back().first).yaw));
   // KITTI-style: relative translation error over every 50 m segment, averaged, per distance.
   double sum = 0;
   int n = 0;
@@ -230,10 +236,12 @@ DriveResult drive_lap(const std::string& track, double speed) {
 class LidarOdometryLap : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(LidarOdometryLap, DriftsLessThanOnePercentOfTheDistanceOverALap) {
-  const DriveResult r = drive_lap(GetParam(), 8.0);
+  DriveResult r = drive_lap(GetParam(), 8.0);
+  std::nth_element(r.ms.begin(), r.ms.begin() + long(r.ms.size() / 2), r.ms.end());
+  const double p50 = r.ms[r.ms.size() / 2];
   RecordProperty("drift_pct", std::to_string(r.drift_pct));
-  std::printf("%s: %d scans, %.1f m, end error %.3f m (%.3f %%), KITTI-style %.3f %%, degenerate %d\n", GetParam(),
-              r.scans, r.distance, r.end_error, r.drift_pct, r.kitti_pct, r.degenerate);
+  std::printf("%s: %d scans, %.1f m, end error %.3f m (%.3f %%), KITTI-style %.3f %%, yaw %.2f deg, degenerate %d, %.1f ms p50 per scan\n",
+              GetParam(), r.scans, r.distance, r.end_error, r.drift_pct, r.kitti_pct, r.yaw_error_deg, r.degenerate, p50);
   EXPECT_GT(r.distance, 100.0);
   EXPECT_LT(r.drift_pct, 1.0);
   EXPECT_LT(r.kitti_pct, 1.0);
