@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/logging.hpp"
-#include "common/mcap/fsd_profile.hpp"
 #include "common/mcap/byte_io.hpp"
+#include "common/mcap/fsd_profile.hpp"
 #include "daemon/fused_localization.hpp"
 #include "daemon/recording_reader.hpp"
 #include "daemon/replay_run.hpp"
@@ -26,7 +26,8 @@ McapLocalization localize_recording(const std::string& file, const std::string& 
   GnssDriver gnss(read_gnss_config(cfg), [&](const GnssSample& s) { pending.push_back(s); });
   std::optional<VcuStatus> status;
   Stamp rx = 0;
-  wire::vcu::Decoder vcu(wire::vcu::Decoder::Handlers{nullptr, [&](const VcuStatus& s, std::uint16_t) {
+  wire::vcu::Decoder vcu(wire::vcu::Decoder::Handlers{nullptr,
+                                                      [&](const VcuStatus& s, std::uint16_t) {
                                                         status = s;
                                                         status->stamp = rx;
                                                         ++out.vcu_statuses;

@@ -286,8 +286,8 @@ TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
   // Watchdogs (the VCU link's and the supervisor's) at 1 s as in the inspection test below: this test is about the
   // wiring, and a loaded 2-core machine stalls the real-time sim and the daemon for a hundred ms at times.
   const std::string run_cfg = write_file(
-      "hw_acc_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" + gnss +
-                             R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
+      "hw_acc_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" +
+                             gnss + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
                              R"(, "position_port": )" + std::to_string(free_udp_port()) +
                              R"(}}, "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
                              "web": {"bind": "127.0.0.1", "port": 0}})");

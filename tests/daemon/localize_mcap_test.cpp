@@ -65,8 +65,8 @@ TEST(LocalizeMcap, TheFusedTrajectoryOfARecordingFollowsItsTruth) {
     const double e = std::hypot(x - tx, y - ty);
     sum2 += e * e;
     worst = std::max(worst, e);
-    travelled_to = std::max(travelled_to, std::hypot(it->second.x - truth.begin()->second.x,
-                                                     it->second.y - truth.begin()->second.y));
+    travelled_to = std::max(travelled_to,
+                            std::hypot(it->second.x - truth.begin()->second.x, it->second.y - truth.begin()->second.y));
     ++n;
   }
   ASSERT_GT(n, 500);

@@ -1,0 +1,157 @@
+#include "localization/lidar_odometry/registration.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace fsd::lidar_odometry {
+
+namespace {
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+// Rotations are scaled by this lever before the eigenvalues are compared with translations: a radian at 10 m
+// moves a point as far as 10 m of translation.
+constexpr double kLever = 10.0;
+
+Vec3 skew_times(const Vec3& a, const Vec3& b) { return a.cross(b); }
+
+// T · Exp(δ) with δ = (v, ω) in the body frame.
+Pose3 retract(const Pose3& T, const Vec6& d) {
+  Pose3 D = Pose3::Identity();
+  const Vec3 w = d.tail<3>();
+  if (w.norm() > 1e-12) D.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+  D.translation() = d.head<3>();
+  return T * D;
+}
+
+struct Normal {
+  Matrix6d H = Matrix6d::Zero();
+  Vec6 g = Vec6::Zero();
+  double wr2 = 0;
+  int n = 0;
+  // One scalar residual r along the world direction `dir` for body point p; R the body's rotation.
+  void add(const Eigen::Matrix3d& R, const Vec3& p, const Vec3& dir, double r, double w) {
+    const Vec3 m = R.transpose() * dir;
+    Vec6 J;
+    J << m, skew_times(p, m);
+    H += w * J * J.transpose();
+    g += w * J * r;
+    wr2 += w * r * r;
+    ++n;
+  }
+};
+
+double huber(double r, double delta) { return std::abs(r) <= delta ? 1.0 : delta / std::abs(r); }
+}  // namespace
+
+Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<Vec3>& planes, const FeatureMap& map,
+                              const Pose3& guess) const {
+  Alignment out;
+  out.pose = guess;
+  const std::size_t k = std::size_t(std::clamp(cfg_.knn, 3, 20));
+  std::size_t idx[20];
+  double d2[20];
+  const double max_d2 = cfg_.max_neighbour_dist * cfg_.max_neighbour_dist;
+  Normal eq;
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es;
+  Eigen::Matrix<double, 6, 1> S;
+  S << 1, 1, 1, 1.0 / kLever, 1.0 / kLever, 1.0 / kLever;
+  for (int it = 0; it < cfg_.max_iterations; ++it) {
+    eq = Normal{};
+    out.edge_matches = out.plane_matches = 0;
+    const Eigen::Matrix3d R = out.pose.linear();
+    if (!map.edges.empty()) {
+      const auto& mp = map.edges.points();
+      for (const auto& p : edges) {
+        const Vec3 q = out.pose * p;
+        if (map.edges.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
+        Vec3 mean = Vec3::Zero();
+        for (std::size_t i = 0; i < k; ++i) mean += mp[idx[i]];
+        mean /= double(k);
+        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+        for (std::size_t i = 0; i < k; ++i) C += (mp[idx[i]] - mean) * (mp[idx[i]] - mean).transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e3(C);
+        // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
+        // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
+        // through the blob's centre, as long as the blob is narrow.
+        Vec3 u1, u2;
+        if (e3.eigenvalues()[2] >= 3 * e3.eigenvalues()[1]) {
+          u1 = e3.eigenvectors().col(0), u2 = e3.eigenvectors().col(1);
+        } else if (e3.eigenvalues()[2] < cfg_.blob_radius * cfg_.blob_radius * double(k)) {
+          u1 = Vec3::UnitX(), u2 = Vec3::UnitY();
+        } else {
+          continue;
+        }
+        const Vec3 dq = q - mean;
+        const double r1 = u1.dot(dq), r2 = u2.dot(dq);
+        const double w = huber(std::hypot(r1, r2), cfg_.huber_delta);
+        eq.add(R, p, u1, r1, w);
+        eq.add(R, p, u2, r2, w);
+        ++out.edge_matches;
+      }
+    }
+    if (!map.planes.empty()) {
+      const auto& mp = map.planes.points();
+      for (const auto& p : planes) {
+        const Vec3 q = out.pose * p;
+        if (map.planes.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
+        Vec3 mean = Vec3::Zero();
+        for (std::size_t i = 0; i < k; ++i) mean += mp[idx[i]];
+        mean /= double(k);
+        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+        for (std::size_t i = 0; i < k; ++i) C += (mp[idx[i]] - mean) * (mp[idx[i]] - mean).transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e3(C);
+        const auto& ev = e3.eigenvalues();
+        // A plane: thin across, spread along two directions (points all on one ring define no plane).
+        if (ev[0] > 0.1 * ev[1] || ev[1] < 1e-3 * k) continue;
+        const Vec3 n = e3.eigenvectors().col(0);
+        const double r = n.dot(q - mean);
+        eq.add(R, p, n, r, huber(r, cfg_.huber_delta));
+        ++out.plane_matches;
+      }
+    }
+    out.iterations = it + 1;
+    if (eq.n < 6) break;
+    const Matrix6d Hs = S.asDiagonal() * eq.H * S.asDiagonal();
+    es.compute(Hs);
+    // Solve in the eigenbasis, dropping directions without information (LOAM's solution remapping).
+    const Vec6 gs = S.asDiagonal() * eq.g;
+    Vec6 ds = Vec6::Zero();
+    for (int i = 0; i < 6; ++i) {
+      const double l = es.eigenvalues()[i];
+      if (l < cfg_.min_information) continue;
+      const Vec6 v = es.eigenvectors().col(i);
+      ds -= v * (v.dot(gs) / l);
+    }
+    const Vec6 d = S.asDiagonal() * ds;
+    out.pose = retract(out.pose, d);
+    if (d.head<3>().norm() < cfg_.converged_step && d.tail<3>().norm() < cfg_.converged_step) break;
+  }
+  if (eq.n < 6) {
+    out.degenerate = true;
+    out.degenerate_directions = 6;
+    out.information_eigen.setZero();
+    out.covariance = Matrix6d::Identity() * cfg_.degenerate_sigma * cfg_.degenerate_sigma;
+    return out;
+  }
+  const Matrix6d Hs = S.asDiagonal() * eq.H * S.asDiagonal();
+  es.compute(Hs);
+  out.information_eigen = es.eigenvalues();
+  // σ² of one residual from the fit itself, floored: the covariance must not claim better than the sensor.
+  const double s2 = std::max(eq.wr2 / std::max(1, eq.n - 6), 1e-4);
+  out.rms = std::sqrt(eq.wr2 / eq.n);
+  Matrix6d cov_s = Matrix6d::Zero();
+  const double big = cfg_.degenerate_sigma * cfg_.degenerate_sigma;
+  for (int i = 0; i < 6; ++i) {
+    const double l = es.eigenvalues()[i];
+    const Vec6 v = es.eigenvectors().col(i);
+    const bool deg = l < cfg_.min_information;
+    out.degenerate_directions += deg;
+    // In scaled units a degenerate rotation's σ would be kLever× the configured one: take the larger, honestly.
+    cov_s += v * v.transpose() * (deg ? big * kLever * kLever : s2 / l);
+  }
+  out.degenerate = out.degenerate_directions > 0;
+  out.covariance = S.asDiagonal() * cov_s * S.asDiagonal();
+  return out;
+}
+
+}  // namespace fsd::lidar_odometry
