@@ -232,12 +232,14 @@ test("the truth overlay draws the simulator's cones and car and adds the true cu
   assert.equal((await page.evaluate(() => window.__fsd.scene())).topics['/truth/car'], undefined);
 });
 
-test("Foxglove's client library (as in Foxglove Studio) subscribes, decodes and sets parameters", async () => {
+// Under both subprotocol names: Foxglove Studio's (foxglove.websocket.v1) and newer Foxglove SDK clients'
+// (foxglove.sdk.v1); the server must select the one asked for.
+for (const [protocol, setTo] of [['foxglove.websocket.v1', 0.85], ['foxglove.sdk.v1', 0.86]])
+test(`Foxglove's client library (as in Foxglove Studio) subscribes, decodes and sets parameters (${protocol})`, async () => {
   const { FoxgloveClient } = requireDev('@foxglove/ws-protocol');
   const WebSocket = requireDev('ws');
-  const client = new FoxgloveClient({
-    ws: new WebSocket(`ws://127.0.0.1:${daemon.port}/?token=${TOKEN}`, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]),
-  });
+  const ws = new WebSocket(`ws://127.0.0.1:${daemon.port}/?token=${TOKEN}`, [protocol]);
+  const client = new FoxgloveClient({ ws });
   const KEY = 'control.speed.mu_margin_known';
   const seen = { info: null, channels: new Map(), states: [], time: null, params: new Map(), errors: [] };
   const done = new Promise((resolve, reject) => {
@@ -256,7 +258,7 @@ test("Foxglove's client library (as in Foxglove Studio) subscribes, decodes and 
       if (state) {
         seen.stateSub = client.subscribe(state.id);
         client.getParameters([VMAX], 'get');
-        client.setParameters([{ name: KEY, value: 0.85 }], 'set');
+        client.setParameters([{ name: KEY, value: setTo }], 'set');
       }
     });
     client.on('message', (m) => {
@@ -289,8 +291,9 @@ test("Foxglove's client library (as in Foxglove Studio) subscribes, decodes and 
   assert.equal(last.t, BigInt(last.body.timestamp.sec) * 1000000000n + BigInt(last.body.timestamp.nsec));
   assert.ok(Number.isFinite(last.body.speed) && Number.isFinite(last.body.yaw_rate));
   assert.deepEqual(seen.params.get('get'), [{ name: VMAX, value: 3, type: 'float64' }]);
-  assert.deepEqual(seen.params.get('set'), [{ name: KEY, value: 0.85, type: 'float64' }]);
-  assert.equal(await apiValue(KEY), 0.85);
+  assert.deepEqual(seen.params.get('set'), [{ name: KEY, value: setTo, type: 'float64' }]);
+  assert.equal(await apiValue(KEY), setTo);
+  assert.equal(ws.protocol, protocol);
 });
 
 test('usable on a tablet in portrait', async () => {
