@@ -49,7 +49,9 @@ class StackTap {
   virtual void on_cycle(Stamp now) = 0;
   // At the end of that cycle: the command and AS request it handed to the VCU session (the replay compares them).
   virtual void on_output(Stamp /*now*/, const ControlCommand& /*command*/, wire::vcu::AsRequest /*request*/) {}
-  // What the Stack made of it, every 4th cycle (the dashboard's snapshot), shared and never changed afterwards.
+  // What the Stack made of it, every 4th cycle (the dashboard's snapshot), shared and never changed afterwards;
+  // only to taps that want it (building a snapshot costs: the Stack skips it when nobody does).
+  virtual bool wants_snapshots() const { return false; }
   virtual void on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& /*snapshot*/) {}
   // A live parameter change, in the cycle `now` that applied it.
   virtual void on_param(Stamp /*now*/, const ParamChange& /*change*/) {}

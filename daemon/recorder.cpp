@@ -302,19 +302,24 @@ struct Recorder::Impl {
     st.error = why;
   }
 
+  // Writes one item; a write error stops the recording (fail) and drops the file's writer. False once stopped.
+  bool write_or_stop(const Item& item) {
+    if (failed) return false;
+    try {
+      write(item);
+      return true;
+    } catch (const std::exception& e) {
+      fail(e.what());
+      writer.reset();  // its destructor swallows the sink's errors
+      sink.reset();
+      return false;
+    }
+  }
+
   void write_loop() {
     while (true) {
       // The log lines first: they wait at most one pop of the main queue (100 ms).
-      while (auto line = log_queue.try_pop()) {
-        if (failed) continue;
-        try {
-          write(*line);
-        } catch (const std::exception& e) {
-          fail(e.what());
-          writer.reset();
-          sink.reset();
-        }
-      }
+      while (auto line = log_queue.try_pop()) write_or_stop(*line);
       auto item = queue.pop_for(std::chrono::milliseconds(100));
       if (!item) {
         if (closing.load() && queue.size() == 0) break;
@@ -331,14 +336,7 @@ struct Recorder::Impl {
         refused.fetch_add(1);
         continue;
       }
-      try {
-        write(*item);
-        if (item->kind == Item::Kind::Output) publish();  // once a cycle
-      } catch (const std::exception& e) {
-        fail(e.what());
-        writer.reset();  // its destructor swallows the sink's errors
-        sink.reset();
-      }
+      if (write_or_stop(*item) && item->kind == Item::Kind::Output) publish();  // once a cycle
     }
     if (!failed && writer) {
       try {

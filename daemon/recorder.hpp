@@ -74,6 +74,7 @@ class Recorder final : public StackTap {
   void on_frame(const RawFrame& frame) override;
   void on_cycle(Stamp now) override;
   void on_output(Stamp now, const ControlCommand& command, wire::vcu::AsRequest request) override;
+  bool wants_snapshots() const override { return true; }
   void on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& snapshot) override;
   void on_param(Stamp now, const ParamChange& change) override;
   // A log line from any thread (web::make_log_sink's handler); stamped with the newest cycle's time on the run's

@@ -101,6 +101,7 @@ struct Stack::Impl {
 
   // Feeder hooks.
   std::vector<StackTap*> taps;
+  std::vector<StackTap*> snapshot_taps;  // those of `taps` that want the snapshots
   ParamRegistry* params = nullptr;
   std::shared_ptr<BoundedQueue<ParamChange>> changed_keys = std::make_shared<BoundedQueue<ParamChange>>(1024);
   std::uint64_t changes_dropped = 0;
@@ -423,7 +424,7 @@ struct Stack::Impl {
       if (metrics_extras) metrics_extras(fig);
       metrics->on_cycle(fig);
     }
-    if ((!telemetry && taps.empty()) || cycles % kTelemetryEvery != 0) return;
+    if ((!telemetry && snapshot_taps.empty()) || cycles % kTelemetryEvery != 0) return;
     TelemetrySnapshot s = view.snapshot(now, as_state(), cycle.out, *autopilot, vcu->status());
     if (state) {
       s.state = *state;
@@ -442,7 +443,7 @@ struct Stack::Impl {
     s.camera_jpeg = last_jpeg;
     if (telemetry_extras) telemetry_extras(s);
     const auto shared = std::make_shared<const TelemetrySnapshot>(std::move(s));
-    for (auto* tap : taps) tap->on_snapshot(shared);
+    for (auto* tap : snapshot_taps) tap->on_snapshot(shared);
     if (telemetry) telemetry->publish(shared);
   }
 
@@ -497,7 +498,9 @@ void Stack::report_link_event(const VcuLinkEvent& e) { impl_->on_link_event(e); 
 const StackCycle& Stack::step(Stamp now) { return impl_->step(now); }
 
 void Stack::add_tap(StackTap* tap) {
-  if (tap) impl_->taps.push_back(tap);
+  if (!tap) return;
+  impl_->taps.push_back(tap);
+  if (tap->wants_snapshots()) impl_->snapshot_taps.push_back(tap);
 }
 
 void Stack::set_params(ParamRegistry* params) {

@@ -66,10 +66,6 @@ void Telemetry::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void Telemetry::publish(TelemetrySnapshot snapshot) {
-  publish(std::make_shared<const TelemetrySnapshot>(std::move(snapshot)));
-}
-
 void Telemetry::publish(std::shared_ptr<const TelemetrySnapshot> snapshot) {
   latest_->set(std::move(snapshot));
   published_.inc();

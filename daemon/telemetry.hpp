@@ -60,9 +60,8 @@ class Telemetry {
   // `truth`: also add the /truth/* channels (sim runs); `car`: the body drawn on /car and /truth/car. The server
   // must outlive the Telemetry.
   Telemetry(web::WebServer& server, TelemetryRates rates = {}, bool truth = false, web::CarShape car = {});
-  ~Telemetry();                              // stops the thread
-  void publish(TelemetrySnapshot snapshot);  // never blocks
-  void publish(std::shared_ptr<const TelemetrySnapshot> snapshot);
+  ~Telemetry();                                                     // stops the thread
+  void publish(std::shared_ptr<const TelemetrySnapshot> snapshot);  // never blocks
   void stop();
   const web::StandardChannels& channels() const { return ch_; }
 

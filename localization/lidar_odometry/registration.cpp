@@ -41,6 +41,20 @@ struct Normal {
 };
 
 double huber(double r, double delta) { return std::abs(r) <= delta ? 1.0 : delta / std::abs(r); }
+
+// The k neighbours' centre and the eigen-decomposition of their scatter: the local line or plane they lie on.
+struct LocalShape {
+  Vec3 mean;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+};
+LocalShape local_shape(const std::vector<Vec3>& points, const std::size_t* idx, std::size_t k) {
+  Vec3 mean = Vec3::Zero();
+  for (std::size_t i = 0; i < k; ++i) mean += points[idx[i]];
+  mean /= double(k);
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < k; ++i) C += (points[idx[i]] - mean) * (points[idx[i]] - mean).transpose();
+  return {mean, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C)};
+}
 }  // namespace
 
 Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<Vec3>& planes, const FeatureMap& map,
@@ -64,12 +78,7 @@ Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<
       for (const auto& p : edges) {
         const Vec3 q = out.pose * p;
         if (map.edges.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
-        Vec3 mean = Vec3::Zero();
-        for (std::size_t i = 0; i < k; ++i) mean += mp[idx[i]];
-        mean /= double(k);
-        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-        for (std::size_t i = 0; i < k; ++i) C += (mp[idx[i]] - mean) * (mp[idx[i]] - mean).transpose();
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e3(C);
+        const auto [mean, e3] = local_shape(mp, idx, k);
         // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
         // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
         // through the blob's centre, as long as the blob is narrow.
@@ -94,12 +103,7 @@ Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<
       for (const auto& p : planes) {
         const Vec3 q = out.pose * p;
         if (map.planes.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
-        Vec3 mean = Vec3::Zero();
-        for (std::size_t i = 0; i < k; ++i) mean += mp[idx[i]];
-        mean /= double(k);
-        Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-        for (std::size_t i = 0; i < k; ++i) C += (mp[idx[i]] - mean) * (mp[idx[i]] - mean).transpose();
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e3(C);
+        const auto [mean, e3] = local_shape(mp, idx, k);
         const auto& ev = e3.eigenvalues();
         // A plane: thin across, spread along two directions (points all on one ring define no plane).
         if (ev[0] > 0.1 * ev[1] || ev[1] < 1e-3 * k) continue;

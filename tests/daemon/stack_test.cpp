@@ -68,6 +68,7 @@ struct WatchingTap final : StackTap {
   std::vector<Stamp> snapshots;
   void on_frame(const RawFrame&) override {}
   void on_cycle(Stamp) override {}
+  bool wants_snapshots() const override { return true; }
   void on_snapshot(const std::shared_ptr<const TelemetrySnapshot>& s) override { snapshots.push_back(s->t); }
   void on_param(Stamp now, const ParamChange& c) override { changes.emplace_back(now, c); }
 };
