@@ -5,12 +5,9 @@ JOBS ?= 2
 CMAKE_FLAGS ?=
 RUN_ARGS ?= run --sim --config deploy/config/virtual-car.json
 
-# ccache, when installed (deploy/install-deps.sh adds it), makes rebuilds fast; paths are hashed relative to the
-# checkout, so another checkout of the tree reuses the same cache.
-ifneq ($(shell command -v ccache 2>/dev/null),)
-CMAKE_FLAGS += -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+# ccache, when installed (deploy/install-deps.sh adds it, so it is looked for when configuring, after deps), makes
+# rebuilds fast; paths are hashed relative to the checkout, so another checkout of the tree reuses the same cache.
 export CCACHE_BASEDIR := $(CURDIR)
-endif
 
 .PHONY: run test build deps clean bench fuzz format
 
@@ -18,7 +15,9 @@ deps:
 	@bash deploy/install-deps.sh
 
 $(BUILD)/build.ninja:
-	@cmake -S . -B $(BUILD) -G Ninja $(CMAKE_FLAGS)
+	@launcher=; command -v ccache >/dev/null && \
+	  launcher="-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache"; \
+	  cmake -S . -B $(BUILD) -G Ninja $$launcher $(CMAKE_FLAGS)
 
 build: deps $(BUILD)/build.ninja
 	@cmake --build $(BUILD) -j $(JOBS)

@@ -1,9 +1,12 @@
 // The scorecard's yardstick: the true centre line lies half-way between the boundaries on every loop track.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "drivers/sim/reference_line.hpp"
+#include "drivers/sim/track_generator.hpp"
 
 namespace fsd::sim {
 namespace {
@@ -65,6 +68,65 @@ TEST(ReferenceLine, BoundaryOfANarrowLoopTakesEveryConeInTurn) {
   // Driving direction: the boundaries run along the start heading (+x) first.
   EXPECT_GT((ref.right()[1] - ref.right()[0]).x(), 3.0);
   EXPECT_GT((ref.left()[2] - ref.left()[0]).x(), 3.0);
+}
+
+// A loop round a thin island: the inner (left) boundary's two legs run 2 m apart, nearer than the next cone along
+// a leg (2.5 m). A nearest-neighbour chain jumps across the island and ends far from where it began (generated
+// trackdrives 68 and 149 were scored as open courses); the boundary is still one loop.
+TEST(ReferenceLine, LoopRoundAThinIslandIsALoop) {
+  Track t;
+  const double leg = 40.0, island = 1.0, outer = 4.5;  // half-widths of the island and of the outer stadium
+  auto stadium = [&](double r, double spacing, ConeRole role) {
+    // Straight legs at y = ±r from x = 0 to leg, half circles round (0, 0) and (leg, 0); counter-clockwise.
+    const double perimeter = 2 * leg + 2 * std::numbers::pi * r;
+    const int n = static_cast<int>(std::round(perimeter / spacing));
+    for (int k = 0; k < n; ++k) {
+      double s = perimeter * k / n;
+      Vec2 p;
+      if (s < leg) {
+        p = {s, -r};
+      } else if ((s -= leg) < std::numbers::pi * r) {
+        const double a = -std::numbers::pi / 2 + s / r;
+        p = Vec2(leg, 0) + r * Vec2(std::cos(a), std::sin(a));
+      } else if ((s -= std::numbers::pi * r) < leg) {
+        p = {leg - s, r};
+      } else {
+        s -= leg;
+        const double a = std::numbers::pi / 2 + s / r;
+        p = r * Vec2(std::cos(a), std::sin(a));
+      }
+      t.cones.push_back({p, role});
+    }
+  };
+  stadium(island, 2.5, ConeRole::Left);
+  stadium(outer, 3.0, ConeRole::Right);
+  t.start = Pose2{10.0, -0.5 * (island + outer), 0.0};  // on the lower leg, driving +x (counter-clockwise)
+  const ReferenceLine ref(t);
+  ASSERT_TRUE(ref.closed());
+  // The centre line is the stadium half way between the boundaries: 2.75 m from the legs' axis.
+  const double mid = 0.5 * (island + outer);
+  EXPECT_NEAR(ref.length(), 2 * leg + 2 * std::numbers::pi * mid, 0.05 * ref.length());
+  for (const Vec2& p : {Vec2(20, -mid), Vec2(20, mid)}) EXPECT_LT(ref.distance(p), 0.3) << p.transpose();
+  // Round the island's ends its polyline is a chord or two (2.5 m steps round a 1 m radius): half a metre off.
+  for (const Vec2& p : {Vec2(leg + mid, 0), Vec2(-mid, 0)}) EXPECT_LT(ref.distance(p), 0.6) << p.transpose();
+  for (const auto& c : t.cones) EXPECT_GT(ref.distance(c.position), 1.0) << c.position.transpose();
+}
+
+// Every generated trackdrive is a loop (seeds 1–200; 68 and 149 have parallel legs 2 m apart, where a greedy chain
+// jumps across): each boundary is one closed chain through all of its cones.
+TEST(ReferenceLine, EveryGeneratedTrackdriveIsALoop) {
+  for (int seed = 1; seed <= 200; ++seed) {
+    TrackGeneratorOptions o;
+    o.seed = seed;
+    o.kind = LayoutKind::Trackdrive;
+    const Track t = generate_track(o);
+    const ReferenceLine ref(t);
+    EXPECT_TRUE(ref.closed()) << "seed " << seed;
+    std::size_t left = 0, right = 0;
+    for (const auto& c : t.cones) left += c.role == ConeRole::Left, right += c.role == ConeRole::Right;
+    EXPECT_EQ(ref.left().size(), left) << "seed " << seed;
+    EXPECT_EQ(ref.right().size(), right) << "seed " << seed;
+  }
 }
 
 TEST(ReferenceLine, StraightOfTheAccelerationTrack) {
