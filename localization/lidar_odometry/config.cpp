@@ -27,6 +27,8 @@ const ConfigSection<OdometryConfig>& odometry_section() {
   static const auto s =
       ConfigSection<C>("localization.lidar_odometry")
           .integer("max_iterations", &C::max_iterations, 1, 100, "", "Gauss-Newton iterations per scan.")
+          .integer("reassociate_every", &C::reassociate_every, 1, 100, "",
+                   "Gauss-Newton iterations between searches of the map neighbours; kept in between.")
           .number("converged_step", &C::converged_step, 1e-8, 1.0, "m|rad",
                   "An update smaller than this ends the iterations.")
           .integer("knn", &C::knn, 3, 20, "", "Map neighbours that define a line (edges) or a plane (planes).")

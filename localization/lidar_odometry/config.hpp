@@ -21,6 +21,7 @@ const ConfigSection<FeatureConfig>& feature_section();
 
 struct OdometryConfig {
   int max_iterations = 12;          // Gauss–Newton iterations per scan
+  int reassociate_every = 3;        // iterations between searches of the map neighbours (kept in between)
   double converged_step = 1e-4;     // m or rad: an update smaller than this ends the iterations
   int knn = 5;                      // neighbours that define a line or a plane
   double max_neighbour_dist = 1.0;  // m: farther neighbours define nothing
@@ -29,7 +30,7 @@ struct OdometryConfig {
   double min_information = 1.0;     // eigenvalue of the normal matrix (rotation per 10 m) below which: degenerate
   double degenerate_sigma = 10.0;   // m or rad: the σ reported along a degenerate direction
   int deskew_passes = 2;            // registrations per scan, each deskewed with the motion the previous one found
-  double velocity_gain = 0.5;    // share of the newest increment in the twist that deskews and predicts the next scan
+  double velocity_gain = 0.2;    // share of the newest increment in the twist that deskews and predicts the next scan
   bool decouple = true;          // ground planes constrain only z, roll, pitch; edges and other planes x, y, yaw
   double ground_normal_z = 0.9;  // a plane match whose normal is this close to the body's z is ground
   double residual_sigma = 0.03;  // m: σ of one matched residual, scales the motion prior against the matches

@@ -80,6 +80,11 @@ Alignment Registration::align_motion(const std::vector<TimedPoint>& edges, const
                wr = std::pow(cfg_.residual_sigma / cfg_.prior_sigma_rotation, 2);
   prior_w << wt, wt, wt, wr, wr, wr;
   const Eigen::Matrix3d R0 = origin.linear();
+  struct Match {
+    bool valid = false;
+    Vec3 mean, u1, u2;  // a line: the two directions across it; a plane: u1 its normal
+  };
+  std::vector<Match> edge_match, plane_match;
   for (int it = 0; it < cfg_.max_iterations; ++it) {
     eq = Normal{};
     out.edge_matches = out.plane_matches = 0;
@@ -95,48 +100,68 @@ Alignment Registration::align_motion(const std::vector<TimedPoint>& edges, const
       eq.wr2 += w * r * r;
       ++eq.n;
     };
+    // Correspondences (the map line or plane of each point) are searched every `reassociate_every` iterations and
+    // kept in between: the k-d tree searches and the 3×3 eigen-decompositions are most of the time.
+    const bool reassociate = it % std::max(1, cfg_.reassociate_every) == 0;
+    if (reassociate) {
+      edge_match.assign(edges.size(), Match{});
+      plane_match.assign(planes.size(), Match{});
+    }
     if (!map.edges.empty()) {
       const auto& mp = map.edges.points();
-      for (const auto& x : edges) {
+      for (std::size_t i = 0; i < edges.size(); ++i) {
+        const auto& x = edges[i];
         const Pose3 T = origin * motion(delta, x.s);
         const Vec3 q = T * x.p;
-        if (map.edges.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
-        const auto [mean, e3] = local_shape(mp, idx, k);
-        // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
-        // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
-        // through the blob's centre, as long as the blob is narrow.
-        Vec3 u1, u2;
-        if (e3.eigenvalues()[2] >= 3 * e3.eigenvalues()[1]) {
-          u1 = e3.eigenvectors().col(0), u2 = e3.eigenvectors().col(1);
-        } else if (e3.eigenvalues()[2] < cfg_.blob_radius * cfg_.blob_radius * double(k)) {
-          u1 = Vec3::UnitX(), u2 = Vec3::UnitY();
-        } else {
-          continue;
+        Match& m = edge_match[i];
+        if (reassociate) {
+          if (map.edges.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
+          const auto [mean, e3] = local_shape(mp, idx, k);
+          // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
+          // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
+          // through the blob's centre, as long as the blob is narrow.
+          if (e3.eigenvalues()[2] >= 3 * e3.eigenvalues()[1]) {
+            m.u1 = e3.eigenvectors().col(0), m.u2 = e3.eigenvectors().col(1);
+          } else if (e3.eigenvalues()[2] < cfg_.blob_radius * cfg_.blob_radius * double(k)) {
+            m.u1 = Vec3::UnitX(), m.u2 = Vec3::UnitY();
+          } else {
+            continue;
+          }
+          m.mean = mean;
+          m.valid = true;
         }
-        const Vec3 dq = q - mean;
-        const double r1 = u1.dot(dq), r2 = u2.dot(dq);
+        if (!m.valid) continue;
+        const Vec3 dq = q - m.mean;
+        const double r1 = m.u1.dot(dq), r2 = m.u2.dot(dq);
         const double w = huber(std::hypot(r1, r2), cfg_.huber_delta);
         const Eigen::Matrix3d Rs = T.linear();
-        add(x, Rs, u1, r1, w, planar);
-        add(x, Rs, u2, r2, w, planar);
+        add(x, Rs, m.u1, r1, w, planar);
+        add(x, Rs, m.u2, r2, w, planar);
         ++out.edge_matches;
       }
     }
     if (!map.planes.empty()) {
       const auto& mp = map.planes.points();
-      for (const auto& x : planes) {
+      for (std::size_t i = 0; i < planes.size(); ++i) {
+        const auto& x = planes[i];
         const Pose3 T = origin * motion(delta, x.s);
         const Vec3 q = T * x.p;
-        if (map.planes.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
-        const auto [mean, e3] = local_shape(mp, idx, k);
-        const auto& ev = e3.eigenvalues();
-        // A plane: thin across, spread along two directions (points all on one ring define no plane).
-        if (ev[0] > 0.1 * ev[1] || ev[1] < 1e-3 * k) continue;
-        const Vec3 n = e3.eigenvectors().col(0);
-        const double r = n.dot(q - mean);
+        Match& m = plane_match[i];
+        if (reassociate) {
+          if (map.planes.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
+          const auto [mean, e3] = local_shape(mp, idx, k);
+          const auto& ev = e3.eigenvalues();
+          // A plane: thin across, spread along two directions (points all on one ring define no plane).
+          if (ev[0] > 0.1 * ev[1] || ev[1] < 1e-3 * k) continue;
+          m.mean = mean;
+          m.u1 = e3.eigenvectors().col(0);
+          m.valid = true;
+        }
+        if (!m.valid) continue;
+        const double r = m.u1.dot(q - m.mean);
         const Eigen::Matrix3d Rs = T.linear();
-        const bool ground = std::abs((Rs.transpose() * n).z()) >= cfg_.ground_normal_z;
-        add(x, Rs, n, r, huber(r, cfg_.huber_delta), ground ? vertical : planar);
+        const bool ground = std::abs((Rs.transpose() * m.u1).z()) >= cfg_.ground_normal_z;
+        add(x, Rs, m.u1, r, huber(r, cfg_.huber_delta), ground ? vertical : planar);
         ++out.plane_matches;
       }
     }
