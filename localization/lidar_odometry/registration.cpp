@@ -31,7 +31,9 @@ LocalShape local_shape(const std::vector<Vec3>& points, const std::size_t* idx, 
   mean /= double(k);
   Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < k; ++i) C += (points[idx[i]] - mean) * (points[idx[i]] - mean).transpose();
-  return {mean, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C)};
+  LocalShape out{mean, {}};
+  out.eig.computeDirect(C);  // closed form for 3×3: several times faster than the iterative solver
+  return out;
 }
 }  // namespace
 
