@@ -208,24 +208,38 @@ TEST(LidarOdometry, ScansOfFlatGroundOnlyAreFlaggedDegenerate) {
   EXPECT_EQ(flagged, 4);
 }
 
-// The bar of issue #17: LiDAR-only drift <= 1 % of the distance over a lap, end point and KITTI-style (over every
-// 50 m segment), on shared trackdrives at 8 m/s, integrated from the true start pose and compared with the
-// simulator's true poses (tests/localization/odometry_lap.hpp). The per-scan CPU time is printed (informative:
-// the Release figure is the bench's, docs/benchmarks.md). Not met yet on the KITTI-style measure (1.3-1.5 %, the
-// end point is within 1 %: docs/localization.md), so it is a measurement run by hand, not in CI, until it is:
-//   build/tests/test_localization --gtest_also_run_disabled_tests --gtest_filter='*LidarOdometryLap*'
+// The bar of issue #17: LiDAR-only drift <= 1 % of the distance over a lap, on shared trackdrives at 8 m/s,
+// integrated from the true start pose and compared with the simulator's true poses (odometry_lap.hpp). Two measures:
+// the end point's planar error over the distance driven (the scorecard's odometry.drift_pct), and KITTI-style, the
+// mean relative planar error over every 50 m segment, which a closed lap cannot flatter. The end point meets 1 % on
+// every layout (0.26-0.38 %); KITTI-style does not yet everywhere (0.85-1.16 %, docs/localization.md): asserted at
+// 1.5 % as a guard here, at 1 % in the disabled test below. The CPU time per scan is printed (informative: the
+// Release figure is the bench's, docs/benchmarks.md).
 class LidarOdometryLap : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(LidarOdometryLap, DISABLED_DriftsLessThanOnePercentOfTheDistanceOverALap) {
-  const auto r = test::drive_odometry_lap(GetParam(), 8.0);
-  RecordProperty("drift_pct", std::to_string(r.drift_pct));
+void print_lap(const char* track, const test::OdometryLapResult& r) {
   std::printf(
       "%s: %d scans, %.1f m, end error %.3f m (%.3f %%), KITTI-style %.3f %%, yaw %.2f deg, worst scan yaw %.2f deg, "
       "degenerate %d, %.1f ms p50 per scan\n",
-      GetParam(), r.scans, r.distance, r.end_error, r.drift_pct, r.kitti_pct, r.yaw_error_deg, r.max_scan_yaw_error_deg,
+      track, r.scans, r.distance, r.end_error, r.drift_pct, r.kitti_pct, r.yaw_error_deg, r.max_scan_yaw_error_deg,
       r.degenerate, r.p50_ms());
+}
+
+TEST_P(LidarOdometryLap, DriftsLessThanOnePercentOfTheDistanceOverALap) {
+  const auto r = test::drive_odometry_lap(GetParam(), 8.0);
+  RecordProperty("drift_pct", std::to_string(r.drift_pct));
+  print_lap(GetParam(), r);
   EXPECT_GT(r.distance, 100.0);
   EXPECT_LT(r.drift_pct, 1.0);
+  EXPECT_LT(r.kitti_pct, 1.5) << "the relative error grew beyond what was measured (0.85-1.16 %)";
+  EXPECT_LE(r.degenerate, 5) << "these layouts constrain every scan but the first few";
+}
+
+// Not met on epfl_fsds_competition_1 (1.16 %): run by hand,
+//   build/tests/test_localization --gtest_also_run_disabled_tests --gtest_filter='*LidarOdometryLap*'
+TEST_P(LidarOdometryLap, DISABLED_RelativeDriftUnderOnePercentOverEvery50Metres) {
+  const auto r = test::drive_odometry_lap(GetParam(), 8.0);
+  print_lap(GetParam(), r);
   EXPECT_LT(r.kitti_pct, 1.0);
 }
 
