@@ -4,7 +4,8 @@
 // Run from the project root (Release build):
 //   build-rel/bench/lidar_odometry_bench [--speed 8] [--trace] [--set KEY=VALUE ...] [TRACK.csv ...]
 // --trace prints one line per scan: the true and the estimated increment and their difference; --set changes one
-// localization.lidar_odometry.* key (a JSON value) for a sweep.
+// localization.lidar_odometry.* key (a JSON value) for a sweep; --known-start-speed gives the odometry the car's
+// speed at the first scan (the drive is a flying start), as wheel speeds would.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -17,7 +18,7 @@
 
 int main(int argc, char** argv) {
   double speed = 8.0;
-  bool trace = false;
+  bool trace = false, known_start_speed = false;
   std::vector<std::string> tracks;
   auto schema = std::make_shared<fsd::ConfigSchema>();
   fsd::lidar_odometry::describe_lidar_odometry_config(*schema);
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--speed" && i + 1 < argc) {
       speed = std::atof(argv[++i]);
+    } else if (a == "--known-start-speed") {
+      known_start_speed = true;
     } else if (a == "--trace") {
       trace = true;
     } else if (a == "--set" && i + 1 < argc) {
@@ -39,7 +42,9 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (a.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "usage: %s [--speed M_S] [--trace] [--set KEY=VALUE ...] [TRACK.csv ...]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--speed M_S] [--known-start-speed] [--trace] [--set KEY=VALUE ...] [TRACK.csv ...]\n",
+                   argv[0]);
       return 2;
     } else {
       tracks.push_back(a);
@@ -53,7 +58,7 @@ int main(int argc, char** argv) {
       "| layout | scans | distance | end-point error | KITTI-style | yaw error | worst scan yaw | degenerate | "
       "ms/scan p50 | p99 |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& t : tracks) {
-    const auto r = fsd::test::drive_odometry_lap(t, speed, odo_cfg, trace);
+    const auto r = fsd::test::drive_odometry_lap(t, speed, odo_cfg, trace, known_start_speed);
     std::string name = t.substr(t.find_last_of('/') + 1);
     name = name.substr(0, name.rfind('.'));
     std::printf("| %s | %d | %.1f m | %.2f m (%.2f %%) | %.2f %% | %.2f° | %.2f° | %d | %.2f | %.2f |\n", name.c_str(),

@@ -42,9 +42,11 @@ inline double thread_cpu_ms() {
 }
 
 // Drives one lap of `track` at `speed` and integrates the odometry from the true starting pose. `trace`: one line per
-// scan on stdout (true and estimated increment, their difference, the diagnostics).
+// scan on stdout (true and estimated increment, their difference, the diagnostics). The car already drives at the
+// first scan; `known_start_speed` hands the odometry that speed (else it starts from a standing prediction).
 inline OdometryLapResult drive_odometry_lap(const std::string& track, double speed,
-                                            const lidar_odometry::LidarOdometryConfig& cfg = {}, bool trace = false) {
+                                            const lidar_odometry::LidarOdometryConfig& cfg = {}, bool trace = false,
+                                            bool known_start_speed = false) {
   SimLidarSetup setup;
   setup.track = track;
   setup.speed = speed;
@@ -56,7 +58,11 @@ inline OdometryLapResult drive_odometry_lap(const std::string& track, double spe
   for (;;) {
     const Scan scan = drive.next();
     const Stamp t = firing_span(scan).last;
-    if (!odo.started()) odo.start_at(drive.body_pose(t));
+    if (!odo.started()) {
+      lidar_odometry::Vec6 twist = lidar_odometry::Vec6::Zero();
+      if (known_start_speed) twist[0] = speed;  // the wheel speed a car would know at a flying start
+      odo.start_at(drive.body_pose(t), twist);
+    }
     const double c0 = thread_cpu_ms();
     const auto out = odo.process(scan);
     r.cpu_ms.push_back(thread_cpu_ms() - c0);
