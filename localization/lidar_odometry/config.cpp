@@ -27,6 +27,8 @@ const ConfigSection<OdometryConfig>& odometry_section() {
   static const auto s =
       ConfigSection<C>("localization.lidar_odometry")
           .integer("max_iterations", &C::max_iterations, 1, 100, "", "Gauss-Newton iterations per scan.")
+          .integer("reassociate_every", &C::reassociate_every, 1, 100, "",
+                   "Gauss-Newton iterations between searches of the map neighbours; kept in between.")
           .number("converged_step", &C::converged_step, 1e-8, 1.0, "m|rad",
                   "An update smaller than this ends the iterations.")
           .integer("knn", &C::knn, 3, 20, "", "Map neighbours that define a line (edges) or a plane (planes).")
@@ -41,6 +43,18 @@ const ConfigSection<OdometryConfig>& odometry_section() {
                   "Standard deviation reported along a degenerate direction.")
           .integer("deskew_passes", &C::deskew_passes, 1, 5, "",
                    "Registrations per scan; each after the first deskews with the motion the previous one found.")
+          .number("velocity_gain", &C::velocity_gain, 0.05, 1.0, "",
+                  "Share of the newest increment in the twist that deskews and predicts the next scan (a low-pass: "
+                  "a wrong increment is not fed back whole into the next scan's deskew).")
+          .boolean("decouple", &C::decouple,
+                   "Ground planes constrain only z, roll and pitch; edges and other planes only x, y and yaw.")
+          .number("ground_normal_z", &C::ground_normal_z, 0.0, 1.0, "",
+                  "A plane match whose normal has at least this z component (body frame) is ground.")
+          .number("residual_sigma", &C::residual_sigma, 1e-4, 1.0, "m",
+                  "Standard deviation of one matched residual: weighs the motion prior against the matches.")
+          .number("prior_sigma_translation", &C::prior_sigma_translation, 1e-4, 100.0, "m",
+                  "Standard deviation of the constant-velocity prediction per scan, translation ...")
+          .number("prior_sigma_rotation", &C::prior_sigma_rotation, 1e-5, 10.0, "rad", "... and rotation.")
           .integer("keyframes", &C::keyframes, 1, 50, "", "Keyframes in the local map.")
           .number("keyframe_distance", &C::keyframe_distance, 0.0, 100.0, "m",
                   "Distance travelled since the last keyframe that makes a new one ...")

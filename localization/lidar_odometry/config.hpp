@@ -10,7 +10,7 @@ struct FeatureConfig {
   int sectors = 6;                    // each ring is split into this many azimuth sectors, features picked per sector
   int edges_per_sector = 10;          // sharpest points kept per sector ...
   double edge_threshold = 0.1;        // ... with c above this
-  int planes_per_sector = 40;         // flattest points kept per sector ...
+  int planes_per_sector = 8;          // flattest points kept per sector ...
   double plane_threshold = 0.05;      // ... with c below this
   double min_range = 1.0;             // m: closer returns are the car itself
   double max_range = 60.0;            // m: farther returns are too sparse to match
@@ -21,6 +21,7 @@ const ConfigSection<FeatureConfig>& feature_section();
 
 struct OdometryConfig {
   int max_iterations = 12;          // Gauss–Newton iterations per scan
+  int reassociate_every = 3;        // iterations between searches of the map neighbours (kept in between)
   double converged_step = 1e-4;     // m or rad: an update smaller than this ends the iterations
   int knn = 5;                      // neighbours that define a line or a plane
   double max_neighbour_dist = 1.0;  // m: farther neighbours define nothing
@@ -29,10 +30,16 @@ struct OdometryConfig {
   double min_information = 1.0;     // eigenvalue of the normal matrix (rotation per 10 m) below which: degenerate
   double degenerate_sigma = 10.0;   // m or rad: the σ reported along a degenerate direction
   int deskew_passes = 2;            // registrations per scan, each deskewed with the motion the previous one found
-  int keyframes = 10;               // keyframes of the local map
-  double keyframe_distance = 2.0;   // m travelled ...
-  double keyframe_angle = 0.17;     // ... or rad turned since the last keyframe makes a new one
-  double map_voxel = 0.15;          // m: one map feature per voxel
+  double velocity_gain = 0.2;    // share of the newest increment in the twist that deskews and predicts the next scan
+  bool decouple = true;          // ground planes constrain only z, roll, pitch; edges and other planes x, y, yaw
+  double ground_normal_z = 0.9;  // a plane match whose normal is this close to the body's z is ground
+  double residual_sigma = 0.03;  // m: σ of one matched residual, scales the motion prior against the matches
+  double prior_sigma_translation = 0.1;  // m: constant-velocity prediction's σ per scan (translation) ...
+  double prior_sigma_rotation = 0.02;    // rad: ... and rotation
+  int keyframes = 10;                    // keyframes of the local map
+  double keyframe_distance = 2.0;        // m travelled ...
+  double keyframe_angle = 0.17;          // ... or rad turned since the last keyframe makes a new one
+  double map_voxel = 0.15;               // m: one map feature per voxel
 };
 const ConfigSection<OdometryConfig>& odometry_section();
 

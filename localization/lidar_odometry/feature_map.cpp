@@ -26,7 +26,7 @@ struct PointIndex::Tree {
   Cloud cloud;
   Tree3 tree;
   explicit Tree(std::vector<Vec3> p)
-      : pts(std::move(p)), cloud{&pts}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+      : pts(std::move(p)), cloud{&pts}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(20)) {
     tree.buildIndex();
   }
 };

@@ -5,16 +5,6 @@
 namespace fsd::lidar_odometry {
 
 namespace {
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-
-// The body's motion over τ seconds at a constant twist (first order: rotation and translation independently).
-Pose3 motion(const Vec6& twist, double tau) {
-  Pose3 D = Pose3::Identity();
-  const Vec3 w = twist.tail<3>() * tau;
-  if (w.norm() > 1e-12) D.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
-  D.translation() = twist.head<3>() * tau;
-  return D;
-}
 
 Vec6 twist_of(const Pose3& D, double dt) {
   Vec6 v;
@@ -58,6 +48,7 @@ OdometryOutput LidarOdometry::process(const Scan& scan) {
     out.stamp = stamp_;
     return out;
   }
+  const Vec6 velocity0 = velocity_;
   auto edges = deskew(f.edges, t), planes = deskew(f.planes, t);
   Alignment a = registration_.align(edges, planes, map_, pose_ * motion(velocity_, dt));
   Pose3 delta = pose_.inverse() * a.pose;
@@ -86,7 +77,7 @@ OdometryOutput LidarOdometry::process(const Scan& scan) {
   d.min_information = a.information_eigen[0];
   d.rms = a.rms;
 
-  velocity_ = twist_of(delta, dt);
+  velocity_ = velocity0 + cfg_.odometry.velocity_gain * (twist_of(delta, dt) - velocity0);
   pose_ = a.pose;
   stamp_ = t;
   const Pose3 since = last_keyframe_.inverse() * pose_;

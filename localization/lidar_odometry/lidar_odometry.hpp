@@ -38,7 +38,12 @@ class LidarOdometry {
  public:
   LidarOdometry(const LidarOdometryConfig& cfg, const Pose3& body_from_sensor);
   // The body pose the first scan is taken at (identity by default).
-  void start_at(const Pose3& origin) { origin_ = origin; }
+  // `twist`: the body's velocity (v, ω) per second then, if the caller knows it (wheel speeds, the fusion): a start
+  // at speed otherwise begins from a standing prediction, which at 12 m/s is too far off to match (measured).
+  void start_at(const Pose3& origin, const Vec6& twist = Vec6::Zero()) {
+    origin_ = origin;
+    velocity_ = twist;
+  }
   OdometryOutput process(const Scan& scan);
   bool started() const { return started_; }
   const Pose3& pose() const { return pose_; }
@@ -56,7 +61,7 @@ class LidarOdometry {
   bool started_ = false;
   Pose3 pose_ = Pose3::Identity();
   Stamp stamp_ = 0;
-  Eigen::Matrix<double, 6, 1> velocity_ = Eigen::Matrix<double, 6, 1>::Zero();  // body twist (v, ω) per second
+  Vec6 velocity_ = Vec6::Zero();  // body twist (v, ω) per second
   struct Cloud {
     std::vector<Vec3> edges, planes;  // odometry frame
   };

@@ -7,37 +7,15 @@
 namespace fsd::lidar_odometry {
 
 namespace {
-using Vec6 = Eigen::Matrix<double, 6, 1>;
 // Rotations are scaled by this lever before the eigenvalues are compared with translations: a radian at 10 m
 // moves a point as far as 10 m of translation.
 constexpr double kLever = 10.0;
-
-Vec3 skew_times(const Vec3& a, const Vec3& b) { return a.cross(b); }
-
-// T · Exp(δ) with δ = (v, ω) in the body frame.
-Pose3 retract(const Pose3& T, const Vec6& d) {
-  Pose3 D = Pose3::Identity();
-  const Vec3 w = d.tail<3>();
-  if (w.norm() > 1e-12) D.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
-  D.translation() = d.head<3>();
-  return T * D;
-}
 
 struct Normal {
   Matrix6d H = Matrix6d::Zero();
   Vec6 g = Vec6::Zero();
   double wr2 = 0;
   int n = 0;
-  // One scalar residual r along the world direction `dir` for body point p; R the body's rotation.
-  void add(const Eigen::Matrix3d& R, const Vec3& p, const Vec3& dir, double r, double w) {
-    const Vec3 m = R.transpose() * dir;
-    Vec6 J;
-    J << m, skew_times(p, m);
-    H += w * J * J.transpose();
-    g += w * J * r;
-    wr2 += w * r * r;
-    ++n;
-  }
 };
 
 double huber(double r, double delta) { return std::abs(r) <= delta ? 1.0 : delta / std::abs(r); }
@@ -53,14 +31,36 @@ LocalShape local_shape(const std::vector<Vec3>& points, const std::size_t* idx, 
   mean /= double(k);
   Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < k; ++i) C += (points[idx[i]] - mean) * (points[idx[i]] - mean).transpose();
-  return {mean, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C)};
+  LocalShape out{mean, {}};
+  out.eig.computeDirect(C);  // closed form for 3×3: several times faster than the iterative solver
+  return out;
 }
 }  // namespace
 
+Pose3 motion(const Vec6& delta, double s) {
+  Pose3 D = Pose3::Identity();
+  const Vec3 w = delta.tail<3>() * s;
+  if (w.norm() > 1e-12) D.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+  D.translation() = delta.head<3>() * s;
+  return D;
+}
+
 Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<Vec3>& planes, const FeatureMap& map,
                               const Pose3& guess) const {
+  std::vector<TimedPoint> e, p;
+  e.reserve(edges.size());
+  p.reserve(planes.size());
+  for (const auto& x : edges) e.push_back({x, 1.0});
+  for (const auto& x : planes) p.push_back({x, 1.0});
+  Vec6 d;
+  return align_motion(e, p, map, guess, Vec6::Zero(), &d);
+}
+
+Alignment Registration::align_motion(const std::vector<TimedPoint>& edges, const std::vector<TimedPoint>& planes,
+                                     const FeatureMap& map, const Pose3& origin, const Vec6& predicted,
+                                     Vec6* delta_out) const {
   Alignment out;
-  out.pose = guess;
+  Vec6 delta = predicted;
   const std::size_t k = std::size_t(std::clamp(cfg_.knn, 3, 20));
   std::size_t idx[20];
   double d2[20];
@@ -69,67 +69,116 @@ Alignment Registration::align(const std::vector<Vec3>& edges, const std::vector<
   Eigen::SelfAdjointEigenSolver<Matrix6d> es;
   Eigen::Matrix<double, 6, 1> S;
   S << 1, 1, 1, 1.0 / kLever, 1.0 / kLever, 1.0 / kLever;
+  // Decoupling (LeGO-LOAM's two-step idea in one solve): on a race track the ground is most of the returns and its
+  // locally fitted normals are noisy; let it constrain only what it can (z, roll, pitch), and the edges (cones,
+  // posts) and the other planes (fences, stacks) only x, y and yaw.
+  Vec6 all = Vec6::Ones(), planar, vertical;
+  planar << 1, 1, 0, 0, 0, 1;
+  vertical << 0, 0, 1, 1, 1, 0;
+  if (!cfg_.decouple) planar = vertical = all;
+  // The constant-velocity prediction as a prior, in the residuals' units: (σ_residual / σ_prior)².
+  Vec6 prior_w;
+  const double wt = std::pow(cfg_.residual_sigma / cfg_.prior_sigma_translation, 2),
+               wr = std::pow(cfg_.residual_sigma / cfg_.prior_sigma_rotation, 2);
+  prior_w << wt, wt, wt, wr, wr, wr;
+  const Eigen::Matrix3d R0 = origin.linear();
+  struct Match {
+    bool valid = false;
+    Vec3 mean, u1, u2;  // a line: the two directions across it; a plane: u1 its normal
+  };
+  std::vector<Match> edge_match, plane_match;
   for (int it = 0; it < cfg_.max_iterations; ++it) {
     eq = Normal{};
     out.edge_matches = out.plane_matches = 0;
-    const Eigen::Matrix3d R = out.pose.linear();
+    // One scalar residual r along the world direction `dir` of point x: q = origin · motion(δ, s) · p, so
+    // ∂q/∂v = s·R0 and ∂q/∂ω ≈ −s·R(s) [p]× (first order in the rotation within the increment).
+    auto add = [&](const TimedPoint& x, const Eigen::Matrix3d& Rs, const Vec3& dir, double r, double w,
+                   const Vec6& mask) {
+      Vec6 J;
+      J << x.s * (R0.transpose() * dir), x.s * x.p.cross(Rs.transpose() * dir);
+      J = J.cwiseProduct(mask);
+      eq.H += w * J * J.transpose();
+      eq.g += w * J * r;
+      eq.wr2 += w * r * r;
+      ++eq.n;
+    };
+    // Correspondences (the map line or plane of each point) are searched every `reassociate_every` iterations and
+    // kept in between: the k-d tree searches and the 3×3 eigen-decompositions are most of the time.
+    const bool reassociate = it % std::max(1, cfg_.reassociate_every) == 0;
+    if (reassociate) {
+      edge_match.assign(edges.size(), Match{});
+      plane_match.assign(planes.size(), Match{});
+    }
     if (!map.edges.empty()) {
       const auto& mp = map.edges.points();
-      for (const auto& p : edges) {
-        const Vec3 q = out.pose * p;
-        if (map.edges.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
-        const auto [mean, e3] = local_shape(mp, idx, k);
-        // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
-        // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
-        // through the blob's centre, as long as the blob is narrow.
-        Vec3 u1, u2;
-        if (e3.eigenvalues()[2] >= 3 * e3.eigenvalues()[1]) {
-          u1 = e3.eigenvectors().col(0), u2 = e3.eigenvectors().col(1);
-        } else if (e3.eigenvalues()[2] < cfg_.blob_radius * cfg_.blob_radius * double(k)) {
-          u1 = Vec3::UnitX(), u2 = Vec3::UnitY();
-        } else {
-          continue;
+      for (std::size_t i = 0; i < edges.size(); ++i) {
+        const auto& x = edges[i];
+        const Pose3 T = origin * motion(delta, x.s);
+        const Vec3 q = T * x.p;
+        Match& m = edge_match[i];
+        if (reassociate) {
+          if (map.edges.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
+          const auto [mean, e3] = local_shape(mp, idx, k);
+          // A line: one dominant direction (LOAM's test, largest eigenvalue 3× the middle one). Otherwise a small
+          // blob (a cone: one ring per scan hits it, its silhouettes scatter round its axis): the vertical line
+          // through the blob's centre, as long as the blob is narrow.
+          if (e3.eigenvalues()[2] >= 3 * e3.eigenvalues()[1]) {
+            m.u1 = e3.eigenvectors().col(0), m.u2 = e3.eigenvectors().col(1);
+          } else if (e3.eigenvalues()[2] < cfg_.blob_radius * cfg_.blob_radius * double(k)) {
+            m.u1 = Vec3::UnitX(), m.u2 = Vec3::UnitY();
+          } else {
+            continue;
+          }
+          m.mean = mean;
+          m.valid = true;
         }
-        const Vec3 dq = q - mean;
-        const double r1 = u1.dot(dq), r2 = u2.dot(dq);
+        if (!m.valid) continue;
+        const Vec3 dq = q - m.mean;
+        const double r1 = m.u1.dot(dq), r2 = m.u2.dot(dq);
         const double w = huber(std::hypot(r1, r2), cfg_.huber_delta);
-        eq.add(R, p, u1, r1, w);
-        eq.add(R, p, u2, r2, w);
+        const Eigen::Matrix3d Rs = T.linear();
+        add(x, Rs, m.u1, r1, w, planar);
+        add(x, Rs, m.u2, r2, w, planar);
         ++out.edge_matches;
       }
     }
     if (!map.planes.empty()) {
       const auto& mp = map.planes.points();
-      for (const auto& p : planes) {
-        const Vec3 q = out.pose * p;
-        if (map.planes.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
-        const auto [mean, e3] = local_shape(mp, idx, k);
-        const auto& ev = e3.eigenvalues();
-        // A plane: thin across, spread along two directions (points all on one ring define no plane).
-        if (ev[0] > 0.1 * ev[1] || ev[1] < 1e-3 * k) continue;
-        const Vec3 n = e3.eigenvectors().col(0);
-        const double r = n.dot(q - mean);
-        eq.add(R, p, n, r, huber(r, cfg_.huber_delta));
+      for (std::size_t i = 0; i < planes.size(); ++i) {
+        const auto& x = planes[i];
+        const Pose3 T = origin * motion(delta, x.s);
+        const Vec3 q = T * x.p;
+        Match& m = plane_match[i];
+        if (reassociate) {
+          if (map.planes.knn(q, k, idx, d2) < k || d2[k - 1] > max_d2) continue;
+          const auto [mean, e3] = local_shape(mp, idx, k);
+          const auto& ev = e3.eigenvalues();
+          // A plane: thin across, spread along two directions (points all on one ring define no plane).
+          if (ev[0] > 0.1 * ev[1] || ev[1] < 1e-3 * k) continue;
+          m.mean = mean;
+          m.u1 = e3.eigenvectors().col(0);
+          m.valid = true;
+        }
+        if (!m.valid) continue;
+        const double r = m.u1.dot(q - m.mean);
+        const Eigen::Matrix3d Rs = T.linear();
+        const bool ground = std::abs((Rs.transpose() * m.u1).z()) >= cfg_.ground_normal_z;
+        add(x, Rs, m.u1, r, huber(r, cfg_.huber_delta), ground ? vertical : planar);
         ++out.plane_matches;
       }
     }
     out.iterations = it + 1;
     if (eq.n < 6) break;
-    const Matrix6d Hs = S.asDiagonal() * eq.H * S.asDiagonal();
-    es.compute(Hs);
-    // Solve in the eigenbasis, dropping directions without information (LOAM's solution remapping).
-    const Vec6 gs = S.asDiagonal() * eq.g;
-    Vec6 ds = Vec6::Zero();
-    for (int i = 0; i < 6; ++i) {
-      const double l = es.eigenvalues()[i];
-      if (l < cfg_.min_information) continue;
-      const Vec6 v = es.eigenvectors().col(i);
-      ds -= v * (v.dot(gs) / l);
-    }
-    const Vec6 d = S.asDiagonal() * ds;
-    out.pose = retract(out.pose, d);
+    // Gauss–Newton with the prior: the prior holds directions the scene leaves free at the prediction, instead of
+    // a hard remapping that keeps a prediction exactly (and feeds a wrong one back into the next scan).
+    const Matrix6d H = eq.H + Matrix6d(prior_w.asDiagonal());
+    const Vec6 g = eq.g + prior_w.cwiseProduct(delta - predicted);
+    const Vec6 d = -H.ldlt().solve(g);
+    delta += d;
     if (d.head<3>().norm() < cfg_.converged_step && d.tail<3>().norm() < cfg_.converged_step) break;
   }
+  out.pose = origin * motion(delta, 1.0);
+  *delta_out = delta;
   if (eq.n < 6) {
     out.degenerate = true;
     out.degenerate_directions = 6;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -11,7 +10,7 @@
 #include "localization/lidar_odometry/features.hpp"
 #include "localization/lidar_odometry/lidar_odometry.hpp"
 #include "localization/lidar_odometry/registration.hpp"
-#include "tests/perception/sim_lidar_drive.hpp"
+#include "tests/localization/odometry_lap.hpp"
 
 namespace fsd::lidar_odometry {
 namespace {
@@ -137,6 +136,34 @@ TEST(LidarRegistration, RecoversAKnownTransformWithinAMillimetreAndAHundredthOfA
   EXPECT_GT(a.plane_matches, 500);
 }
 
+TEST(LidarRegistration, RecoversAKnownMotionFromPointsTakenAlongIt) {
+  // The body moves by a known increment (0.8 m forward, 0.05 m left, 4° yaw: a corner at 8 m/s) while the scan is
+  // taken; each point is seen from the pose at its own firing fraction s. The fit must find the increment from the
+  // standing prediction, with the deskew inside it.
+  std::mt19937 rng(11);
+  const Scene world = dense_scene(rng);
+  const FeatureMap map = map_of(world);
+  Vec6 truth;
+  truth << 0.8, 0.05, 0.0, 0.0, 0.0, deg2rad(4.0);
+  std::mt19937 rng2(5);
+  const Scene seen = dense_scene(rng2);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<TimedPoint> edges, planes;
+  for (std::size_t i = 0; i < seen.edges.size(); i += 2) {
+    const double s = u(rng2);
+    edges.push_back({motion(truth, s).inverse() * seen.edges[i], s});
+  }
+  for (std::size_t i = 0; i < seen.planes.size(); i += 6) {
+    const double s = u(rng2);
+    planes.push_back({motion(truth, s).inverse() * seen.planes[i], s});
+  }
+  Vec6 delta;
+  const Alignment a = Registration{}.align_motion(edges, planes, map, Pose3::Identity(), Vec6::Zero(), &delta);
+  EXPECT_LT((delta.head<3>() - truth.head<3>()).norm(), 5e-3) << delta.transpose();
+  EXPECT_LT(rad2deg((delta.tail<3>() - truth.tail<3>()).norm()), 0.05) << delta.transpose();
+  EXPECT_FALSE(a.degenerate);
+}
+
 TEST(LidarRegistration, FlatGroundAloneIsDegenerateInXYAndYawAndSaysSo) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-15, 15);
@@ -181,75 +208,38 @@ TEST(LidarOdometry, ScansOfFlatGroundOnlyAreFlaggedDegenerate) {
   EXPECT_EQ(flagged, 4);
 }
 
-struct DriveResult {
-  double distance = 0, end_error = 0, drift_pct = 0, kitti_pct = 0, yaw_error_deg = 0;
-  int degenerate = 0, scans = 0;
-  std::vector<double> ms;  // wall time per scan (informative only: the machine is shared)
-};
-
-// Drives one lap of `track` and integrates the odometry from the true starting pose.
-DriveResult drive_lap(const std::string& track, double speed) {
-  test::SimLidarSetup setup;
-  setup.track = track;
-  setup.speed = speed;
-  test::SimLidarDrive drive(setup);
-  LidarOdometry odo({}, drive.mount());
-  const double lap = drive.drive().length();
-  DriveResult r;
-  std::vector<std::pair<Pose3, Pose3>> poses;  // (truth, odometry)
-  for (;;) {
-    const Scan scan = drive.next();
-    const Stamp t = firing_span(scan).last;
-    if (!odo.started()) odo.start_at(drive.body_pose(t));
-    const auto c0 = std::chrono::steady_clock::now();
-    const auto out = odo.process(scan);
-    r.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
-    r.degenerate += out.diagnostics.degenerate;
-    ++r.scans;
-    poses.emplace_back(drive.body_pose(t), out.pose);
-    if (speed * t >= lap) break;
-  }
-  for (std::size_t i = 1; i < poses.size(); ++i)
-    r.distance += (poses[i].first.translation() - poses[i - 1].first.translation()).norm();
-  r.end_error = (poses.back().first.translation() - poses.back().second.translation()).head<2>().norm();
-  r.drift_pct = 100 * r.end_error / r.distance;
-  r.yaw_error_deg = rad2deg(wrap_angle(to_pose2(poses.back().second).yaw - to_pose2(poses.back().first).yaw));
-  // KITTI-style: relative translation error over every 50 m segment, averaged, per distance.
-  double sum = 0;
-  int n = 0;
-  const double seg = 50;
-  for (std::size_t i = 0; i < poses.size(); i += 5) {
-    double d = 0;
-    std::size_t j = i + 1;
-    for (; j < poses.size() && d < seg; ++j)
-      d += (poses[j].first.translation() - poses[j - 1].first.translation()).norm();
-    if (d < seg) break;
-    --j;
-    const Pose3 dt = poses[i].first.inverse() * poses[j].first, de = poses[i].second.inverse() * poses[j].second;
-    sum += (dt.inverse() * de).translation().head<2>().norm() / d;
-    ++n;
-  }
-  r.kitti_pct = n ? 100 * sum / n : 0;
-  return r;
-}
-
-// The bar of issue #17 (LiDAR-only drift <= 1 % of the distance over a lap). Not met yet: 0.55 %, 2.8 % and 10.9 %
-// end-point drift on these layouts (heading drift from corners, docs/localization.md), so it is a measurement run by
-// hand, not in CI, until the odometry meets it:
-//   build/tests/test_localization --gtest_also_run_disabled_tests --gtest_filter='*LidarOdometryLap*'
+// The bar of issue #17: LiDAR-only drift <= 1 % of the distance over a lap, on shared trackdrives at 8 m/s,
+// integrated from the true start pose and compared with the simulator's true poses (odometry_lap.hpp). Two measures:
+// the end point's planar error over the distance driven (the scorecard's odometry.drift_pct), and KITTI-style, the
+// mean relative planar error over every 50 m segment, which a closed lap cannot flatter. The end point meets 1 % on
+// every layout (0.26-0.38 %); KITTI-style does not yet everywhere (0.85-1.16 %, docs/localization.md): asserted at
+// 1.5 % as a guard here, at 1 % in the disabled test below. The CPU time per scan is printed (informative: the
+// Release figure is the bench's, docs/benchmarks.md).
 class LidarOdometryLap : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(LidarOdometryLap, DISABLED_DriftsLessThanOnePercentOfTheDistanceOverALap) {
-  DriveResult r = drive_lap(GetParam(), 8.0);
-  std::nth_element(r.ms.begin(), r.ms.begin() + long(r.ms.size() / 2), r.ms.end());
-  const double p50 = r.ms[r.ms.size() / 2];
-  RecordProperty("drift_pct", std::to_string(r.drift_pct));
+void print_lap(const char* track, const test::OdometryLapResult& r) {
   std::printf(
-      "%s: %d scans, %.1f m, end error %.3f m (%.3f %%), KITTI-style %.3f %%, yaw %.2f deg, degenerate %d, %.1f ms p50 "
-      "per scan\n",
-      GetParam(), r.scans, r.distance, r.end_error, r.drift_pct, r.kitti_pct, r.yaw_error_deg, r.degenerate, p50);
+      "%s: %d scans, %.1f m, end error %.3f m (%.3f %%), KITTI-style %.3f %%, yaw %.2f deg, worst scan yaw %.2f deg, "
+      "degenerate %d, %.1f ms p50 per scan\n",
+      track, r.scans, r.distance, r.end_error, r.drift_pct, r.kitti_pct, r.yaw_error_deg, r.max_scan_yaw_error_deg,
+      r.degenerate, r.p50_ms());
+}
+
+TEST_P(LidarOdometryLap, DriftsLessThanOnePercentOfTheDistanceOverALap) {
+  const auto r = test::drive_odometry_lap(GetParam(), 8.0);
+  RecordProperty("drift_pct", std::to_string(r.drift_pct));
+  print_lap(GetParam(), r);
   EXPECT_GT(r.distance, 100.0);
   EXPECT_LT(r.drift_pct, 1.0);
+  EXPECT_LT(r.kitti_pct, 1.5) << "the relative error grew beyond what was measured (0.85-1.16 %)";
+  EXPECT_LE(r.degenerate, 5) << "these layouts constrain every scan but the first few";
+}
+
+// Not met on epfl_fsds_competition_1 (1.16 %): run by hand,
+//   build/tests/test_localization --gtest_also_run_disabled_tests --gtest_filter='*LidarOdometryLap*'
+TEST_P(LidarOdometryLap, DISABLED_RelativeDriftUnderOnePercentOverEvery50Metres) {
+  const auto r = test::drive_odometry_lap(GetParam(), 8.0);
+  print_lap(GetParam(), r);
   EXPECT_LT(r.kitti_pct, 1.0);
 }
 
