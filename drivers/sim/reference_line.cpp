@@ -78,7 +78,9 @@ std::vector<Vec2> chain(std::vector<Vec2> pts, const Pose2& start, bool& closed)
   double max_step = 0;
   for (std::size_t i = 1; i < out.size(); ++i) max_step = std::max(max_step, (out[i] - out[i - 1]).norm());
   closed = out.size() > 3 && (out.front() - out.back()).norm() <= std::max(6.0, 1.5 * max_step);
-  if (!closed && out.size() >= 5) {
+  if (closed) {
+    untangle(out, true);
+  } else if (out.size() >= 5) {
     // The greedy chain can end far from its start on a loop too: where two legs of the loop run side by side a
     // couple of metres apart it jumps across, and the cones it skipped come last. A boundary is a loop when its
     // shortest loop is longer than its shortest open chain by a cone spacing or two; on a line, by the line.
@@ -100,10 +102,9 @@ std::vector<Vec2> chain(std::vector<Vec2> pts, const Pose2& start, bool& closed)
     // the generated loops the difference is at most 2.5 cone spacings; the shared open layouts' are 3.2 (epfl_VSV,
     // a U) and 13 (acceleration).
     closed = chain_length(loop, true) - chain_length(line, false) <= std::max(6.0, 2.75 * spacing);
-    if (closed) out = loop;
+    if (closed) out = std::move(loop);
   }
   if (closed) {
-    untangle(out, true);
     if ((out[1] - out[0]).dot(fwd) < 0) std::reverse(out.begin() + 1, out.end());  // the driving direction
   }
   return out;
