@@ -8,10 +8,21 @@ namespace fsd {
 FusedLocalization::FusedLocalization(const Config& cfg) {
   const auto fc = fusion::read_fusion_config(cfg);
   filter_ = fusion::make_fusion_filter(fc.common.filter, fc);
+  lidar_odometry_ = fc.common.lidar_odometry;
 }
 
-void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu) {
+void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu,
+                            const std::optional<fusion::OdometryIncrement>& odometry) {
   std::vector<fusion::Measurement> ms;
+  if (odometry && lidar_odometry_) {
+    // A scan is complete only when the next one's first packet arrives, so its last firing can be a few ms older
+    // than what the filter has taken (dropped as out of order). The mean velocity over the scan is what the
+    // increment says: it is applied at the filter's time, its interval kept.
+    fusion::OdometryIncrement o = *odometry;
+    const double late = newest_ - o.t1;
+    if (late > 0) o.t0 += late, o.t1 += late;
+    ms.emplace_back(o);
+  }
   for (const auto& s : gnss) {
     if (s.yaw_rate_valid && std::isfinite(s.yaw_rate))
       ms.emplace_back(fusion::ImuSample{s.stamp, Vec3(0, 0, s.yaw_rate), Vec3::Zero()});
@@ -36,7 +47,10 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
   std::stable_sort(ms.begin(), ms.end(), [](const fusion::Measurement& a, const fusion::Measurement& b) {
     return fusion::stamp_of(a) < fusion::stamp_of(b);
   });
-  for (const auto& m : ms) filter_->add(m);
+  for (const auto& m : ms) {
+    newest_ = std::max(newest_, fusion::stamp_of(m));
+    filter_->add(m);
+  }
 }
 
 std::optional<VehicleState> FusedLocalization::state(double steering_measured) const {

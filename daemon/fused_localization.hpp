@@ -2,7 +2,8 @@
 // run.localization_source = fused: the Stack's GNSS-INS samples and the VCU's wheel speeds through one fusion
 // filter (localization/fusion, localization.fusion.filter). A GNSS sample gives a position fix (rear axle, lever
 // arm removed by the driver) with its quality, age and dual-antenna heading, and its yaw rate (ROT) stands for
-// the gyro; the mean of the rear wheels is the rear axle's forward speed. Measurements go in by stamp.
+// the gyro; the mean of the rear wheels is the rear axle's forward speed; with localization.fusion.lidar_odometry
+// the LiDAR odometry's increments too (the paper's LiDAR odometry ⊕ GNSS-INS). Measurements go in by stamp.
 #include <memory>
 #include <optional>
 #include <vector>
@@ -17,7 +18,10 @@ class FusedLocalization {
  public:
   explicit FusedLocalization(const Config& cfg);
   // One cycle's input: the GNSS samples since the last cycle and the newest VCU status (if any).
-  void add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu);
+  // `odometry`: the LiDAR odometry's newest increment, when it took a scan this cycle.
+  void add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu,
+           const std::optional<fusion::OdometryIncrement>& odometry = std::nullopt);
+  bool takes_lidar_odometry() const { return lidar_odometry_; }
   // The vehicle state once the filter has a position and a heading.
   std::optional<VehicleState> state(double steering_measured) const;
   fusion::LocalizationState estimate() const { return filter_->state(); }
@@ -25,6 +29,8 @@ class FusedLocalization {
  private:
   std::unique_ptr<fusion::FusionFilter> filter_;
   Stamp last_vcu_ = -1e300;
+  Stamp newest_ = -1e300;  // the newest stamp handed to the filter
+  bool lidar_odometry_ = false;
 };
 
 }  // namespace fsd

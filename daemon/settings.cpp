@@ -3,6 +3,7 @@
 #include "common/car.hpp"
 
 #include "control/control_config.hpp"
+#include "daemon/lidar_localization.hpp"
 #include "daemon/recorder.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/gnss/gnss_config.hpp"
@@ -43,10 +44,12 @@ const ConfigSection<RunSettings>& run_section() {
                   "LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
                   "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
                   "drivers.camera.calibration on the car).")
-          .string("localization_source", &RunSettings::localization_source, {"truth", "gnss", "fused"},
+          .string("localization_source", &RunSettings::localization_source,
+                  {"truth", "gnss", "fused", "lidar_odometry"},
                   "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
                   "gnss = the GNSS-INS pose as reported; fused = GNSS-INS and the VCU's wheel speeds through the "
-                  "fusion filter (localization.fusion.*), bridging bad or missing fixes.")
+                  "fusion filter (localization.fusion.*), bridging bad or missing fixes; lidar_odometry = the "
+                  "LiDAR odometry alone (localization.lidar_odometry.*), integrated from localization.start.*.")
           .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
                   "Headless runs give up after this much simulated time.")
           .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",
@@ -63,6 +66,8 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
   fusion::describe_fusion_config(*schema);
+  start_pose_section().describe(*schema);
+  lidar_odometry::describe_lidar_odometry_config(*schema);
   describe_camera_stage(*schema);
   describe_lidar_detector_config(*schema);
   sim::describe_virtual_car_config(*schema);

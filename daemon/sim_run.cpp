@@ -19,6 +19,7 @@
 #include "daemon/truth_frames.hpp"
 #include "drivers/camera/camera_calibration.hpp"
 #include "drivers/sim/virtual_car.hpp"
+#include "localization/fusion/fusion_config.hpp"
 
 namespace fsd {
 
@@ -28,7 +29,7 @@ constexpr double kControlPeriod = 0.01;  // s: the control loop runs at 100 Hz
 
 // The Stack's configuration in a simulated run: the GNSS receiver's local frame is the track's map frame (the
 // simulated receiver's origin), not the first fix.
-Config stack_config(const Config& cfg, const sim::VirtualCarSettings& car) {
+Config stack_config(const Config& cfg, const sim::VirtualCarSettings& car, const Pose2& start) {
   Config c = cfg;
   c.set("drivers.gnss.use_first_fix", false, "the virtual car");
   c.set("drivers.gnss.origin_lat_deg", car.gnss.origin_lat_deg, "the virtual car");
@@ -37,6 +38,10 @@ Config stack_config(const Config& cfg, const sim::VirtualCarSettings& car) {
   // The receiver's latency from epoch to first byte, as a team takes it from the datasheet: unaccounted, every fix
   // is placed 10 ms late (0.2 m at 20 m/s).
   c.set("drivers.gnss.latency_s", car.gnss.latency_s, "the virtual car");
+  // Where the car is staged, as a team measures it on the start line: the LiDAR odometry's origin.
+  c.set("localization.start.x", start.x, "the virtual car");
+  c.set("localization.start.y", start.y, "the virtual car");
+  c.set("localization.start.yaw", wrap_angle(start.yaw), "the virtual car");
   return c;
 }
 
@@ -91,9 +96,15 @@ struct SimRun::Impl {
     if (run.perception_source != "truth" && !car_settings.run.lidar)
       throw std::invalid_argument("run.perception_source = " + run.perception_source +
                                   " needs the virtual car's LiDAR: sim.enable_lidar is false");
+    const bool needs_lidar_odometry =
+        run.localization_source == "lidar_odometry" ||
+        (run.localization_source == "fused" && fusion::read_fusion_config(cfg).common.lidar_odometry);
+    if (needs_lidar_odometry && !car_settings.run.lidar)
+      throw std::invalid_argument("run.localization_source = " + run.localization_source +
+                                  " with the LiDAR odometry needs the virtual car's LiDAR: sim.enable_lidar is false");
     if (run.perception_source == "lidar_camera" && !car_settings.run.camera)
       log->warn("run.perception_source = lidar_camera with sim.enable_camera = false: LiDAR-only detections");
-    const Config used = stack_config(cfg, car_settings);
+    const Config used = stack_config(cfg, car_settings, track.start);
     stack = std::make_unique<Stack>(used, so);
     if (const auto why = layout_refusal(track, mission, stack->autopilot().config())) throw std::invalid_argument(*why);
 

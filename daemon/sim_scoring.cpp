@@ -55,6 +55,9 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
   stack.on_detections([this](const ConeDetections& det, const Pose2&) {
     perception_.add_frame(det, truth_cones_, truth_poses_.at(det.stamp).value_or(last_pose_));
   });
+  stack.on_odometry([this](const lidar_odometry::OdometryOutput& out) {
+    odometry_.add_lidar(truth_poses_.at(out.stamp).value_or(last_pose_), to_pose2(out.pose));
+  });
 }
 
 void SimScoring::on_truth(const sim::VehicleTruth& truth) {
@@ -66,6 +69,9 @@ void SimScoring::on_truth(const sim::VehicleTruth& truth) {
 void SimScoring::after_step(AsState as, int cones_hit) {
   card_->set_as_state(as);
   card_->set_cones_hit(cones_hit);
+  if (const auto& s = stack_.state()) {
+    odometry_.add_state(truth_poses_.at(s->stamp).value_or(last_pose_), s->pose);
+  }
 }
 
 void SimScoring::finish(double wall_time_s) {
@@ -80,6 +86,7 @@ void SimScoring::finish(double wall_time_s) {
   auto perception = perception_.to_json();
   perception["source"] = run_.perception_source;
   card_->set_section("perception", perception);
+  card_->set_section("odometry", odometry_.to_json(run_.localization_source));
 }
 
 }  // namespace fsd

@@ -9,6 +9,7 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
+#include "daemon/odometry_score.hpp"
 #include "daemon/perception_score.hpp"
 #include "daemon/scorecard.hpp"
 #include "daemon/settings.hpp"
@@ -35,7 +36,7 @@ class SimScoring {
   void on_truth(const sim::VehicleTruth& truth);
   // The standing cones, whenever they change (a cone knocked over), as the Stack is sent them.
   void set_truth_cones(std::vector<Cone> cones) { truth_cones_ = std::move(cones); }
-  // After the step: the VCU's true AS state and the cones hit so far.
+  // After the step: the VCU's true AS state and the cones hit so far; the Stack's pose against the truth.
   void after_step(AsState as, int cones_hit);
   // The end of the run: wall time, the Stack's latencies and faults, the "map" and "perception" sections.
   void finish(double wall_time_s);
@@ -49,6 +50,7 @@ class SimScoring {
   Stack& stack_;
   std::unique_ptr<Scorecard> card_;
   PerceptionScore perception_;
+  OdometryScore odometry_;
   PoseHistory truth_poses_{256};  // the car's true poses of the last 2.5 s, for the perception score
   Pose2 last_pose_;
   std::vector<Cone> truth_cones_;

@@ -18,6 +18,7 @@
 #include "daemon/fused_localization.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/lap_build_thread.hpp"
+#include "daemon/lidar_localization.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/step_log.hpp"
 #include "daemon/truth_frames.hpp"
@@ -84,6 +85,9 @@ struct Stack::Impl {
   std::unique_ptr<LidarCameraDetector> detector;  // the lidar and lidar_camera sources
   PoseHistory poses{kPosesKept};                  // the localization's, for deskew, accumulation and the camera
   std::unique_ptr<FusedLocalization> fused;       // the fused source
+  std::unique_ptr<LidarLocalization> odometry;    // the lidar_odometry source, and the fused one's increments
+  bool odometry_scan = false;                     // a scan the odometry has not taken yet
+  std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
   std::shared_ptr<const ConeDetections> last_detections;
@@ -136,6 +140,12 @@ struct Stack::Impl {
       log->info("no ground truth on the car: run.localization_source = truth drives on the GNSS-INS pose");
     }
     if (localization_source == "fused") fused = std::make_unique<FusedLocalization>(cfg);
+    if (localization_source == "lidar_odometry" || (fused && fused->takes_lidar_odometry())) {
+      odometry = std::make_unique<LidarLocalization>(cfg, vlp_cfg.body_from_sensor());
+      log->info("localization: LiDAR odometry from x {:.2f} y {:.2f} yaw {:.3f}{}", start_pose_section().read(cfg).x,
+                start_pose_section().read(cfg).y, start_pose_section().read(cfg).yaw,
+                fused ? ", its increments into the fusion filter" : "");
+    }
     perception_source = run.perception_source;
     if (!opt.simulator && perception_source == "truth") {
       perception_source = opt.camera ? "lidar_camera" : "lidar";
@@ -147,6 +157,7 @@ struct Stack::Impl {
       last_scan_end = firing_span(scan).last;
       last_scan = std::make_shared<const Scan>(std::move(scan));
       new_scan = true;
+      odometry_scan = true;
     });
     gnss = std::make_unique<GnssDriver>(read_gnss_config(cfg), [this](const GnssSample& s) {
       if (gnss_pending.size() < kMaxGnssPending) gnss_pending.push_back(s);
@@ -268,9 +279,12 @@ struct Stack::Impl {
     const bool due = new_scan || truth_scan;
     new_scan = truth_scan = false;
     if (!due || !truth) return false;
+    // The ideal detector sees from the true pose; its detections (vehicle frame) are placed in the map by the
+    // localization's pose of the same instant, as a real detector's are.
+    const std::optional<Pose2> placed = poses.at(now);
+    if (!placed) return false;
     const double w0 = wall();
-    const Pose2 pose = truth->state.pose;
-    map_detections(now, truth_perception.detect(now, truth_cones, pose), pose, {}, w0);
+    map_detections(now, truth_perception.detect(now, truth_cones, truth->state.pose), *placed, {}, w0);
     return true;
   }
 
@@ -324,8 +338,18 @@ struct Stack::Impl {
     return img;
   }
 
-  void localize() {
+  void localize(Stamp now) {
     const double steering = vcu_steering();
+    // The LiDAR odometry first: its increment goes to the fusion filter with this cycle's other measurements.
+    std::optional<fusion::OdometryIncrement> increment;
+    if (odometry && odometry_scan && last_scan) {
+      odometry_scan = false;
+      const double w0 = wall();
+      const auto& out = odometry->add(*last_scan);
+      latency["odometry"].add(wall() - w0);
+      if (odometry_hook) odometry_hook(out);
+      increment = odometry->increment();
+    }
     for (const auto& s : gnss_pending) {
       autopilot->on_gnss(s.stamp, s.good);
       if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value())) {
@@ -335,7 +359,7 @@ struct Stack::Impl {
       }
     }
     if (fused) {
-      fused->add(gnss_pending, vcu->status());
+      fused->add(gnss_pending, vcu->status(), increment);
       if (const auto v = fused->state(steering); v && (!state || v->stamp > state->stamp)) {
         state = v;
         autopilot->on_state(*state);
@@ -343,6 +367,13 @@ struct Stack::Impl {
       }
     }
     gnss_pending.clear();
+    if (localization_source == "lidar_odometry") {
+      if (const auto v = odometry->state(now, steering); v && (!state || v->stamp > state->stamp)) {
+        state = v;
+        autopilot->on_state(*state);
+        poses.add(state->stamp, state->pose);
+      }
+    }
     if (localization_source == "truth" && truth) {
       state = truth->state;
       autopilot->on_state(*state);
@@ -362,7 +393,7 @@ struct Stack::Impl {
     if (const auto st = vcu->status()) autopilot->on_vcu(*st);
     if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
     const double w_perception = wall();
-    localize();  // first: the sensor sources place this cycle's scan by the newest pose
+    localize(now);  // first: the sensor sources place this cycle's scan by the newest pose
     if (state && !first_pose) first_pose = state->pose;
     cycle.perceived = perceive(now);
     apply_param_changes(now);
@@ -520,6 +551,10 @@ void Stack::set_metrics(RunMetrics* metrics, std::function<void(CycleFigures&)> 
 
 void Stack::on_detections(std::function<void(const ConeDetections&, const Pose2&)> hook) {
   impl_->detections_hook = std::move(hook);
+}
+
+void Stack::on_odometry(std::function<void(const lidar_odometry::OdometryOutput&)> hook) {
+  impl_->odometry_hook = std::move(hook);
 }
 
 Mission Stack::mission() const { return impl_->opt.mission; }

@@ -18,7 +18,10 @@
 //                 each LiDAR scan or, without a simulated LiDAR, on each TruthScan tick.
 //                 lidar: the LiDAR stages on each VLP-16 scan, deskewed and accumulated by the localization's poses;
 //                 lidar_camera: and the camera stage on the camera frame nearest the scan (StackOptions::camera).
-//   localization  truth: the simulator's state (RawChannel::TruthState); gnss: the GNSS-INS pose as reported.
+//   localization  truth: the simulator's state (RawChannel::TruthState); gnss: the GNSS-INS pose as reported;
+//                 fused: GNSS-INS, wheel speeds (and the LiDAR odometry's increments) through a fusion filter;
+//                 lidar_odometry: the LiDAR odometry alone from the start pose (localization.start.*).
+//   Detections of every perception source are placed in the map by the localization's pose of their instant.
 #include <functional>
 #include <map>
 #include <memory>
@@ -40,6 +43,7 @@
 #include "drivers/vcu/vcu_session.hpp"
 #include "drivers/vlp16/decoder.hpp"
 #include "drivers/vlp16/position_packet.hpp"
+#include "localization/lidar_odometry/lidar_odometry.hpp"
 
 namespace fsd {
 
@@ -118,6 +122,8 @@ class Stack {
   void set_metrics(RunMetrics* metrics, std::function<void(CycleFigures&)> extras = {});
   // Sees each perception frame: its detections (vehicle frame) and the pose they were placed at (the scorecard).
   void on_detections(std::function<void(const ConeDetections&, const Pose2&)> hook);
+  // Sees each scan the LiDAR odometry took (lidar_odometry, or fused with its increments): the scorecard's drift.
+  void on_odometry(std::function<void(const lidar_odometry::OdometryOutput&)> hook);
 
   // Read-outs, on the Stack's thread or after the run.
   Mission mission() const;

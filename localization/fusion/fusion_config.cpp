@@ -21,7 +21,10 @@ const ConfigSection<FusionCommonConfig>& fusion_common_section() {
           .number("good_sigma_m", &C::good_sigma_m, 0.01, 10.0, "m", "The state is good only below this position σ.")
           .number("lost_sigma_m", &C::lost_sigma_m, 0.1, 1000.0, "m", "Beyond this position σ the state is lost.")
           .number("motion_timeout_s", &C::motion_timeout_s, 0.01, 10.0, "s",
-                  "No IMU or speed sample for this long: the state is lost.");
+                  "No IMU or speed sample for this long: the state is lost.")
+          .boolean("lidar_odometry", &C::lidar_odometry,
+                   "run.localization_source = fused also takes the LiDAR odometry's increments (the paper's LiDAR "
+                   "odometry fused with GNSS-INS); needs the VLP-16.");
   return s;
 }
 

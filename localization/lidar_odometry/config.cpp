@@ -41,6 +41,8 @@ const ConfigSection<OdometryConfig>& odometry_section() {
                   "Eigenvalue of the normal matrix (rotations scaled by 10 m) below which the scene is degenerate.")
           .number("degenerate_sigma", &C::degenerate_sigma, 0.01, 1e3, "m|rad",
                   "Standard deviation reported along a degenerate direction.")
+          .boolean("hold_degenerate", &C::hold_degenerate,
+                   "A scan whose matches leave a direction free keeps the constant-velocity prediction as its pose.")
           .integer("deskew_passes", &C::deskew_passes, 1, 5, "",
                    "Registrations per scan; each after the first deskews with the motion the previous one found.")
           .number("velocity_gain", &C::velocity_gain, 0.05, 1.0, "",

@@ -1,0 +1,45 @@
+#pragma once
+// run.localization_source = lidar_odometry: the pose from the LiDAR alone. Each VLP-16 scan goes through the
+// LOAM-style odometry (localization/lidar_odometry), integrated from the start pose (localization.start.*: where
+// the car stands at the start, in the map frame; the map frame's origin by default, DESIGN.md §5). The odometry
+// gives a pose at each scan's last firing (10 Hz); between scans the state is carried forward with the odometry's
+// own twist, so control has a pose every cycle without anything but the LiDAR.
+//
+// The fused source uses the same odometry for its increments (localization.fusion.lidar_odometry).
+#include <optional>
+
+#include "common/config.hpp"
+#include "common/types.hpp"
+#include "localization/lidar_odometry/lidar_odometry.hpp"
+
+namespace fsd {
+
+// localization.start: the body's pose at the start in the map frame.
+struct StartPose {
+  double x = 0, y = 0, yaw = 0;
+  Pose2 pose() const { return {x, y, yaw}; }
+};
+const ConfigSection<StartPose>& start_pose_section();
+
+class LidarLocalization {
+ public:
+  // `body_from_sensor`: the LiDAR's mount (car.lidar.*).
+  LidarLocalization(const Config& cfg, const Pose3& body_from_sensor);
+  // One completed scan, in time order (a scan not newer than the last is ignored). The odometry's output.
+  const lidar_odometry::OdometryOutput& add(const Scan& scan);
+  // The state at `now`, carried forward from the newest scan's pose with the odometry's twist; empty before the
+  // first scan. `steering`: the VCU's measured steering angle (not the LiDAR's to know).
+  std::optional<VehicleState> state(Stamp now, double steering) const;
+  // The newest scan's increment, if it had one (the first scan has none).
+  std::optional<fusion::OdometryIncrement> increment() const;
+  std::uint64_t scans() const { return scans_; }
+  std::uint64_t degenerate_scans() const { return degenerate_; }
+
+ private:
+  lidar_odometry::LidarOdometry odometry_;
+  lidar_odometry::OdometryOutput last_;
+  bool have_ = false;
+  std::uint64_t scans_ = 0, degenerate_ = 0;
+};
+
+}  // namespace fsd
