@@ -1,0 +1,38 @@
+#pragma once
+// Finding the loop: back near the start, the cones seen now (placed by the drifted pose) are the cones mapped at
+// the start, moved by the drift. The rigid 2-D transform that brings the current cones onto the reference cones
+// with the most same-coloured pairs within a tolerance is the loop's correction; the pairs are the same cones
+// (LapGraph::same_cone).
+//
+// Every hypothesis from two current cones and two reference cones of the same colours, as far apart as each
+// other and within the drift bound of where they are, is tried (no random sampling: the same input gives the same
+// loop); the best is refined by least squares over its pairs. A symmetric scene (a straight lane of one colour)
+// is ambiguous along itself: the answer is accepted only when no other hypothesis, shifted by more than the
+// tolerance, has nearly as many pairs.
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace fsd::loop_closure {
+
+struct ConeAlignmentConfig {
+  double max_drift = 4.0;         // m: how far a current cone may be from its reference (the drift over a lap)
+  double max_rotation = 0.2;      // rad: the heading drift over a lap
+  double pair_tolerance = 0.3;    // m: a pair after the transform
+  int min_pairs = 4;              // fewer: no loop
+  double ambiguity_margin = 2.0;  // a rival hypothesis with at least (best − this) pairs elsewhere: ambiguous
+};
+
+struct ConeAlignment {
+  Pose2 correction;                        // reference frame ← current frame
+  std::vector<std::pair<int, int>> pairs;  // (index in current, index in reference)
+  double rms = 0;                          // m over the pairs after the correction
+};
+
+// Unknown-coloured cones pair with any colour; named colours only with the same colour.
+std::optional<ConeAlignment> align_cones(const std::vector<Cone>& current, const std::vector<Cone>& reference,
+                                         const ConeAlignmentConfig& cfg = {});
+
+}  // namespace fsd::loop_closure
