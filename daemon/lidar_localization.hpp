@@ -2,10 +2,13 @@
 // run.localization_source = lidar_odometry: the pose from the LiDAR alone. Each VLP-16 scan goes through the
 // LOAM-style odometry (localization/lidar_odometry), integrated from the start pose (localization.start.*: where
 // the car stands at the start, in the map frame; the map frame's origin by default, DESIGN.md §5). The odometry
-// gives a pose at each scan's last firing (10 Hz); between scans the state is carried forward with the odometry's
-// own twist, so control has a pose every cycle without anything but the LiDAR.
+// gives a pose at each scan's last firing (10 Hz). With localization.lidar_odometry.vehicle_motion the car's own
+// motion sensors (the rear wheels' speed, the GNSS-INS unit's yaw rate: never its position) deskew and predict
+// each scan, as LOAM's IMU-aided mode does, and carry the pose from the scan to each control cycle; without them,
+// the newest increment's motion carries it.
 //
 // The fused source uses the same odometry for its increments (localization.fusion.lidar_odometry).
+#include <deque>
 #include <optional>
 
 #include "common/config.hpp"
@@ -21,12 +24,19 @@ struct StartPose {
 };
 const ConfigSection<StartPose>& start_pose_section();
 
+struct LidarLocalizationMotion {
+  Stamp t;
+  double value;
+};
+
 class LidarLocalization {
  public:
   // `body_from_sensor`: the LiDAR's mount (car.lidar.*).
   LidarLocalization(const Config& cfg, const Pose3& body_from_sensor);
   // One completed scan, in time order (a scan not newer than the last is ignored). The odometry's output.
   const lidar_odometry::OdometryOutput& add(const Scan& scan);
+  // The car's measured motion: the rear axle's forward speed and the yaw rate (either may be absent), by stamp.
+  void add_motion(Stamp t, std::optional<double> speed, std::optional<double> yaw_rate);
   // The state at `now`, carried forward from the newest scan's pose with the odometry's twist; empty before the
   // first scan. `steering`: the VCU's measured steering angle (not the LiDAR's to know).
   std::optional<VehicleState> state(Stamp now, double steering) const;
@@ -36,7 +46,12 @@ class LidarLocalization {
   std::uint64_t degenerate_scans() const { return degenerate_; }
 
  private:
+  // The measured twist over the span of a scan, when the car's sensors gave it recently enough.
+  std::optional<lidar_odometry::Vec6> measured(Stamp from, Stamp to) const;
+
   lidar_odometry::LidarOdometry odometry_;
+  bool vehicle_motion_ = true;
+  std::deque<LidarLocalizationMotion> speeds_, yaw_rates_;  // the last second of each, bounded
   lidar_odometry::OdometryOutput last_;
   bool have_ = false;
   std::uint64_t scans_ = 0, degenerate_ = 0;

@@ -87,6 +87,7 @@ struct Stack::Impl {
   std::unique_ptr<FusedLocalization> fused;       // the fused source
   std::unique_ptr<LidarLocalization> odometry;    // the lidar_odometry source, and the fused one's increments
   bool odometry_scan = false;                     // a scan the odometry has not taken yet
+  Stamp odometry_vcu_stamp = -1e300;              // the newest VCU status the odometry has taken
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
@@ -340,8 +341,17 @@ struct Stack::Impl {
 
   void localize(Stamp now) {
     const double steering = vcu_steering();
-    // The LiDAR odometry first: its increment goes to the fusion filter with this cycle's other measurements.
+    // The LiDAR odometry first: its increment goes to the fusion filter with this cycle's other measurements. The
+    // car's measured motion (GNSS-INS yaw rate, rear wheels) deskews and predicts its scans.
     std::optional<fusion::OdometryIncrement> increment;
+    if (odometry) {
+      for (const auto& s : gnss_pending)
+        if (s.yaw_rate_valid) odometry->add_motion(s.stamp, std::nullopt, s.yaw_rate);
+      if (const auto st = vcu->status(); st && st->stamp > odometry_vcu_stamp) {
+        odometry_vcu_stamp = st->stamp;
+        odometry->add_motion(st->stamp, 0.5 * (st->wheel_speeds[2] + st->wheel_speeds[3]), std::nullopt);
+      }
+    }
     if (odometry && odometry_scan && last_scan) {
       odometry_scan = false;
       const double w0 = wall();

@@ -41,6 +41,9 @@ const ConfigSection<OdometryConfig>& odometry_section() {
                   "Eigenvalue of the normal matrix (rotations scaled by 10 m) below which the scene is degenerate.")
           .number("degenerate_sigma", &C::degenerate_sigma, 0.01, 1e3, "m|rad",
                   "Standard deviation reported along a degenerate direction.")
+          .boolean("vehicle_motion", &C::vehicle_motion,
+                   "The daemon's LiDAR odometry deskews and predicts each scan with the car's measured motion (rear "
+                   "wheel speed, the GNSS-INS yaw rate) instead of the scans' own low-passed increments.")
           .boolean("hold_degenerate", &C::hold_degenerate,
                    "A scan whose matches leave a direction free keeps the constant-velocity prediction as its pose.")
           .integer("deskew_passes", &C::deskew_passes, 1, 5, "",

@@ -29,6 +29,7 @@ struct OdometryConfig {
   double blob_radius = 0.2;         // m: edge neighbours not on a line but within this spread: a vertical post
   double min_information = 1.0;     // eigenvalue of the normal matrix (rotation per 10 m) below which: degenerate
   double degenerate_sigma = 10.0;   // m or rad: the σ reported along a degenerate direction
+  bool vehicle_motion = true;       // the daemon hands the odometry the wheel speed and yaw rate (deskew, prediction)
   bool hold_degenerate = true;      // a degenerate scan keeps the constant-velocity prediction as its pose
   int deskew_passes = 2;            // registrations per scan, each deskewed with the motion the previous one found
   double velocity_gain = 0.2;    // share of the newest increment in the twist that deskews and predicts the next scan

@@ -25,8 +25,9 @@ std::vector<Vec3> LidarOdometry::deskew(const std::vector<FeaturePoint>& pts, St
   return out;
 }
 
-OdometryOutput LidarOdometry::process(const Scan& scan) {
+OdometryOutput LidarOdometry::process(const Scan& scan, const std::optional<Vec6>& measured_twist) {
   OdometryOutput out;
+  if (measured_twist && measured_twist->allFinite()) velocity_ = *measured_twist;
   const FiringSpan span = firing_span(scan);
   const Stamp t = span.last;
   const Features f = extractor_.extract(scan);

@@ -44,7 +44,10 @@ class LidarOdometry {
     origin_ = origin;
     velocity_ = twist;
   }
-  OdometryOutput process(const Scan& scan);
+  // `measured_twist`: the body's velocity (v, ω) over the scan as the car measured it (wheel speeds, gyro), when
+  // the caller has it: the deskew and the prediction then use it instead of the low-passed increments, which lag
+  // braking and turn-in by half a second and lose track under hard acceleration.
+  OdometryOutput process(const Scan& scan, const std::optional<Vec6>& measured_twist = std::nullopt);
   bool started() const { return started_; }
   const Pose3& pose() const { return pose_; }
 
