@@ -22,14 +22,14 @@ std::vector<TelemetryChannel> make_table() {
   // Scene, sent as changes by entity (the dashboard's largest messages once sent whole 4 times a second).
   t.push_back(
       {.spec = web::channel_spec(topics::kConeMap, Schema::SceneUpdate, "Cone map in the map frame", latched_delta()),
-       .live_hz = 4,
+       .live_hz = 2,  // a refined cone is sent again: twice a second is enough to watch the map grow
        .record_hz = 1,
        .source = [](const TelemetrySnapshot& s) -> std::shared_ptr<const void> { return s.cone_map; },
        .build = [](const TelemetrySnapshot& s,
                    const ChannelUse&) { return scene(web::cone_map_entities(s.t, *s.cone_map)); }});
   t.push_back(
       {.spec = web::channel_spec(topics::kDetections, Schema::SceneUpdate, "Cone detections of the latest LiDAR frame"),
-       .live_hz = 5,
+       .live_hz = 4,  // each lives 0.5 s
        .record_hz = 4,
        .source = [](const TelemetrySnapshot& s) -> std::shared_ptr<const void> { return s.detections; },
        .build =
@@ -62,7 +62,7 @@ std::vector<TelemetryChannel> make_table() {
        },
        .build = [](const TelemetrySnapshot& s, const ChannelUse& u) -> Built {
          web::CloudOptions o;
-         if (u.recording) o.max_points = 2000;  // ~45 kB of JSON
+         o.max_points = u.recording ? 2000 : 4000;  // ~45 kB of JSON; live ~85 kB, 2 Hz within the Wi-Fi budget
          if (s.cloud) return text(web::point_cloud(s.t, s.cloud_pose, s.cloud->ground, s.cloud->obstacles, o));
          if (u.recording || !s.scan) return std::nullopt;
          return text(web::point_cloud(s.t, s.lidar_pose, {}, s.scan->points, o));

@@ -77,7 +77,7 @@ TEST(ChannelPacer, LiveRatesAreTheTablesWhenPolledInStepsAndNewDataOnly) {
   });
   EXPECT_NEAR(n.at("/vehicle/state"), 250, 2);  // 25 Hz over 10 s: every snapshot (it was 20 Hz before)
   EXPECT_NEAR(n.at("/vehicle/car"), 250, 2);
-  EXPECT_NEAR(n.at("/map/cones"), 40, 1);      // 4 Hz
+  EXPECT_NEAR(n.at("/map/cones"), 20, 1);      // 2 Hz
   EXPECT_EQ(n.at("/camera/image"), 1);         // sent once: no newer picture
   EXPECT_FALSE(n.count("/perception/cones"));  // no detections in these snapshots
   // 5 Hz, plus one at once when the AS state changed in between.
