@@ -25,6 +25,7 @@
 #include "common/clock.hpp"
 #include "common/config.hpp"
 #include "common/params.hpp"
+#include "daemon/telemetry_channels.hpp"
 #include "web/channels.hpp"
 #include "web/config.hpp"
 #include "web/server.hpp"
@@ -151,7 +152,7 @@ Result run_case(int n_clients, double seconds, bool realtime) {
   wcfg.max_clients = 32;
   wcfg.web_root = "/nonexistent";
   web::WebServer server(wcfg, params, clock);
-  const auto ch = web::add_standard_channels(server);
+  const auto ids = web::add_channels(server, channel_specs([](const TelemetryChannel& c) { return !c.truth; }));
   server.start();
 
   net::io_context client_ioc;
@@ -206,19 +207,21 @@ Result run_case(int n_clients, double seconds, bool realtime) {
       vs.pose = {0.08 * tick, 0, 0};
       // The payload starts with the send time so clients can measure latency.
       const std::string state = web::vehicle_state_json(vs, 8.0);
-      timed_publish(ch.vehicle_state, t, "{\"sent_ns\":" + std::to_string(now_ns()) + "," + state.substr(1));
-      if (tick % 5 == 0) timed_publish(ch.car, t, web::car_scene(t, vs.pose));
+      timed_publish(ids.at(web::topics::kVehicleState), t,
+                    "{\"sent_ns\":" + std::to_string(now_ns()) + "," + state.substr(1));
+      if (tick % 5 == 0) timed_publish(ids.at(web::topics::kCar), t, web::car_scene(t, vs.pose));
       if (tick % 10 == 0) {
         ConeDetections d;
         d.cones.assign(cones.begin(), cones.begin() + 12);
-        timed_publish(ch.detections, t, web::detections_scene(t, d, vs.pose));
+        timed_publish(ids.at(web::topics::kDetections), t, web::detections_scene(t, d, vs.pose));
       }
-      if (tick % 20 == 0) timed_publish(ch.point_cloud, t, web::point_cloud(t, vs.pose.to_pose3(), ground, objects));
+      if (tick % 20 == 0)
+        timed_publish(ids.at(web::topics::kPointCloud), t, web::point_cloud(t, vs.pose.to_pose3(), ground, objects));
       if (tick % 50 == 0) {
-        timed_publish(ch.paths, t, web::paths_scene(t, paths));
-        timed_publish(ch.as_status, t, web::as_status_json(t, {}));
+        timed_publish(ids.at(web::topics::kPaths), t, web::paths_scene(t, paths));
+        timed_publish(ids.at(web::topics::kAsStatus), t, web::as_status_json(t, {}));
       }
-      if (tick % 100 == 0) timed_publish(ch.cone_map, t, web::cone_map_scene(t, cones));
+      if (tick % 100 == 0) timed_publish(ids.at(web::topics::kConeMap), t, web::cone_map_scene(t, cones));
     }
   });
   loop.join();

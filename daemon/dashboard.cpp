@@ -14,11 +14,10 @@ Dashboard::Dashboard(const Config& config, ParamRegistry& params, Clock& clock, 
   const web::WebConfig wc = web::web_section().read(config);
   bind_ = wc.bind;
   server_ = std::make_unique<web::WebServer>(wc, params, clock);
-  telemetry_ =
-      std::make_unique<Telemetry>(*server_, TelemetryRates{}, truth_channels, web::car_shape_of(read_car(config)));
+  telemetry_ = std::make_unique<Telemetry>(*server_, truth_channels, web::car_shape_of(read_car(config)));
   metrics_ = std::make_unique<RunMetrics>(server_->metrics());
   // Before the server's threads start: spdlog's sink lists must not change while anyone logs.
-  log_forwarding_ = std::make_unique<LogForwarding>(*server_, telemetry_->channels().log, clock);
+  log_forwarding_ = std::make_unique<LogForwarding>(*server_, telemetry_->channel(web::topics::kLog), clock);
 }
 
 Dashboard::~Dashboard() { stop(); }

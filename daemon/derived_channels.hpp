@@ -11,6 +11,7 @@
 
 #include "common/params.hpp"
 #include "daemon/telemetry.hpp"
+#include "daemon/telemetry_channels.hpp"
 #include "web/channels.hpp"
 
 namespace fsd {
@@ -29,33 +30,20 @@ std::vector<web::ChannelSpec> derived_channel_specs();
 // {"t", "key", "old", "new", "who"}: who changed a parameter, from what to what.
 std::string param_change_json(const ParamChange& c);
 
-// Turns the Stack's snapshots (every 4th cycle) into recorded messages: the vehicle state and the car at every
-// snapshot, the detections when they changed (at most detections_hz), perception's split of the newest scan (at
-// most cloud_hz, thinned), the cone map and the paths when they changed
-// (at most map_hz: they are the big ones, tens of kB of JSON each, and change slowly), the AS status at status_hz
-// and whenever it changes state, the fault list whenever it grows or changes. Runs on the recorder's writer thread.
-struct DerivedRates {
-  double detections_hz = 4, map_hz = 1, status_hz = 5;
-  double cloud_hz = 1;              // perception's labelled cloud (ground / obstacles), when it runs
-  std::size_t cloud_points = 2000;  // ... thinned to this many points (~45 kB of JSON)
-};
-
+// Turns the Stack's snapshots (every 4th cycle) into recorded messages, by the channel table's recording rates
+// on the run's clock (daemon/telemetry_channels.cpp): the vehicle state and the car at every snapshot (25 Hz),
+// the detections when they changed (at most 4 Hz), perception's split of the newest scan (1 Hz, thinned), the
+// cone map and the paths when they changed (at most 1 Hz: tens of kB of JSON each, and they change slowly; whole
+// scenes, not the dashboard's changes, so that any message of a file shows the whole scene), the AS status at 5 Hz
+// and whenever it changes state, the fault list whenever it changes. Runs on the recorder's writer thread.
 class DerivedChannels {
  public:
-  explicit DerivedChannels(web::CarShape car = {}, DerivedRates rates = {}) : car_(car), rates_(rates) {}
+  explicit DerivedChannels(web::CarShape car = {});
   std::vector<DerivedMessage> messages(const TelemetrySnapshot& s);
 
  private:
-  web::CarShape car_;
-  DerivedRates rates_;
-  std::shared_ptr<const std::vector<Cone>> cone_map_;
-  std::shared_ptr<const ConeDetections> detections_;
-  std::shared_ptr<const web::PathSet> paths_;
-  std::shared_ptr<const LabelledCloud> cloud_;
-  Stamp detections_at_ = -1e300, map_at_ = -1e300, status_at_ = -1e300, cloud_at_ = -1e300;
-  AsState as_state_ = AsState::Off;
-  std::size_t faults_ = 0;
-  std::string last_fault_;
+  ChannelUse use_;
+  ChannelPacer pacer_;
 };
 
 }  // namespace fsd

@@ -6,7 +6,9 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "daemon/telemetry_channels.hpp"
 #include "web/log_sink.hpp"
+#include "web/scene_delta.hpp"
 #include "web/server.hpp"
 
 namespace fsd {
@@ -41,11 +43,10 @@ nlohmann::json state_json(const TelemetrySnapshot& s) {
 
 }  // namespace
 
-Telemetry::Telemetry(web::WebServer& server, TelemetryRates rates, bool truth, web::CarShape car)
+Telemetry::Telemetry(web::WebServer& server, bool truth, web::CarShape car)
     : server_(server),
-      ch_(web::add_standard_channels(server)),
-      truth_ch_(truth ? std::optional(web::add_truth_channels(server)) : std::nullopt),
-      rates_(rates),
+      truth_(truth),
+      ids_(web::add_channels(server, channel_specs([truth](const TelemetryChannel& c) { return truth || !c.truth; }))),
       car_(car),
       published_(
           server.metrics().counter("fsd_telemetry_snapshots_total", "Snapshots the control loop handed to telemetry")),
@@ -73,26 +74,21 @@ void Telemetry::publish(std::shared_ptr<const TelemetrySnapshot> snapshot) {
 
 void Telemetry::loop() {
   using clock = std::chrono::steady_clock;
-  // Each channel is due when its period has passed in wall time: the dashboard wants smooth real-time updates,
-  // also while a headless-fast run races through simulated time.
-  struct Due {
-    double period;
-    clock::time_point next;
-  };
-  auto due = [](double hz) { return Due{1.0 / hz, clock::now()}; };
-  Due state = due(rates_.state_hz), car = due(rates_.car_hz), scene = due(rates_.scene_hz),
-      cloud = due(rates_.cloud_hz), status = due(rates_.status_hz), camera = due(rates_.camera_hz),
-      truth_state = due(rates_.state_hz), truth_cones = due(rates_.scene_hz);
-  auto ready = [](Due& d, clock::time_point now) {
-    if (now < d.next) return false;
-    d.next = now + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(d.period));
-    return true;
-  };
+  const auto& rows = telemetry_channels();
+  // Rates in wall time: the dashboard wants smooth real-time updates, also while a headless run races through
+  // simulated time.
+  ChannelPacer pacer(
+      rows, [](const TelemetryChannel& c) { return c.live_hz; },
+      [this](const TelemetryChannel& c) { return truth_ || !c.truth; });
+  std::vector<web::ChannelId> ids(rows.size(), 0);
+  std::vector<std::optional<web::SceneDelta>> scenes(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (const auto it = ids_.by_topic.find(rows[i].spec.topic); it != ids_.by_topic.end()) ids[i] = it->second;
+    if (rows[i].spec.options.delta) scenes[i].emplace();
+  }
+  const ChannelUse use{car_, false};
+  const auto start = clock::now();
   std::uint64_t seen = 0;
-  std::shared_ptr<const Scan> last_scan;
-  std::shared_ptr<const LabelledCloud> last_cloud;
-  std::shared_ptr<const std::vector<std::uint8_t>> last_image;
-  std::shared_ptr<const std::vector<web::TruthCone>> last_truth_cones;
   std::shared_ptr<const TelemetrySnapshot> snap;
   while (!stop_) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -100,48 +96,20 @@ void Telemetry::loop() {
     if (const auto newer = latest_->get_if_newer(seen)) {
       if (seen > before + 1) skipped_.inc(seen - before - 1);
       snap = *newer;
-    } else if (!snap || !truth_ch_ || snap->truth_cones == last_truth_cones) {
-      continue;  // nothing new (a pending truth cone update is retried below)
     }
+    if (!snap) continue;
     const TelemetrySnapshot& s = *snap;
-    const auto now = clock::now();
-    const bool fresh = seen != before;
-    if (fresh && ready(state, now))
-      server_.publish(ch_.vehicle_state, s.t, web::vehicle_state_json(s.state, s.target_speed));
-    if (fresh && ready(car, now)) server_.publish(ch_.car, s.t, web::car_scene(s.t, s.state.pose, car_));
-    if (fresh && ready(scene, now)) {
-      if (s.cone_map) server_.publish(ch_.cone_map, s.t, web::cone_map_scene(s.t, *s.cone_map));
-      // Drawn where they were seen: at the pose of their own instant (up to 100 ms before the snapshot's).
-      if (s.detections)
-        server_.publish(ch_.detections, s.t,
-                        web::detections_scene(s.t, *s.detections, s.detections_pose.value_or(s.state.pose)));
-      if (s.paths) server_.publish(ch_.paths, s.t, web::paths_scene(s.t, *s.paths));
-    }
-    if (fresh && s.cloud && s.cloud != last_cloud && ready(cloud, now)) {
-      // Perception ran: the ground and the obstacles apart, as the detector split them.
-      last_cloud = s.cloud;
-      server_.publish(ch_.point_cloud, s.t, web::point_cloud(s.t, s.cloud_pose, s.cloud->ground, s.cloud->obstacles));
-    } else if (fresh && !s.cloud && s.scan && s.scan != last_scan && ready(cloud, now)) {
-      last_scan = s.scan;
-      server_.publish(ch_.point_cloud, s.t, web::point_cloud(s.t, s.lidar_pose, {}, s.scan->points));
-    }
-    if (fresh && s.camera_jpeg && s.camera_jpeg != last_image && ready(camera, now)) {
-      last_image = s.camera_jpeg;
-      server_.publish(ch_.camera_image, s.t, web::compressed_image(s.t, *s.camera_jpeg, "jpeg"));
-    }
-    if (fresh && ready(status, now)) {
-      server_.publish(ch_.as_status, s.t, web::as_status_json(s.t, s.as));
-      server_.publish(ch_.faults, s.t, web::faults_json(s.t, s.faults));
-    }
-    if (truth_ch_) {
-      if (fresh && s.truth && ready(truth_state, now)) {
-        server_.publish(truth_ch_->vehicle_state, s.t, web::truth_state_json(*s.truth));
-        server_.publish(truth_ch_->car, s.t, web::truth_car_scene(s.t, s.truth->pose, car_));
-      }
-      // The cones change only when one falls: sent then (latched for late subscribers), at most at the scene rate.
-      if (s.truth_cones && s.truth_cones != last_truth_cones && ready(truth_cones, now)) {
-        last_truth_cones = s.truth_cones;
-        server_.publish(truth_ch_->cones, s.t, web::truth_cones_scene(s.t, *s.truth_cones));
+    const double now = std::chrono::duration<double>(clock::now() - start).count();
+    // Without a new snapshot only data still unsent (a rate-limited scene) can be due.
+    for (const std::size_t i : pacer.due(s, now, seen != before)) {
+      auto p = rows[i].build(s, use);
+      if (!p) continue;
+      if (!p->entities) {
+        server_.publish(ids[i], s.t, std::move(p->json));
+      } else if (!scenes[i]) {
+        server_.publish(ids[i], s.t, web::scene_update_json(*p->entities));
+      } else if (auto u = scenes[i]->update(s.t, *p->entities)) {
+        server_.publish(ids[i], s.t, std::move(u->delta), std::move(u->full));
       }
     }
   }

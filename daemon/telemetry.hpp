@@ -51,26 +51,22 @@ struct TelemetrySnapshot {
   std::shared_ptr<const std::vector<web::TruthCone>> truth_cones;  // a new pointer when a cone fell
 };
 
-struct TelemetryRates {
-  double state_hz = 25, car_hz = 25, scene_hz = 4, cloud_hz = 2, status_hz = 5, camera_hz = 5;
-};
-
 class Telemetry {
  public:
-  // `truth`: also add the /truth/* channels (sim runs); `car`: the body drawn on /car and /truth/car. The server
-  // must outlive the Telemetry.
-  Telemetry(web::WebServer& server, TelemetryRates rates = {}, bool truth = false, web::CarShape car = {});
+  // Adds the channels of the channel table (daemon/telemetry_channels.hpp) and publishes them at their live
+  // rates. `truth`: also the /truth/* channels (sim runs); `car`: the body drawn on /car and /truth/car. The
+  // server must outlive the Telemetry.
+  Telemetry(web::WebServer& server, bool truth = false, web::CarShape car = {});
   ~Telemetry();                                                     // stops the thread
   void publish(std::shared_ptr<const TelemetrySnapshot> snapshot);  // never blocks
   void stop();
-  const web::StandardChannels& channels() const { return ch_; }
+  web::ChannelId channel(const std::string& topic) const { return ids_.at(topic); }
 
  private:
   void loop();
   web::WebServer& server_;
-  web::StandardChannels ch_;
-  std::optional<web::TruthChannels> truth_ch_;
-  TelemetryRates rates_;
+  bool truth_;
+  web::ChannelIds ids_;
   web::CarShape car_;
   using Slot = LatestValue<std::shared_ptr<const TelemetrySnapshot>>;
   std::shared_ptr<Slot> latest_ = std::make_shared<Slot>();  // shared with the /api/state provider

@@ -115,8 +115,8 @@ json compressed_image() {
 }
 
 // The schema of /camera/detections, kept for when the camera stage hands its boxes to the telemetry (the channel
-// is not advertised until then; see standard_channels()).
-[[maybe_unused]] json image_annotations() {
+// is not in the channel table until then).
+json image_annotations() {
   const json points = object("foxglove.PointsAnnotation", {{"timestamp", time_type()},
                                                            {"type", integer("2 LINE_LOOP")},
                                                            {"points", array_of(xy(), "corners")},
@@ -204,38 +204,40 @@ json faults() {
   return object("fsd.Faults", {{"timestamp", time_type()}, {"faults", array_of(fault, "recent faults, newest last")}});
 }
 
-ChannelSpec spec(const char* topic, const json& schema, const std::string& description, bool latched = false,
-                 std::size_t backlog = 0) {
-  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(),
-          ChannelOptions{latched, backlog}};
-}
-
-// Log lines a new subscriber gets at once: what happened before the page was opened (the dashboard shows 60).
-constexpr std::size_t kLogBacklog = 100;
-
 }  // namespace
 
-std::vector<ChannelSpec> truth_channels() {
-  return {
-      spec(topics::kTruthCones, scene_update(), "Simulator ground truth: every cone, standing or knocked over", true),
-      spec(topics::kTruthCar, scene_update(), "Simulator ground truth: the car's true pose"),
-      spec(topics::kTruthVehicleState, truth_state(), "Simulator ground truth: the car's true motion (SI units)"),
-  };
-}
-
-std::vector<ChannelSpec> standard_channels() {
-  return {
-      spec(topics::kConeMap, scene_update(), "Cone map in the map frame", true),
-      spec(topics::kDetections, scene_update(), "Cone detections of the latest LiDAR frame"),
-      spec(topics::kCar, scene_update(), "The car"),
-      spec(topics::kPaths, scene_update(), "Lap-1 trajectory, lap-2 tracking and the planned path", true),
-      spec(topics::kPointCloud, point_cloud(), "LiDAR points, downsampled, ground flagged"),
-      spec(topics::kCameraImage, compressed_image(), "Camera image"),
-      spec(topics::kVehicleState, vehicle_state(), "Motion state of the car (SI units)"),
-      spec(topics::kAsStatus, as_status(), "Autonomous-system state, mission, laps", true),
-      spec(topics::kFaults, faults(), "Recent faults", true),
-      spec(topics::kLog, log(), "Log lines (the latest 100 sent to a new subscriber)", false, kLogBacklog),
-  };
+ChannelSpec channel_spec(const char* topic, Schema kind, const std::string& description, ChannelOptions options) {
+  json schema;
+  switch (kind) {
+    case Schema::SceneUpdate:
+      schema = scene_update();
+      break;
+    case Schema::PointCloud:
+      schema = point_cloud();
+      break;
+    case Schema::CompressedImage:
+      schema = compressed_image();
+      break;
+    case Schema::ImageAnnotations:
+      schema = image_annotations();
+      break;
+    case Schema::Log:
+      schema = log();
+      break;
+    case Schema::VehicleState:
+      schema = vehicle_state();
+      break;
+    case Schema::TruthVehicleState:
+      schema = truth_state();
+      break;
+    case Schema::AsStatus:
+      schema = as_status();
+      break;
+    case Schema::Faults:
+      schema = faults();
+      break;
+  }
+  return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(), options};
 }
 
 }  // namespace fsd::web

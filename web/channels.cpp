@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "web/base64.hpp"
+#include "web/scene_delta.hpp"
 #include "web/server.hpp"
 
 namespace fsd::web {
@@ -16,6 +17,11 @@ using nlohmann::json;
 namespace {
 
 constexpr const char* kMapFrame = "map";
+constexpr std::size_t kPathPiece = 100;  // points per entity of a driven trail
+
+// Fewer digits on the wire where they mean nothing: n / per_unit is the double nearest to the decimal, which
+// nlohmann prints in its shortest exact form (12.35, not 17 digits).
+double round_to(double v, double per_unit) { return std::round(v * per_unit) / per_unit; }
 
 json stamp(Stamp t) {
   if (!std::isfinite(t) || t < 0) t = 0;
@@ -31,9 +37,11 @@ json stamp(Stamp t) {
 json duration(double s) { return stamp(s); }
 json vec3(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
 json rgba(double r, double g, double b, double a = 1.0) { return {{"r", r}, {"g", g}, {"b", b}, {"a", a}}; }
+// To 0.1 mm and 1e-4 of a quaternion (2e-4 rad): 7 characters a number instead of 18, on every box, arrow and cone.
 json yaw_pose(double x, double y, double z, double yaw) {
-  return {{"position", vec3(x, y, z)},
-          {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(yaw / 2)}, {"w", std::cos(yaw / 2)}}}};
+  const auto r = [](double v) { return round_to(v, 10000); };
+  return {{"position", vec3(r(x), r(y), r(z))},
+          {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", r(std::sin(yaw / 2))}, {"w", r(std::cos(yaw / 2))}}}};
 }
 json pose3(const Pose3& p) {
   const Eigen::Quaterniond q(p.linear());
@@ -102,7 +110,7 @@ std::vector<Vec2> decimate(const std::vector<Vec2>& pts, double min_spacing) {
 
 json line_strip(const std::vector<Vec2>& pts, double thickness, const json& colour, double z) {
   json points = json::array();
-  for (const auto& p : pts) points.push_back(vec3(p.x(), p.y(), z));
+  for (const auto& p : pts) points.push_back(vec3(round_to(p.x(), 1000), round_to(p.y(), 1000), z));
   return {{"type", 0},
           {"pose", yaw_pose(0, 0, 0, 0)},
           {"thickness", thickness},
@@ -124,36 +132,35 @@ void put_point(std::uint8_t* out, const Point& p, bool ground) {
 
 }  // namespace
 
-StandardChannels add_standard_channels(WebServer& server) {
-  std::vector<ChannelId> ids;
-  for (const auto& s : standard_channels())
-    ids.push_back(server.add_channel(s.topic, s.schema_name, s.schema, s.options));
-  StandardChannels c;
-  c.cone_map = ids[0];
-  c.detections = ids[1];
-  c.car = ids[2];
-  c.paths = ids[3];
-  c.point_cloud = ids[4];
-  c.camera_image = ids[5];
-  c.vehicle_state = ids[6];
-  c.as_status = ids[7];
-  c.faults = ids[8];
-  c.log = ids[9];
-  return c;
+ChannelIds add_channels(WebServer& server, const std::vector<ChannelSpec>& specs) {
+  ChannelIds ids;
+  for (const auto& s : specs) ids.by_topic[s.topic] = server.add_channel(s.topic, s.schema_name, s.schema, s.options);
+  return ids;
 }
 
-TruthChannels add_truth_channels(WebServer& server) {
-  std::vector<ChannelId> ids;
-  for (const auto& s : truth_channels()) ids.push_back(server.add_channel(s.topic, s.schema_name, s.schema, s.options));
-  return {ids[0], ids[1], ids[2]};
+ChannelId ChannelIds::at(const std::string& topic) const {
+  const auto it = by_topic.find(topic);
+  if (it == by_topic.end()) throw std::out_of_range("web: no channel " + topic);
+  return it->second;
+}
+
+std::vector<json> cone_map_entities(Stamp t, const std::vector<Cone>& cones) {
+  std::vector<json> out;
+  for (std::size_t i = 0; i < cones.size(); ++i) {
+    const auto& c = cones[i];
+    if (!c.position.allFinite()) continue;
+    // The map's stable id, so that a client replaces just this cone; a cone without one is named by its place.
+    json e = entity(t, c.id ? "cone/" + std::to_string(c.id) : "cone/#" + std::to_string(i));
+    // Rounded to cm (a cone is 228 mm wide): the map's sub-cm refinements would resend the cone for nothing.
+    const Vec3 p(round_to(c.position.x(), 100), round_to(c.position.y(), 100), round_to(c.position.z(), 100));
+    e["cylinders"].push_back(cone_cylinder(p, c.colour));
+    out.push_back(std::move(e));
+  }
+  return out;
 }
 
 std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones) {
-  json e = entity(t, "cone_map");
-  for (const auto& c : cones)
-    if (c.position.allFinite()) e["cylinders"].push_back(cone_cylinder(c.position, c.colour));
-  e["metadata"].push_back({{"key", "count"}, {"value", std::to_string(e["cylinders"].size())}});
-  return scene(json::array({e}));
+  return scene_update_json(cone_map_entities(t, cones));
 }
 
 std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose) {
@@ -192,14 +199,36 @@ std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
   return scene(json::array({e}));
 }
 
+std::vector<json> paths_entities(Stamp t, const PathSet& paths, double min_spacing) {
+  std::vector<json> out;
+  // The driven trails only grow: cut into pieces of kPathPiece points (each starting where the previous ended),
+  // only the newest piece changes as the car drives on.
+  const auto pieces = [&](const std::vector<Vec2>& path, const char* id, double thickness, const json& colour,
+                          double z) {
+    const auto pts = decimate(path, min_spacing);
+    for (std::size_t first = 0, k = 0; first + 1 < pts.size(); first += kPathPiece, ++k) {
+      const std::size_t last = std::min(first + kPathPiece, pts.size() - 1);
+      json e = entity(t, std::string(id) + "/" + std::to_string(k));
+      const std::vector<Vec2> piece(pts.begin() + static_cast<std::ptrdiff_t>(first),
+                                    pts.begin() + static_cast<std::ptrdiff_t>(last) + 1);
+      e["lines"].push_back(line_strip(piece, thickness, colour, z));
+      out.push_back(std::move(e));
+    }
+  };
+  pieces(paths.lap1_trajectory, "lap1_trajectory", 0.10, rgba(0.2, 0.9, 0.3, 1.0), 0.02);
+  pieces(paths.lap2_tracking, "lap2_tracking", 0.10, rgba(0.95, 0.2, 0.9, 1.0), 0.04);
+  // The plan changes as a whole at each update: one entity, coarser points.
+  const auto planned = decimate(paths.planned, 2 * min_spacing);
+  if (planned.size() >= 2) {
+    json e = entity(t, "planned_path");
+    e["lines"].push_back(line_strip(planned, 0.14, rgba(0.1, 0.9, 0.95, 1.0), 0.06));
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
 std::string paths_scene(Stamp t, const PathSet& paths, double min_spacing) {
-  json lap1 = entity(t, "lap1_trajectory"), lap2 = entity(t, "lap2_tracking"), planned = entity(t, "planned_path");
-  lap1["lines"].push_back(
-      line_strip(decimate(paths.lap1_trajectory, min_spacing), 0.10, rgba(0.2, 0.9, 0.3, 1.0), 0.02));
-  lap2["lines"].push_back(
-      line_strip(decimate(paths.lap2_tracking, min_spacing), 0.10, rgba(0.95, 0.2, 0.9, 1.0), 0.04));
-  planned["lines"].push_back(line_strip(decimate(paths.planned, min_spacing), 0.14, rgba(0.1, 0.9, 0.95, 1.0), 0.06));
-  return scene(json::array({lap1, lap2, planned}));
+  return scene_update_json(paths_entities(t, paths, min_spacing));
 }
 
 std::string point_cloud(Stamp t, const Pose3& origin, std::span<const Point> ground, std::span<const Point> non_ground,

@@ -1,17 +1,20 @@
 #pragma once
-// The telemetry channels of the dashboard and of Foxglove Studio: topic names, schema names, JSON schemas, and
-// builders that turn common/ types into the JSON payloads. The daemon adds the channels once
-// (add_standard_channels) and publishes a builder's output on each; see docs/dashboard.md for rates.
+// The telemetry channels of the dashboard and of Foxglove Studio: topic names, JSON schemas, and builders that turn
+// common/ types into the JSON payloads. Which channel has which schema, rate and builder is declared once, in the
+// daemon's channel table (daemon/telemetry_channels.cpp); see docs/dashboard.md.
 // Everything 3D is in the map frame ("map"), so no transforms are needed to view it.
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include "common/car.hpp"
 #include "common/geometry.hpp"
 #include "common/time.hpp"
 #include "common/types.hpp"
+
 #include "web/hub.hpp"
 
 namespace fsd::web {
@@ -43,25 +46,34 @@ struct ChannelSpec {
   std::string schema;  // JSON schema text
   ChannelOptions options;
 };
-// Every channel above, in that order.
-std::vector<ChannelSpec> standard_channels();
 
-struct StandardChannels {
-  ChannelId cone_map = 0, detections = 0, car = 0, paths = 0, point_cloud = 0, camera_image = 0, vehicle_state = 0,
-            as_status = 0, faults = 0, log = 0;
+// The JSON schemas the channels use (web/channel_schemas.cpp). Which channel carries which is declared in one
+// table, the daemon's (daemon/telemetry_channels.cpp).
+enum class Schema {
+  SceneUpdate,        // foxglove.SceneUpdate
+  PointCloud,         // foxglove.PointCloud
+  CompressedImage,    // foxglove.CompressedImage
+  ImageAnnotations,   // foxglove.ImageAnnotations
+  Log,                // foxglove.Log
+  VehicleState,       // fsd.VehicleState
+  TruthVehicleState,  // fsd.TruthVehicleState
+  AsStatus,           // fsd.AsStatus
+  Faults,             // fsd.Faults
 };
-StandardChannels add_standard_channels(WebServer& server);
+ChannelSpec channel_spec(const char* topic, Schema schema, const std::string& description, ChannelOptions options = {});
 
-// The ground-truth channels of a simulated run, in the order of the topics above.
-std::vector<ChannelSpec> truth_channels();
-struct TruthChannels {
-  ChannelId cones = 0, car = 0, vehicle_state = 0;
+// The ids the server gave the channels, by topic.
+struct ChannelIds {
+  std::map<std::string, ChannelId> by_topic;
+  ChannelId at(const std::string& topic) const;  // throws std::out_of_range for a topic not added
 };
-TruthChannels add_truth_channels(WebServer& server);
+ChannelIds add_channels(WebServer& server, const std::vector<ChannelSpec>& specs);
 
 // ---- payload builders (each returns the JSON text of one message)
 
-// The cone map (map frame) as truncated cylinders in the cone colours, one entity "cone_map".
+// The cone map (map frame) as truncated cylinders in the cone colours, one entity per cone ("cone/<map id>"),
+// positions rounded to cm; cone_map_scene is the whole SceneUpdate.
+std::vector<nlohmann::json> cone_map_entities(Stamp t, const std::vector<Cone>& cones);
 std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones);
 // Detections (vehicle frame) placed in the map by the car's pose; translucent boxes that expire after 0.5 s.
 std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose);
@@ -79,8 +91,11 @@ struct PathSet {
   std::vector<Vec2> lap2_tracking;    // driven while tracking in lap 2
   std::vector<Vec2> planned;          // what the planner asks for now
 };
-// Three line strips, entities "lap1_trajectory", "lap2_tracking", "planned_path"; decimated to points at least
-// `min_spacing` apart (ends kept).
+// Line strips decimated to points at least `min_spacing` apart (ends kept), mm on the wire: the driven trails in
+// pieces of 100 points ("lap1_trajectory/0", "/1", ..., "lap2_tracking/0", ...; each piece starts at the previous
+// one's last point, so only the newest piece changes as the car drives), and "planned_path" at twice the spacing.
+// An empty path has no entity. paths_scene is the whole SceneUpdate.
+std::vector<nlohmann::json> paths_entities(Stamp t, const PathSet& paths, double min_spacing = 0.25);
 std::string paths_scene(Stamp t, const PathSet& paths, double min_spacing = 0.25);
 
 struct CloudOptions {

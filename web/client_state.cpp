@@ -66,16 +66,33 @@ bool ClientState::subscribed(ChannelId channel) const {
   return (subscribed_bits_[(channel - 1) / 64].load(std::memory_order_relaxed) >> ((channel - 1) % 64)) & 1u;
 }
 
-void ClientState::drop() {
+void ClientState::drop(const OutMessage& lost) {
   dropped_.fetch_add(1, std::memory_order_relaxed);
   if (drops_) drops_->inc();
+  if (!lost.header_size) return;
+  const auto it = channel_of_sub_.find(lost.subscription_id);
+  if (it == channel_of_sub_.end() || it->second < 1 || it->second > kMaxChannels) return;
+  lost_bits_[(it->second - 1) / 64].fetch_or(1ull << ((it->second - 1) % 64));
+  lost_any_.store(true, std::memory_order_relaxed);
+}
+
+std::vector<ChannelId> ClientState::take_lost() {
+  std::lock_guard lock(m_);
+  lost_any_.store(false, std::memory_order_relaxed);
+  std::vector<ChannelId> out;
+  for (std::size_t w = 0; w < lost_bits_.size(); ++w) {
+    const std::uint64_t bits = lost_bits_[w].exchange(0);
+    for (std::size_t b = 0; b < 64; ++b)
+      if ((bits >> b) & 1u) out.push_back(static_cast<ChannelId>(w * 64 + b + 1));
+  }
+  return out;
 }
 
 bool ClientState::push_telemetry(OutMessage m) {
   if (closed_) return false;
   if (telemetry_.size() >= telemetry_capacity_) {
+    drop(telemetry_.front());
     telemetry_.pop_front();
-    drop();
   }
   telemetry_.push_back(std::move(m));
   const bool wake = !writing_;
@@ -97,6 +114,19 @@ bool ClientState::offer(ChannelId channel, std::uint64_t timestamp_ns,
   m.subscription_id = it->second;
   m.telemetry = true;
   return push_telemetry(std::move(m));
+}
+
+bool ClientState::offer_state(ChannelId channel, std::uint64_t timestamp_ns,
+                              const std::shared_ptr<const std::string>& state) {
+  if (!subscribed(channel)) return false;
+  {
+    std::lock_guard lock(m_);
+    const auto it = sub_of_channel_.find(channel);
+    if (it == sub_of_channel_.end()) return false;
+    const std::uint32_t sub = it->second;
+    std::erase_if(telemetry_, [&](const OutMessage& m) { return m.header_size && m.subscription_id == sub; });
+  }
+  return offer(channel, timestamp_ns, state);
 }
 
 bool ClientState::offer_binary(std::shared_ptr<const std::string> frame) {

@@ -56,6 +56,9 @@ class ClientState {
   // Telemetry of `channel` for this client's subscription to it; does nothing (and takes no lock) when not
   // subscribed.
   bool offer(ChannelId channel, std::uint64_t timestamp_ns, const std::shared_ptr<const std::string>& payload);
+  // A whole state of a delta channel: replaces that channel's queued messages (it supersedes them), so a resync
+  // never drops anything and a slow client never queues the state twice.
+  bool offer_state(ChannelId channel, std::uint64_t timestamp_ns, const std::shared_ptr<const std::string>& state);
   // A droppable binary frame that belongs to no subscription (time messages).
   bool offer_binary(std::shared_ptr<const std::string> frame);
   // A protocol reply (text). When the control queue is full the message is refused and overflowed() turns true.
@@ -66,6 +69,11 @@ class ClientState {
   // Refuses every later push and empties the queues.
   void close();
 
+  // Whether telemetry was dropped since the last take_lost(); take_lost() gives the channels that lost a message
+  // and forgets them (delta channels resync then).
+  bool lost_any() const { return lost_any_.load(std::memory_order_relaxed); }
+  std::vector<ChannelId> take_lost();
+
   bool overflowed() const { return overflowed_.load(std::memory_order_relaxed); }
   std::uint64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
   std::size_t depth() const;
@@ -73,7 +81,7 @@ class ClientState {
  private:
   bool push_telemetry(OutMessage m);  // with m_ held
   bool subscribed(ChannelId channel) const;
-  void drop();
+  void drop(const OutMessage& lost);  // with m_ held
 
   const std::size_t telemetry_capacity_, control_capacity_;
   Counter* drops_;
@@ -86,6 +94,8 @@ class ClientState {
   std::deque<OutMessage> telemetry_, control_;
   bool writing_ = false;
   bool closed_ = false;
+  std::array<std::atomic<std::uint64_t>, kMaxChannels / 64> lost_bits_{};  // bit (id - 1): a message dropped
+  std::atomic<bool> lost_any_{false};
   std::atomic<bool> overflowed_{false};
   std::atomic<std::uint64_t> dropped_{0};
 };

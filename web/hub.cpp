@@ -76,10 +76,14 @@ ChannelId Hub::add_channel(const std::string& topic, const std::string& schema_n
     auto c = std::make_unique<Channel>();
     c->info = info;
     c->options = options;
-    c->keep =
-        std::min(std::max(options.backlog, options.latched ? std::size_t{1} : std::size_t{0}), limits_.telemetry_queue);
+    c->keep = std::min(std::max(options.backlog, options.latched || options.delta ? std::size_t{1} : std::size_t{0}),
+                       limits_.telemetry_queue);
     channels_[n] = std::move(c);
     channel_count_.store(n + 1);  // publishes the new slot
+    if (options.delta) {
+      std::lock_guard fanout(fanout_m_);
+      delta_channels_.push_back(info.id);
+    }
   }
   const std::string msg = foxglove::advertise({info});
   for (const auto& p : *peers()) push(*p, msg);
@@ -99,31 +103,47 @@ Hub::Channel* Hub::channel(ChannelId id) const {
 
 std::shared_ptr<const Hub::PeerList> Hub::peers() const { return peers_.load(); }
 
-void Hub::publish(ChannelId channel, Stamp t, std::string payload) {
+void Hub::publish(ChannelId channel, Stamp t, std::string payload, std::string state) {
   const std::uint64_t ns = foxglove::to_nanoseconds(t);
   if (!this->channel(channel)) {
     dropped_unknown_.inc();
     return;
   }
-  if (outbox_.try_push({channel, ns, std::make_shared<const std::string>(std::move(payload))}))
+  auto whole = state.empty() ? nullptr : std::make_shared<const std::string>(std::move(state));
+  if (outbox_.try_push({channel, ns, std::make_shared<const std::string>(std::move(payload)), std::move(whole)}))
     published_.inc();
   else
     outbox_full_.inc();
 }
 
 void Hub::drain() {
+  std::lock_guard fanout(fanout_m_);
   const auto list = peers();
   Outgoing m;
   bool any = false;
   while (outbox_.try_pop(m)) {
     Channel* c = channel(m.channel);
-    if (c->keep > 0) keep(*c, Latched{m.payload, m.ns});
+    if (c->keep > 0) keep(*c, Latched{c->options.delta && m.state ? m.state : m.payload, m.ns});
     for (const auto& p : *list)
       if (p->state->offer(m.channel, m.ns, m.payload)) any = p->wake_pending = true;
   }
+  for (const auto& p : *list)
+    if (p->state->lost_any()) {
+      resync(*p);
+      any = true;
+    }
   if (!any) return;
   for (const auto& p : *list)
     if (p->wake_pending.exchange(false)) p->wake();
+}
+
+void Hub::resync(Peer& peer) {
+  for (const ChannelId id : peer.state->take_lost()) {
+    if (std::find(delta_channels_.begin(), delta_channels_.end(), id) == delta_channels_.end()) continue;
+    const auto kept = channel(id)->kept.load();
+    if (kept && !kept->empty() && peer.state->offer_state(id, kept->back().ns, kept->back().payload))
+      peer.wake_pending = true;
+  }
 }
 
 void Hub::keep(Channel& c, Latched m) {
@@ -214,6 +234,7 @@ bool Hub::on_text(Peer& peer, std::string_view text) {
 }
 
 void Hub::handle(Peer& peer, const foxglove::SubscribeOp& op) {
+  std::lock_guard fanout(fanout_m_);  // the kept messages, then exactly what the drain fans out after them
   for (const auto& s : op.subscriptions) {
     const Channel* c = channel(s.channel_id);
     if (!c) {

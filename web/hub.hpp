@@ -33,6 +33,10 @@ struct ChannelOptions {
   // The last `backlog` messages are kept and sent to each new subscriber (the log: a page opened after an
   // event shows the lines before it). Bounded by the client's telemetry queue; latched is a backlog of 1.
   std::size_t backlog = 0;
+  // The messages are changes to a state (a SceneUpdate sent by entity, web/scene_delta.hpp) and publish() hands the
+  // whole state beside each: the hub keeps that state (not the change) for each new subscriber, and a client
+  // whose queue dropped one of the changes gets the whole state again, so no client keeps a stale entity.
+  bool delta = false;
 };
 
 // One connected WebSocket client as the hub sees it.
@@ -60,8 +64,9 @@ class Hub : public std::enable_shared_from_this<Hub> {
   ChannelId add_channel(const std::string& topic, const std::string& schema_name, const std::string& json_schema,
                         ChannelOptions options = {});
   std::vector<foxglove::ChannelInfo> channels() const;
-  // Any thread, wait-free: hands the message to the outbox (a full outbox drops it, counted).
-  void publish(ChannelId channel, Stamp t, std::string payload);
+  // Any thread, wait-free: hands the message to the outbox (a full outbox drops it, counted). `state`: on a delta
+  // channel, the whole state after this change (kept for new subscribers and resyncs in place of the message).
+  void publish(ChannelId channel, Stamp t, std::string payload, std::string state = {});
   // On an I/O thread: moves the outbox into the subscribers' queues (a slow client loses its oldest messages),
   // keeps latched channels' last message and wakes the clients' writers.
   void drain();
@@ -100,7 +105,7 @@ class Hub : public std::enable_shared_from_this<Hub> {
   struct Channel {
     foxglove::ChannelInfo info;
     ChannelOptions options;
-    std::size_t keep = 0;                                           // messages kept: 1 latched, or the backlog
+    std::size_t keep = 0;                                           // messages kept: 1 latched or delta, or the backlog
     std::atomic<std::shared_ptr<const std::vector<Latched>>> kept;  // oldest first; only the drain writes it
   };
   using PeerList = std::vector<std::shared_ptr<Peer>>;
@@ -109,6 +114,7 @@ class Hub : public std::enable_shared_from_this<Hub> {
   static void keep(Channel& c, Latched m);  // on the drain: appends to the kept messages, oldest out
   std::shared_ptr<const PeerList> peers() const;
   void push(Peer& peer, std::string text);
+  void resync(Peer& peer);  // on the drain: the whole state of each delta channel the client lost a change of
   void on_param_change(const ParamChange& change);
   void handle(Peer& peer, const foxglove::SubscribeOp& op);
   void handle(Peer& peer, const foxglove::UnsubscribeOp& op);
@@ -139,8 +145,13 @@ class Hub : public std::enable_shared_from_this<Hub> {
     ChannelId channel = 0;
     std::uint64_t ns = 0;
     std::shared_ptr<const std::string> payload;
+    std::shared_ptr<const std::string> state;  // delta channels: the whole state after this change
   };
   MpmcRing<Outgoing> outbox_;
+  // Held by the drain and by a subscription's start (I/O threads only, never a publisher): a new subscriber gets
+  // the kept state and then exactly the changes after it, also with two I/O threads.
+  std::mutex fanout_m_;
+  std::vector<ChannelId> delta_channels_;  // appended under add_channel_m_, read under fanout_m_
 
   Counter& published_;
   Counter& outbox_full_;

@@ -96,8 +96,8 @@ ChannelId WebServer::add_channel(const std::string& topic, const std::string& sc
   return impl_->ctx->hub->add_channel(topic, schema_name, json_schema, options);
 }
 
-void WebServer::publish(ChannelId channel, Stamp t, std::string json_payload) {
-  impl_->ctx->hub->publish(channel, t, std::move(json_payload));
+void WebServer::publish(ChannelId channel, Stamp t, std::string json_payload, std::string state) {
+  impl_->ctx->hub->publish(channel, t, std::move(json_payload), std::move(state));
 }
 
 void WebServer::set_state_provider(std::function<nlohmann::json()> provider) {

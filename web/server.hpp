@@ -41,7 +41,8 @@ class WebServer {
   // Any thread; wait-free (a lock-free hand-over to the I/O thread, which fans out within ~2 ms): each
   // subscribed client gets the message in its bounded queue, and a client that reads too slowly loses its oldest
   // telemetry (counted in fsd_web_messages_dropped_total).
-  void publish(ChannelId channel, Stamp t, std::string json_payload);
+  // On a delta channel (ChannelOptions::delta) `state` is the whole state after this change.
+  void publish(ChannelId channel, Stamp t, std::string json_payload, std::string state = {});
   // The body of /api/state; called on a web I/O thread, so it must be thread-safe.
   void set_state_provider(std::function<nlohmann::json()> provider);
 

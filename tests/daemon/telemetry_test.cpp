@@ -16,6 +16,7 @@
 #include "daemon/run_metrics.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
+#include "daemon/stack.hpp"
 #include "daemon/telemetry.hpp"
 #include "tests/daemon/dashboard_client.hpp"
 #include "tests/daemon/track_csv.hpp"
@@ -47,7 +48,7 @@ struct LiveRun {
     cfg.set("web.port", 0, "test");
     params = std::make_unique<ParamRegistry>(cfg, &clock);
     server = std::make_unique<web::WebServer>(web::web_section().read(cfg), *params, clock);
-    telemetry = std::make_unique<Telemetry>(*server, TelemetryRates{}, true);
+    telemetry = std::make_unique<Telemetry>(*server, true);
     metrics = std::make_unique<RunMetrics>(server->metrics());
     server->start();
     RunOptions o;
@@ -169,6 +170,79 @@ TEST(Telemetry, TruthChannelsCarryTheTrackFilesConesAndTheTrueStartPose) {
   EXPECT_NEAR((*car)["entities"][0]["arrows"][0]["pose"]["position"]["x"].get<double>(), sx, 0.01);
 }
 
+// The cone map as a viewer holds it (entity id → x, y), from SceneUpdates applied in order: deletions first (type
+// 1 = all of the topic), then each entity replacing the one of its id.
+using ConeView = std::map<std::string, std::pair<double, double>>;
+void apply_scene(ConeView& view, const json& update, int* deletions = nullptr) {
+  for (const auto& d : update["deletions"]) {
+    if (d["type"] == 1) {
+      view.clear();
+    } else {
+      view.erase(d["id"].get<std::string>());
+      if (deletions) ++*deletions;
+    }
+  }
+  for (const auto& e : update["entities"]) {
+    const auto& p = e["cylinders"].at(0)["pose"]["position"];
+    view[e["id"].get<std::string>()] = {p["x"].get<double>(), p["y"].get<double>()};
+  }
+}
+// Applies every message of `sub` until none comes for a second; the largest message's entity count in *largest.
+int read_scene(WsClient& c, std::uint32_t sub, ConeView& view, std::size_t* largest = nullptr) {
+  int n = 0;
+  while (const auto m = next_on(c, sub, std::chrono::milliseconds(1000))) {
+    apply_scene(view, *m);
+    if (largest) *largest = std::max(*largest, (*m)["entities"].size());
+    ++n;
+  }
+  return n;
+}
+
+// The cone map goes out as changes by cone: a client subscribed from the start and one that subscribes after the
+// run both end with the Stack's own map (its ids and positions), the late one from a single message.
+TEST(Telemetry, EveryClientEndsWithTheStacksConeMapALateOneFromOneMessage) {
+  LiveRun live(25.0);  // drives off at 5.5 s: cones come into view as it goes
+  WsClient early(live.server->port());
+  ASSERT_TRUE(early.handshake_ok());
+  const auto subs = subscribe(early, {"/map/cones"});
+  ASSERT_EQ(subs.size(), 1u);
+  ASSERT_EQ(live.go(), 0);
+  ConeView early_view;
+  std::size_t largest_change = 0;
+  const int changes = read_scene(early, subs.at("/map/cones"), early_view, &largest_change);
+
+  WsClient late(live.server->port());
+  ASSERT_TRUE(late.handshake_ok());
+  // Subscribed without test::subscribe's sync round trip: waiting for its reply would skip the whole scene, which
+  // comes first.
+  const auto adv = late.next_op("advertise");
+  ASSERT_TRUE(adv);
+  for (const auto& ch : (*adv)["channels"])
+    if (ch["topic"] == "/map/cones")
+      late.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 1}, {"channelId", ch["id"]}}}}}.dump());
+  ConeView late_view;
+  EXPECT_EQ(read_scene(late, 1, late_view), 1);
+
+  // The truth: the Stack's map at the end of the run (the last snapshot is at most 3 cycles older).
+  const auto& map = live.run->stack().cone_map();
+  ASSERT_GT(map.size(), 30u);
+  ConeView stack;
+  for (std::size_t i = 0; i < map.size(); ++i)
+    stack[map[i].id ? "cone/" + std::to_string(map[i].id) : "cone/#" + std::to_string(i)] = {map[i].position.x(),
+                                                                                             map[i].position.y()};
+  for (const auto* view : {&early_view, &late_view}) {
+    ASSERT_EQ(view->size(), stack.size());
+    for (const auto& [id, p] : stack) {
+      ASSERT_TRUE(view->count(id)) << id;
+      EXPECT_NEAR(view->at(id).first, p.first, 0.006) << id;  // sent to the cm
+      EXPECT_NEAR(view->at(id).second, p.second, 0.006) << id;
+    }
+  }
+  // Sent as changes: many messages, and none carried the whole map again.
+  EXPECT_GE(changes, 2);  // a headless run lasts about a second of wall time: a few 4 Hz updates
+  EXPECT_LT(largest_change, stack.size());
+}
+
 TEST(Telemetry, PlanFallbacksAreCounted) {
   // Ten cycles: a plan on every other one; of the five, two on one boundary, one colour-blind as well, one with a
   // tight turn; a flag on a cycle without a plan counts nothing.
@@ -260,7 +334,7 @@ TEST(Telemetry, LogLinesOfEveryLoggerReachTheLogChannel) {
   wc.port = 0;
   web::WebServer server(wc, params, clock);
   Telemetry telemetry(server);
-  auto forwarding = std::make_unique<LogForwarding>(server, telemetry.channels().log, clock);
+  auto forwarding = std::make_unique<LogForwarding>(server, telemetry.channel(web::topics::kLog), clock);
   server.start();
   auto late = logger("telemetry_test_late");  // created afterwards: inherits the sink
 

@@ -1,16 +1,16 @@
 // A client of the Foxglove WebSocket protocol v1 (the same protocol Foxglove Studio speaks): it subscribes to
-// the topics it is asked for as soon as they are advertised, decodes binary message data, handles parameters,
-// and reconnects by itself with a growing back-off.
+// the advertised channels its `wants(channel)` accepts as soon as they are advertised, decodes binary message
+// data, handles parameters, and reconnects by itself with a growing back-off.
 const SUBPROTOCOL = 'foxglove.websocket.v1';
 const OP_MESSAGE_DATA = 0x01;
 const OP_TIME = 0x02;
 
 export class FoxgloveClient {
   // handlers: { onState(state, detail), onServerInfo(info), onAdvertise(channels), onStatus(msg),
-  //             onMessage(topic, tNs, payload), onParameterValues(params, id), onTime(tNs) }
-  constructor(url, topics, handlers) {
+  //             onMessage(topic, tNs, payload, channel), onParameterValues(params, id), onTime(tNs) }
+  constructor(url, wants, handlers) {
     this.url = url;
-    this.wanted = new Set(topics);
+    this.wants = wants;
     this.h = handlers;
     this.channels = new Map();      // channel id → channel
     this.subs = new Map();          // subscription id → channel
@@ -96,7 +96,7 @@ export class FoxgloveClient {
       } catch {
         return;
       }
-      this.h.onMessage?.(channel.topic, tNs, payload);
+      this.h.onMessage?.(channel.topic, tNs, payload, channel);
     } else if (op === OP_TIME && view.byteLength >= 9) {
       this.h.onTime?.(view.getBigUint64(1, true));
     }
@@ -110,17 +110,9 @@ export class FoxgloveClient {
         if (msg.capabilities?.includes('parametersSubscribe')) this.send({ op: 'subscribeParameterUpdates', parameterNames: [] });
         break;
       case 'advertise': {
-        const subscriptions = [];
-        for (const ch of msg.channels ?? []) {
-          this.channels.set(ch.id, ch);
-          if (this.wanted.has(ch.topic) && ch.encoding === 'json') {
-            const id = this.nextSub++;
-            this.subs.set(id, ch);
-            subscriptions.push({ id, channelId: ch.id });
-          }
-        }
-        if (subscriptions.length) this.send({ op: 'subscribe', subscriptions });
+        for (const ch of msg.channels ?? []) this.channels.set(ch.id, ch);
         this.h.onAdvertise?.(this.channels);
+        this.refresh();
         break;
       }
       case 'unadvertise':
@@ -141,25 +133,21 @@ export class FoxgloveClient {
     }
   }
 
-  // Subscribes to (on) or unsubscribes from (off) a topic now and after every reconnect.
-  setWanted(topic, on) {
-    if (on) {
-      if (this.wanted.has(topic)) return;
-      this.wanted.add(topic);
-      const subscriptions = [];
-      for (const ch of this.channels.values()) {
-        if (ch.topic !== topic || ch.encoding !== 'json') continue;
-        const id = this.nextSub++;
-        this.subs.set(id, ch);
-        subscriptions.push({ id, channelId: ch.id });
-      }
-      if (subscriptions.length) this.send({ op: 'subscribe', subscriptions });
-    } else {
-      if (!this.wanted.delete(topic)) return;
-      const ids = [...this.subs].filter(([, ch]) => ch.topic === topic).map(([id]) => id);
-      for (const id of ids) this.subs.delete(id);
-      if (ids.length) this.send({ op: 'unsubscribe', subscriptionIds: ids });
+  // Subscribes to every advertised channel `wants` accepts now and unsubscribes from the others (after a change of
+  // what is wanted, e.g. the truth overlay turned on or off).
+  refresh() {
+    const subscribed = new Set([...this.subs.values()].map((ch) => ch.id));
+    const subscriptions = [];
+    for (const ch of this.channels.values()) {
+      if (subscribed.has(ch.id) || ch.encoding !== 'json' || !this.wants(ch)) continue;
+      const id = this.nextSub++;
+      this.subs.set(id, ch);
+      subscriptions.push({ id, channelId: ch.id });
     }
+    if (subscriptions.length) this.send({ op: 'subscribe', subscriptions });
+    const gone = [...this.subs].filter(([, ch]) => !this.wants(ch)).map(([id]) => id);
+    for (const id of gone) this.subs.delete(id);
+    if (gone.length) this.send({ op: 'unsubscribe', subscriptionIds: gone });
   }
 
   hasTopic(topic) {

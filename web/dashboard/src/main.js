@@ -10,21 +10,10 @@ import { ParamPanel } from './params.js';
 const $ = (id) => document.getElementById(id);
 const RAD2DEG = 180 / Math.PI;
 
-const TOPICS = {
-  cones: '/map/cones',
-  detections: '/perception/cones',
-  car: '/vehicle/car',
-  paths: '/planning/paths',
-  cloud: '/lidar/points',
-  image: '/camera/image',
-  imageBoxes: '/camera/detections',
-  state: '/vehicle/state',
-  as: '/as/status',
-  faults: '/faults',
-  log: '/log',
-};
-// The simulator's ground truth (sim runs only): subscribed while the truth overlay is on.
-const TRUTH = { cones: '/truth/cones', car: '/truth/car', state: '/truth/vehicle_state' };
+// The page subscribes to what the daemon advertises (its channel table, daemon/telemetry_channels.cpp) and shows
+// each message by its schema, so a new channel of a known schema needs no change here. The simulator's ground
+// truth (/truth/*, sim runs only) is subscribed while the truth overlay is on.
+const isTruth = (topic) => topic.startsWith('/truth/');
 
 // ?ws=ws://car:8080/ connects elsewhere (development with `npm run dev`); by default the page's own server.
 const wsUrl = new URLSearchParams(location.search).get('ws') ??
@@ -157,24 +146,20 @@ function sceneUpdate(topic, m) {
   scene.applySceneUpdate(topic, m);
 }
 
-const handlers = {
-  [TOPICS.cones]: (m) => sceneUpdate(TOPICS.cones, m),
-  [TOPICS.detections]: (m) => sceneUpdate(TOPICS.detections, m),
-  [TOPICS.car]: (m) => sceneUpdate(TOPICS.car, m),
-  [TOPICS.paths]: (m) => sceneUpdate(TOPICS.paths, m),
-  [TOPICS.cloud]: (m) => {
+// By schema name: how a message is shown.
+const bySchema = {
+  'foxglove.SceneUpdate': (m, topic) => (isTruth(topic) ? scene.applySceneUpdate(topic, m) : sceneUpdate(topic, m)),
+  'foxglove.PointCloud': (m) => {
     sceneArrived();
     scene.applyPointCloud(m);
   },
-  [TOPICS.state]: onVehicleState,
-  [TOPICS.as]: onAsStatus,
-  [TOPICS.faults]: onFaults,
-  [TOPICS.log]: (m) => addLog(m.level, m.name, m.message),
-  [TOPICS.image]: onImage,
-  [TOPICS.imageBoxes]: onImageBoxes,
-  [TRUTH.cones]: (m) => scene.applySceneUpdate(TRUTH.cones, m),
-  [TRUTH.car]: (m) => scene.applySceneUpdate(TRUTH.car, m),
-  [TRUTH.state]: onTruthState,
+  'foxglove.CompressedImage': onImage,
+  'foxglove.ImageAnnotations': onImageBoxes,
+  'foxglove.Log': (m) => addLog(m.level, m.name, m.message),
+  'fsd.VehicleState': onVehicleState,
+  'fsd.TruthVehicleState': onTruthState,
+  'fsd.AsStatus': onAsStatus,
+  'fsd.Faults': onFaults,
 };
 
 function setLink(state, detail) {
@@ -190,12 +175,13 @@ function setLink(state, detail) {
 }
 
 let panel;
-const client = new FoxgloveClient(wsUrl, Object.values(TOPICS), {
+const wants = (ch) => bySchema[ch.schemaName] !== undefined && (!isTruth(ch.topic) || hook.truth.on);
+const client = new FoxgloveClient(wsUrl, wants, {
   onState: setLink,
   onServerInfo: () => panel.load(),
-  onAdvertise: () => {
+  onAdvertise: (channels) => {
     // Only sim runs have a ground truth to overlay.
-    const available = client.hasTopic(TRUTH.state);
+    const available = [...channels.values()].some((ch) => isTruth(ch.topic));
     $('truth').disabled = !available;
     $('truth').title = available ? "the simulator's ground truth over what the stack sees" : 'no ground truth: not a simulated run';
   },
@@ -205,10 +191,10 @@ const client = new FoxgloveClient(wsUrl, Object.values(TOPICS), {
     if (msg.level >= 1) addLog(msg.level === 2 ? 4 : 3, 'server', msg.message);
   },
   onParameterValues: (params, id) => panel.onValues(params, id),
-  onMessage: (topic, tNs, payload) => {
+  onMessage: (topic, tNs, payload, channel) => {
     hook.topics[topic] = (hook.topics[topic] ?? 0) + 1;
     try {
-      handlers[topic]?.(payload);
+      bySchema[channel.schemaName]?.(payload, topic);
     } catch (e) {
       console.error(topic, e);
     }
@@ -242,11 +228,10 @@ function setTruthOverlay(on) {
   $('truth').classList.toggle('on', on);
   $('truth').setAttribute('aria-pressed', String(on));
   $('legend-truth').hidden = !on;
-  for (const topic of Object.values(TRUTH)) client.setWanted(topic, on);
+  client.refresh();
   for (const p of Object.values(plots)) p.setVisible(p.series.length - 1, on);
   if (!on) {
-    scene.removeTopic(TRUTH.cones);
-    scene.removeTopic(TRUTH.car);
+    for (const ch of client.channels.values()) if (isTruth(ch.topic)) scene.removeTopic(ch.topic);
     hook.truth.samples = 0;
   }
 }
