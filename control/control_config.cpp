@@ -58,7 +58,9 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
                   "Walks ending nearer try the single-boundary fallback.")
           .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)
           .number("time_budget", &C::time_budget, 0.001, 1, "s",
-                  "A plan slower than this is counted late (a warning in the log and /metrics).", true);
+                  "A plan whose CPU time exceeds this is counted late (a warning in the log and /metrics); time "
+                  "spent waiting for a core does not count.",
+                  true);
   return s;
 }
 

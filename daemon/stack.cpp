@@ -1,5 +1,7 @@
 #include "daemon/stack.hpp"
 
+#include <time.h>
+
 #include <chrono>
 #include <deque>
 #include <mutex>
@@ -42,6 +44,12 @@ double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 }  // namespace
 
 struct Stack::Impl {
@@ -54,6 +62,7 @@ struct Stack::Impl {
   std::shared_ptr<spdlog::logger> log = logger("stack");
   StepLog step_log{logger("run")};
   std::function<double()> wall;
+  std::function<double()> cpu;
 
   // Decoders.
   Vlp16Config vlp_cfg;
@@ -129,6 +138,7 @@ struct Stack::Impl {
         run(run_section().read(cfg)),
         convention(ColourConvention::named(run.colours)),
         wall(opt.wall_clock ? opt.wall_clock : steady_seconds),
+        cpu(opt.cpu_clock ? opt.cpu_clock : thread_cpu_seconds),
         vlp_cfg(read_vlp16_config(cfg)),
         truth_perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5),
         cone_map(cone_map_section().read(cfg)),
@@ -408,9 +418,9 @@ struct Stack::Impl {
     cycle.perceived = perceive(now);
     apply_param_changes(now);
 
-    const double w0 = wall();
+    const double w0 = wall(), c0 = cpu();
     const bool planned = autopilot->plan(now);
-    const double w1 = wall();
+    const double w1 = wall(), c1 = cpu();
     cycle.out = autopilot->step(now);
     const double w2 = wall();
     const ControlOutput& out = cycle.out;
@@ -425,7 +435,11 @@ struct Stack::Impl {
     if (planned) {
       fig.planning_s = w1 - w0;
       latency["planning"].add(fig.planning_s);
-      if (fig.planning_s > plan_budget) note_late_plan(now, fig.planning_s);
+      // Wall time includes the time the thread waited for a core (a loaded desk: 100s of ms); the plan's own
+      // cost is its CPU time, and that is what the budget is about.
+      const double cost = c1 - c0;
+      latency["planning_cpu"].add(cost);
+      if (cost > plan_budget) note_late_plan(now, cost, fig.planning_s);
     }
     fig.control_s = w2 - w1;
     latency["control"].add(fig.control_s);
@@ -451,12 +465,12 @@ struct Stack::Impl {
   // One late plan is a warning: the plan is used, the count goes to /metrics, the log says it (at most once a
   // second). The supervisor stops the car only when no usable plan arrived for control.supervisor.plan_timeout.
   Stamp last_late_log = -1e9;
-  void note_late_plan(Stamp now, double took) {
+  void note_late_plan(Stamp now, double cpu_s, double wall_s) {
     ++late_plans;
     if (now - last_late_log < 1.0) return;
     last_late_log = now;
-    log->warn("plan took {:.1f} ms (budget {:.1f} ms): late, used ({} late so far)", took * 1e3, plan_budget * 1e3,
-              late_plans);
+    log->warn("plan took {:.1f} ms CPU, {:.1f} ms wall (budget {:.1f} ms): late, used ({} late so far)", cpu_s * 1e3,
+              wall_s * 1e3, plan_budget * 1e3, late_plans);
   }
 
   void publish(Stamp now) {

@@ -67,6 +67,9 @@ struct StackOptions {
   // Wall-clock seconds for the compute-time figures (latencies, late plans); never used for a decision.
   // Empty: std::chrono::steady_clock.
   std::function<double()> wall_clock;
+  // CPU seconds of the calling thread: what a plan cost, without the time the thread waited for a core on a busy
+  // machine. A late plan is judged on it. Empty: CLOCK_THREAD_CPUTIME_ID.
+  std::function<double()> cpu_clock;
 };
 
 // Decoder counters, for the feeders' stats line and report (a copy, safe to take from any thread).
@@ -83,7 +86,7 @@ struct StackCounters {
   std::uint64_t camera_verified = 0, camera_rejected = 0;  // candidates the camera stage accepted / removed
   std::uint64_t truth_frames_rejected = 0;
   std::uint64_t cycles = 0;
-  std::uint64_t late_plans = 0;  // plans slower than control.planner.time_budget (a warning, not a stop)
+  std::uint64_t late_plans = 0;  // plans whose CPU time exceeded control.planner.time_budget (a warning)
 };
 
 // What one control cycle did.

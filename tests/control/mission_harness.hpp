@@ -51,8 +51,9 @@ struct HarnessOptions {
   std::function<bool(double)> gnss_good = [](double) { return true; };
   std::function<bool(double)> lidar_alive = [](double) { return true; };
   std::function<bool(double)> planner_stalled = [](double) { return false; };
-  // The Stack's compute-time clock (empty: the wall clock) and its lap-2 worker thread.
+  // The Stack's compute-time clocks (empty: the wall clock, the thread's CPU time) and its lap-2 worker thread.
   std::function<double()> wall_clock;
+  std::function<double()> cpu_clock;
   bool lap_build_worker = false;
   // Sees every cycle's output (checks inside the loop, debugging).
   std::function<void(double, const ControlOutput&, const BicycleSim&)> observe;
@@ -209,6 +210,7 @@ class MissionHarness {
     o.simulator = true;
     o.control = config;
     o.wall_clock = h.wall_clock;
+    o.cpu_clock = h.cpu_clock;
     o.lap_build_worker = h.lap_build_worker;
     return o;
   }

@@ -38,6 +38,7 @@
 #include "drivers/sim/vehicle_truth.hpp"
 #include "drivers/vlp16/pcap_reader.hpp"
 #include "tests/daemon/dashboard_client.hpp"
+#include "tests/daemon/fsd_child.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -56,60 +57,7 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
-// The fsd binary in a child process, stdout and stderr to a file.
-class Fsd {
- public:
-  Fsd(const std::vector<std::string>& args, std::string log) : log_(std::move(log)) {
-    std::ofstream(log_, std::ios::trunc).flush();  // never read an earlier run's output
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      FILE* f = std::freopen(log_.c_str(), "w", stdout);
-      if (!f || ::dup2(::fileno(stdout), 2) < 0) ::_exit(127);
-      std::vector<char*> argv{const_cast<char*>(FSD_BINARY)};
-      for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-      argv.push_back(nullptr);
-      ::execv(FSD_BINARY, argv.data());
-      ::_exit(127);
-    }
-  }
-  ~Fsd() {
-    if (pid_ > 0 && status_ < 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  void signal(int sig) const { ::kill(pid_, sig); }
-  // Exit status, or -1 when the process is still running after `timeout` (then it is killed).
-  int wait(std::chrono::duration<double> timeout) {
-    const auto end = Clock::now() + timeout;
-    while (status_ < 0 && Clock::now() < end) {
-      int st = 0;
-      if (::waitpid(pid_, &st, WNOHANG) == pid_)
-        status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-      else
-        std::this_thread::sleep_for(20ms);
-    }
-    return status_;
-  }
-  std::string output() const { return slurp(log_); }
-  // Waits until the output matches `re`; returns the first capture group (empty on timeout or exit).
-  std::string wait_for(const std::regex& re, std::chrono::duration<double> timeout) {
-    const auto end = Clock::now() + timeout;
-    std::smatch m;
-    for (;;) {
-      const bool exited = wait(0s) >= 0;
-      const std::string out = output();
-      if (std::regex_search(out, m, re)) return m.size() > 1 ? m[1].str() : m[0].str();
-      if (exited || Clock::now() >= end) return {};
-      std::this_thread::sleep_for(50ms);
-    }
-  }
-
- private:
-  std::string log_;
-  pid_t pid_ = -1;
-  int status_ = -1;
-};
+using test::Fsd;
 
 // A UDP port nobody uses right now on the loopback (the kernel picks it).
 int free_udp_port() {
