@@ -131,7 +131,9 @@ struct VcuStatus {
   bool ebs_active = false;
   double steering_measured = 0;          // rad
   std::array<double, 4> wheel_speeds{};  // m/s: FL, FR, RL, RR
-  std::uint32_t faults = 0;              // bit set, see docs/vcu-protocol.md
+  // The rear axle centre's forward speed (the vehicle frame's origin): the mean of the rear wheels.
+  double rear_axle_speed() const { return 0.5 * (wheel_speeds[2] + wheel_speeds[3]); }
+  std::uint32_t faults = 0;  // bit set, see docs/vcu-protocol.md
 };
 
 }  // namespace fsd

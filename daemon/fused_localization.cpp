@@ -40,7 +40,7 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
     fusion::BodySpeed b;
     b.t = vcu->stamp;
     b.source = fusion::BodySpeed::Source::Wheels;
-    b.vx = 0.5 * (vcu->wheel_speeds[2] + vcu->wheel_speeds[3]);  // rear wheels: the reference point's speed
+    b.vx = vcu->rear_axle_speed();  // the reference point's speed
     b.has_vy = false;
     ms.emplace_back(b);
   }

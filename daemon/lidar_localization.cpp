@@ -46,12 +46,10 @@ LidarLocalization::LidarLocalization(const Config& cfg, const Pose3& body_from_s
 }
 
 const lidar_odometry::OdometryOutput& LidarLocalization::add(const Scan& scan) {
-  if (scan.points.empty() || (have_ && firing_span(scan).last <= last_.stamp)) return last_;
   const FiringSpan span = firing_span(scan);
+  if (scan.points.empty() || (have_ && span.last <= last_.stamp)) return last_;
   last_ = odometry_.process(scan, measured(span.first, span.last));
   have_ = true;
-  ++scans_;
-  degenerate_ += last_.diagnostics.degenerate;
   return last_;
 }
 
@@ -81,12 +79,8 @@ std::optional<VehicleState> LidarLocalization::state(Stamp now, double steering)
     vx = (*m)[0];
     r = (*m)[5];
   } else if (last_.has_increment) {
-    const auto& inc = last_.increment;
-    const double dt = inc.t1 - inc.t0;
-    const Vec2 chord = Eigen::Rotation2Dd(-0.5 * inc.delta.yaw) * Vec2(inc.delta.x, inc.delta.y);
-    vx = chord.x() / dt;
-    vy = chord.y() / dt;
-    r = inc.delta.yaw / dt;
+    const fusion::MeanTwist t = fusion::mean_twist(last_.increment);
+    vx = t.vx, vy = t.vy, r = t.yaw_rate;
   }
   const double ahead = std::max(0.0, now - last_.stamp);
   const Pose2 at_scan = to_pose2(last_.pose);

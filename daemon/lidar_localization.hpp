@@ -42,8 +42,6 @@ class LidarLocalization {
   std::optional<VehicleState> state(Stamp now, double steering) const;
   // The newest scan's increment, if it had one (the first scan has none).
   std::optional<fusion::OdometryIncrement> increment() const;
-  std::uint64_t scans() const { return scans_; }
-  std::uint64_t degenerate_scans() const { return degenerate_; }
 
  private:
   // The measured twist over the span of a scan, when the car's sensors gave it recently enough.
@@ -54,7 +52,6 @@ class LidarLocalization {
   std::deque<LidarLocalizationMotion> speeds_, yaw_rates_;  // the last second of each, bounded
   lidar_odometry::OdometryOutput last_;
   bool have_ = false;
-  std::uint64_t scans_ = 0, degenerate_ = 0;
 };
 
 }  // namespace fsd

@@ -153,8 +153,8 @@ struct Stack::Impl {
     if (localization_source == "fused") fused = std::make_unique<FusedLocalization>(cfg);
     if (localization_source == "lidar_odometry" || (fused && fused->takes_lidar_odometry())) {
       odometry = std::make_unique<LidarLocalization>(cfg, vlp_cfg.body_from_sensor());
-      log->info("localization: LiDAR odometry from x {:.2f} y {:.2f} yaw {:.3f}{}", start_pose_section().read(cfg).x,
-                start_pose_section().read(cfg).y, start_pose_section().read(cfg).yaw,
+      const StartPose start = start_pose_section().read(cfg);
+      log->info("localization: LiDAR odometry from x {:.2f} y {:.2f} yaw {:.3f}{}", start.x, start.y, start.yaw,
                 fused ? ", its increments into the fusion filter" : "");
     }
     perception_source = run.perception_source;
@@ -359,7 +359,7 @@ struct Stack::Impl {
         if (s.yaw_rate_valid) odometry->add_motion(s.stamp, std::nullopt, s.yaw_rate);
       if (const auto st = vcu->status(); st && st->stamp > odometry_vcu_stamp) {
         odometry_vcu_stamp = st->stamp;
-        odometry->add_motion(st->stamp, 0.5 * (st->wheel_speeds[2] + st->wheel_speeds[3]), std::nullopt);
+        odometry->add_motion(st->stamp, st->rear_axle_speed(), std::nullopt);
       }
     }
     if (odometry && odometry_scan && last_scan) {

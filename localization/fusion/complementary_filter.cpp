@@ -59,10 +59,10 @@ void ComplementaryFilter::on_odometry(const OdometryIncrement& o) {
   const double dt = o.t1 - o.t0;
   if (!(dt > 1e-3) || !std::isfinite(o.delta.x) || !std::isfinite(o.delta.y) || !std::isfinite(o.delta.yaw)) return;
   last_motion_ = o.t1;
-  const Vec2 v = Eigen::Rotation2Dd(-0.5 * o.delta.yaw) * Vec2(o.delta.x, o.delta.y) / dt;
-  vx_ = v.x();
-  vy_ = v.y();
-  r_ = o.delta.yaw / dt;
+  const MeanTwist v = mean_twist(o);
+  vx_ = v.vx;
+  vy_ = v.vy;
+  r_ = v.yaw_rate;
   odometry_until_ = o.t1 + 2.0 * dt;  // until the next increment is overdue, speed and gyro wait
 }
 

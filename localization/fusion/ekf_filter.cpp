@@ -144,16 +144,14 @@ void EkfFilter::on_odometry(const OdometryIncrement& o) {
       !o.covariance.allFinite())
     return;
   last_motion_ = o.t1;
-  // The mean body velocity and yaw rate over the interval (the chord's direction is half the turn).
-  const double half = 0.5 * o.delta.yaw;
-  const Vec2 v = Eigen::Rotation2Dd(-half) * Vec2(o.delta.x, o.delta.y) / dt;
+  const MeanTwist v = mean_twist(o);
   Eigen::Matrix<double, 3, kN> H = Eigen::Matrix<double, 3, kN>::Zero();
   H(0, Vx) = 1.0;
   H(1, Vy) = 1.0;
   H(2, R) = 1.0;
   Eigen::Matrix3d Rm = o.covariance / (dt * dt);
   Rm += Eigen::Matrix3d::Identity() * 1e-8;
-  update<3>(Eigen::Vector3d(v.x(), v.y(), o.delta.yaw / dt), Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)), H, Rm);
+  update<3>(Eigen::Vector3d(v.vx, v.vy, v.yaw_rate), Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)), H, Rm);
 }
 
 void EkfFilter::apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma) {

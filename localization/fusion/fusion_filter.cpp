@@ -10,6 +10,12 @@
 
 namespace fsd::fusion {
 
+MeanTwist mean_twist(const OdometryIncrement& o) {
+  const double dt = o.t1 - o.t0;
+  const Vec2 v = Eigen::Rotation2Dd(-0.5 * o.delta.yaw) * Vec2(o.delta.x, o.delta.y) / dt;
+  return {v.x(), v.y(), o.delta.yaw / dt};
+}
+
 Stamp stamp_of(const Measurement& m) {
   return std::visit(
       [](const auto& v) -> Stamp {

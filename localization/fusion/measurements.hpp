@@ -53,6 +53,12 @@ struct OdometryIncrement {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity() * 1e-4;
 };
 
+// The mean body velocity and yaw rate over an increment's interval (t1 > t0): the chord's direction is half the turn.
+struct MeanTwist {
+  double vx = 0, vy = 0, yaw_rate = 0;
+};
+MeanTwist mean_twist(const OdometryIncrement& o);
+
 using Measurement = std::variant<ImuSample, BodySpeed, GnssFix, OdometryIncrement>;
 Stamp stamp_of(const Measurement& m);
 

@@ -10,8 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/daemon/fsd_process.hpp"
-#include "tests/scratch_dir.hpp"
+#include "tests/daemon/sim_report.hpp"
 
 namespace fsd {
 namespace {
@@ -19,20 +18,8 @@ namespace {
 using nlohmann::json;
 
 json drive(const std::string& source, const std::string& track) {
-  const std::string name = "perception_loop_" + source;
-  const std::string cfg = test::scratch_path(name + ".json"), report = test::scratch_path(name + "_report.json");
-  std::ofstream(cfg) << json{{"run", {{"perception_source", source}}}}.dump();
-  std::string log;
-  const int rc = test::run_fsd("run --sim --headless --until-finished --laps 2 --track ../shared/tracks/" + track +
-                                   ".csv --config " + cfg + " --report " + report,
-                               &log);
-  EXPECT_EQ(rc, 0) << log;
-  std::ifstream f(report);
-  if (!f) {
-    ADD_FAILURE() << "no report: " << log;
-    return {};
-  }
-  return json::parse(f);
+  return test::sim_report("perception_loop_" + source, {{"run", {{"perception_source", source}}}},
+                          "--laps 2 --track ../shared/tracks/" + track + ".csv");
 }
 
 TEST(PerceptionLoop, LidarAndCameraDriveTwoCleanLapsWithTheIssuesFigures) {
