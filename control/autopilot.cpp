@@ -105,9 +105,10 @@ bool Autopilot::plan(Stamp now) {
   if (!new_cones_ && now - last_plan_attempt_ < config_.replan_period) return false;
   new_cones_ = false;
   last_plan_attempt_ = now;
-  PlanResult r = planner_.plan(cones_, *state_);
+  PlanResult r = planner_.plan(cones_, *state_, held_turn_ ? &*held_turn_ : nullptr);
   plan_outcome_ = {true, r.ok, r.single_boundary, r.ignored_colours, r.tight_turn.has_value()};
   supervisor_.on_plan(now, r.ok);
+  if (r.ok) held_turn_ = r.tight_turn;
   if (r.ok) plan_ = std::move(r.path);
   return true;
 }

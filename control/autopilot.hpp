@@ -118,6 +118,7 @@ class Autopilot {
 
   // Real-time planning.
   std::optional<Path> plan_;
+  std::optional<TightTurn> held_turn_;  // the tight turn the newest plan shaped (map frame): kept through it
   Stamp last_plan_attempt_ = -1e9;
   bool planner_stalled_ = false;
   struct PlanOutcome {  // of the plan() call of this cycle, for step()'s output

@@ -78,6 +78,10 @@ const ConfigSection<TightTurnConfig>& tight_turn_section() {
           .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and the cones.", true)
           .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.",
                   true)
+          .number("lock_authority", &C::lock_authority, 0, 0.5, "",
+                  "And this share below it where the cones leave room: steering left for the follower to correct "
+                  "with.",
+                  true)
           .number("lead", &C::lead, 0.5, 20, "m", "The path is rejoined this far before and after the turn.", true)
           .number("transition_length", &C::transition_length, 0.1, 20, "m", "Turn-in and turn-out clothoid length.",
                   true)

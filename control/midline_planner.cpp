@@ -357,7 +357,8 @@ std::vector<Vec2> boundary_offset_walk(const std::vector<LocalCone>& cones, cons
 MidlinePlanner::MidlinePlanner(MidlinePlannerConfig config, ColourConvention convention, SpeedLimits limits)
     : config_(config), convention_(std::move(convention)), speed_(limits) {}
 
-PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleState& state) const {
+PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleState& state,
+                                const TightTurn* held_turn) const {
   PlanResult result;
   auto finish = [](PlanResult r) { return r; };
   const Pose2& pose = state.pose;
@@ -457,10 +458,19 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
                         config_.keep_clear_window);
   }
   std::vector<SpeedZone> zones;
-  if (auto turn = shape_tight_turn(smooth, positions, config_.tight_turn)) {
-    turn->centre = pose.transform(turn->centre);
-    result.tight_turn = turn;
-    zones.push_back({turn->s_begin, turn->s_end, config_.tight_turn.v_max});
+  std::optional<TightTurn> held;
+  if (held_turn) {
+    held = *held_turn;
+    held->centre = pose.inverse_transform(held->centre);
+    held->exit = pose.inverse_transform(held->exit);
+    held->exit_direction = pose.rotation().inverse() * held->exit_direction;
+  }
+  for (TightTurn& turn : shape_tight_turns(smooth, positions, config_.tight_turn, held ? &*held : nullptr)) {
+    zones.push_back({turn.s_begin, turn.s_end, config_.tight_turn.v_max});
+    turn.centre = pose.transform(turn.centre);
+    turn.exit = pose.transform(turn.exit);
+    turn.exit_direction = pose.rotation() * turn.exit_direction;
+    if (!result.tight_turn) result.tight_turn = turn;
   }
   for (auto& p : smooth.points) {
     p.p = pose.transform(p.p);

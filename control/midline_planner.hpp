@@ -79,7 +79,9 @@ class MidlinePlanner {
 
   // Plans from `state` (map frame) through `cones` (map frame, any colour). Never throws on bad input:
   // non-finite cones are skipped and a failed plan says why.
-  PlanResult plan(const std::vector<Cone>& cones, const VehicleState& state) const;
+  // `held_turn`: the tight turn the previous plan shaped (map frame), kept while the car is in it.
+  PlanResult plan(const std::vector<Cone>& cones, const VehicleState& state,
+                  const TightTurn* held_turn = nullptr) const;
 
   const MidlinePlannerConfig& config() const { return config_; }
   void set_config(const MidlinePlannerConfig& c) { config_ = c; }

@@ -17,7 +17,27 @@ constexpr double kPi = std::numbers::pi;
 struct Segment {
   std::size_t first = 0, last = 0;  // point indices, inclusive
   double turn = 0;                  // signed heading change, rad
+  std::optional<TightTurn> held;    // the turn when known already (a held turn)
 };
+
+// The stretch from the car that lies within a held turn's outer ring (with a metre to spare), turning its way.
+std::optional<Segment> held_segment(const Path& path, const TightTurn& held) {
+  const auto& pts = path.points;
+  const double reach = held.outer_radius + 1.0;
+  if ((pts.front().p - held.centre).norm() > reach) return std::nullopt;
+  // Past the end of its turn-out the car has left the turn: the next turn is found as any other.
+  if ((held.exit - pts.front().p).dot(held.exit_direction) <= 0) return std::nullopt;
+  Segment seg;
+  seg.held = held;
+  while (seg.last + 1 < pts.size() && (pts[seg.last + 1].p - held.centre).norm() <= reach) {
+    seg.turn += 0.5 * (pts[seg.last + 1].kappa + pts[seg.last].kappa) * (pts[seg.last + 1].s - pts[seg.last].s);
+    ++seg.last;
+  }
+  if (seg.last == 0) return std::nullopt;
+  // The way round is the held turn's, whatever the midline does beside the car (it may bend the other way).
+  if (seg.turn * held.direction <= 0) seg.turn = 1e-3 * held.direction;
+  return seg;
+}
 
 // The first stretch from point `from` on curving tighter than kappa_on one way that turns at least min_turn (or
 // starts at the path's first point: the car).
@@ -157,13 +177,18 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   const double dir = seg->turn > 0 ? 1.0 : -1.0;
   const double ds = std::max(0.05, path.length() / static_cast<double>(pts.size() - 1));
 
-  // First guess of the centre: the mean centre of curvature of the stretch.
+  // First guess of the centre: the held turn's, else the mean centre of curvature of the stretch.
   TightTurn turn;
-  for (std::size_t i = seg->first; i <= seg->last; ++i) {
-    const Vec2 normal(-std::sin(pts[i].yaw), std::cos(pts[i].yaw));
-    turn.centre += pts[i].p + normal / pts[i].kappa;
+  if (seg->held) {
+    turn.centre = seg->held->centre;
+  } else {
+    for (std::size_t i = seg->first; i <= seg->last; ++i) {
+      const Vec2 normal(-std::sin(pts[i].yaw), std::cos(pts[i].yaw));
+      turn.centre += pts[i].p + normal / pts[i].kappa;
+    }
+    turn.centre /= static_cast<double>(seg->last - seg->first + 1);
   }
-  turn.centre /= static_cast<double>(seg->last - seg->first + 1);
+  turn.direction = static_cast<int>(dir);
 
   // Cones beside the stretch, inside or outside the path as seen from that centre.
   std::vector<Vec2> inner, outer;
@@ -174,8 +199,18 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
     if (!foot || foot->s < s_first || foot->s > s_last || foot->distance() > 4.0) continue;
     ((c - turn.centre).norm() < (foot->foot - turn.centre).norm() ? inner : outer).push_back(c);
   }
-  if (inner.size() < 2 || outer.size() < 2 || inner.size() + outer.size() < 5) return std::nullopt;
-  if (!fit_rings(inner, outer, turn)) return std::nullopt;
+  const bool fitted =
+      inner.size() >= 2 && outer.size() >= 2 && inner.size() + outer.size() >= 5 && fit_rings(inner, outer, turn);
+  if (fitted) {
+    turn.outer_nearest = turn.outer_radius;
+    for (const auto& p : outer) turn.outer_nearest = std::min(turn.outer_nearest, (p - turn.centre).norm());
+  } else if (seg->held) {
+    // Past the middle of the turn the cones still ahead are too few to fit, or lie on the exit straight: the
+    // rings fitted on the way in hold (they are fixed in the map; the pose carries them into this frame).
+    turn = *seg->held;
+  } else {
+    return std::nullopt;
+  }
   if (0.5 * (turn.inner_radius + turn.outer_radius) > cfg.lane_radius_max) return std::nullopt;
 
   // The rear axle's radius: at least the lock's (with a margin), at most what keeps the nose off the outer cones,
@@ -183,10 +218,16 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   const double keep = cfg.cone_radius + cfg.clearance;
   const double r_lock = cfg.wheelbase / std::tan(cfg.max_steer) * (1.0 + cfg.lock_margin);
   const double r_in = turn.inner_radius + keep + cfg.body_half_width;
-  const double out = turn.outer_radius - keep;
+  const double out = turn.outer_nearest - keep;
   const double r_out =
       out > cfg.body_front ? std::sqrt(out * out - cfg.body_front * cfg.body_front) - cfg.body_half_width : 0.0;
-  turn.radius = std::max(r_lock, std::min(0.5 * (r_in + r_out), r_out));
+  // The lane's middle where it is wider than the lock's radius; where it is not (the rules' tightest hairpin), the
+  // line keeps off the lock by lock_authority if the nose leaves room, else by half of what it leaves: on an arc at
+  // the lock the follower has no steering left, and an entry a few centimetres off becomes an eccentric circle
+  // that carries the nose out by twice as much.
+  const double r_authority = cfg.wheelbase / std::tan(cfg.max_steer) * (1.0 + cfg.lock_authority);
+  const double wanted = std::max(0.5 * (r_in + r_out), std::min(r_authority, 0.5 * (r_lock + r_out)));
+  turn.radius = std::max(r_lock, std::min(wanted, r_out));
 
   // The car cannot step its steering onto the arc: it turns in along a clothoid (curvature rising linearly over
   // transition_length), and a clothoid–arc–clothoid keeps its arc concentric with the turn only if its straights
@@ -246,6 +287,8 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   pieces.push_back({L, kappa, 0.0});
   // Dense points (a quarter of ds) so that resampling along chords adds no curvature ripple on a 3 m arc.
   Curve curve = integrate(start, heading, pieces, ds / 4, dir);
+  turn.exit = curve.end;
+  turn.exit_direction = u_out;
   out_pts.insert(out_pts.end(), curve.points.begin() + 1, curve.points.end());
   if (rejoin) {
     // The arc and its turn-out must end before the point they rejoin, or the rest of the path would be lost.
@@ -337,14 +380,31 @@ std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::option
 
 }  // namespace
 
-std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {
-  if (!cfg.enabled || path.closed || path.points.size() < 4) return std::nullopt;
+std::vector<TightTurn> shape_tight_turns(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& cfg,
+                                         const TightTurn* held) {
+  std::vector<TightTurn> turns;
+  if (!cfg.enabled || path.closed || path.points.size() < 4) return turns;
+  // The index of the first point past a shaped turn: the next turn is looked for from there.
+  auto after = [&path](const TightTurn& turn) {
+    std::size_t i = 0;
+    while (i < path.points.size() && path.points[i].s <= turn.s_end) ++i;
+    return i;
+  };
   std::size_t from = 0;
+  if (held && held->direction != 0)
+    if (auto turn = shape_segment_within_lock(path, held_segment(path, *held), cones, cfg)) {
+      turns.push_back(*turn);
+      from = after(*turn);
+    }
   while (const auto seg = find_turn(path, cfg, from)) {
-    if (auto turn = shape_segment_within_lock(path, seg, cones, cfg)) return turn;
-    from = seg->last + 1;
+    if (auto turn = shape_segment_within_lock(path, seg, cones, cfg)) {
+      turns.push_back(*turn);
+      from = after(*turn);
+    } else {
+      from = seg->last + 1;
+    }
   }
-  return std::nullopt;
+  return turns;
 }
 
 std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec2>& cones, const TightTurnConfig& cfg) {

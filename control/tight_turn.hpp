@@ -25,6 +25,7 @@ struct TightTurnConfig {
   double cone_radius = 0.12;     // m: half a cone's base
   double clearance = 0.05;       // m: kept between body and cones
   double lock_margin = 0.02;     // the arc's curvature stays this share below the lock's
+  double lock_authority = 0.04;  // ... and this share where the cones leave room (steering left to correct with)
   double lead = 5.0;             // m: the path is rejoined this far before and after the turn
   double transition_length =
       2.5;  // m: the turn-in and turn-out clothoids (steering rate × speed / wheelbase, and more)
@@ -40,15 +41,26 @@ struct TightTurnConfig {
 struct TightTurn {
   Vec2 centre = Vec2::Zero();
   double inner_radius = 0, outer_radius = 0;  // of the cone rings
+  double outer_nearest = 0;                   // the nearest outer cone's distance from the centre (the nose's limit)
   double radius = 0;                          // of the rear axle's arc
   double sweep = 0;                           // rad, the arc's angle (positive)
+  int direction = 0;                          // +1 round to the left (counter-clockwise), −1 to the right
+  Vec2 exit = Vec2::Zero();                   // where the turn-out ends (back on a straight) ...
+  Vec2 exit_direction = Vec2::UnitX();        // ... heading this way (unit)
   double s_begin = 0, s_end = 0;              // m: the rebuilt stretch of the path, from leaving it to rejoining
 };
 
-// Finds the first tight turn along the open `path` (any frame; `cones` in the same frame) that the cones confirm,
-// and rebuilds the path through it. Returns the turn when the path was changed. The path keeps its first point; its
-// geometry (s, yaw, kappa) is recomputed, speeds are not (the speed profile runs after).
-std::optional<TightTurn> shape_tight_turn(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& config);
+// Finds the tight turns along the open `path` (any frame; `cones` in the same frame) that the cones confirm, and
+// rebuilds the path through each (turns back to back, an S of two hairpins, get one line). Returns the turns
+// shaped, in path order. The path keeps its first point; its geometry (s, yaw, kappa) is recomputed, speeds are
+// not (the speed profile runs after).
+// `held`: the turn the previous plan shaped first (same frame). Until the car has passed the end of its turn-out
+// the path is shaped round it again, whatever the midline beside the car does: past the middle of a hairpin the
+// midline no longer curves enough to be found as a turn and the cones left ahead are too few to fit its rings, and
+// falling back to the midline (the lane's middle, wider than the car's line) at the lock carries the nose into
+// the outer cones.
+std::vector<TightTurn> shape_tight_turns(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& config,
+                                         const TightTurn* held = nullptr);
 
 // The same for every tight turn of a closed lap (lap 2's trajectory); returns the turns shaped.
 std::vector<TightTurn> shape_tight_turns_on_lap(Path& lap, const std::vector<Vec2>& cones,

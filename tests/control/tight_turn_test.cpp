@@ -70,8 +70,9 @@ TEST(TightTurn, TheRulesTightestHairpinGetsAnArcTheCarCanDriveInsideTheCones) {
       << "kappa " << before.kappa_max << " clearance " << before.clearance;
 
   Path line = h.midline;
-  const auto turn = shape_tight_turn(line, h.cones, cfg);
-  ASSERT_TRUE(turn);
+  const auto turns = shape_tight_turns(line, h.cones, cfg);
+  ASSERT_EQ(turns.size(), 1u);
+  const auto turn = &turns.front();
   EXPECT_NEAR(turn->centre.x(), h.c.x(), 0.02);
   EXPECT_NEAR(turn->centre.y(), h.c.y(), 0.02);
   EXPECT_NEAR(turn->inner_radius, h.r_in, 0.02);
@@ -105,8 +106,9 @@ TEST(TightTurn, ACarAlreadyInTheTurnGetsTheArcFromWhereItIs) {
   for (const auto& q : h.midline.points)
     if (q.p.y() > h.c.y() + 1.0 || q.p.x() < h.c.x()) in_turn.points.push_back(q);
   compute_geometry(in_turn);
-  const auto turn = shape_tight_turn(in_turn, h.cones, TightTurnConfig{});
-  ASSERT_TRUE(turn);
+  const auto turns = shape_tight_turns(in_turn, h.cones, TightTurnConfig{});
+  ASSERT_EQ(turns.size(), 1u);
+  const auto turn = &turns.front();
   EXPECT_LT(turn->sweep, kPi - 0.3);  // it started ~20° round
   EXPECT_NEAR((in_turn.points.front().p - h.c).norm(), turn->radius, 0.02);
   EXPECT_GT(sweep_body(in_turn, h.cones).clearance, 0.0);
@@ -119,7 +121,7 @@ TEST(TightTurn, WideTurnsAndTurnsWithoutInnerConesAreLeftAlone) {
   for (auto& q : scaled.midline.points) q.p = scaled.c + (q.p - scaled.c) * (8.0 / 3.0);
   compute_geometry(scaled.midline);
   Path line = scaled.midline;
-  EXPECT_FALSE(shape_tight_turn(line, scaled.cones, TightTurnConfig{}));
+  EXPECT_TRUE(shape_tight_turns(line, scaled.cones, TightTurnConfig{}).empty());
   EXPECT_EQ(line.points.size(), scaled.midline.points.size());
   // Without cones inside the turn there is no centre to fit: left alone too.
   const Hairpin h;
@@ -127,7 +129,7 @@ TEST(TightTurn, WideTurnsAndTurnsWithoutInnerConesAreLeftAlone) {
   std::vector<Vec2> outer_only;
   for (const auto& c : h.cones)
     if ((c - h.c).norm() > 4.0) outer_only.push_back(c);
-  EXPECT_FALSE(shape_tight_turn(alone, outer_only, TightTurnConfig{}));
+  EXPECT_TRUE(shape_tight_turns(alone, outer_only, TightTurnConfig{}).empty());
 }
 
 TEST(TightTurn, EveryHairpinOfAClosedLapIsShaped) {
@@ -205,8 +207,7 @@ TEST(TightTurn, AHairpinIntoABendTheOtherWayRejoinsWithinTheLock) {
   Path line = smooth_path(raw, 0.25, 5.0);
   const TightTurnConfig cfg;
   const double kappa_lock = std::tan(cfg.max_steer) / cfg.wheelbase;
-  const auto turn = shape_tight_turn(line, cones, cfg);
-  ASSERT_TRUE(turn);
+  ASSERT_FALSE(shape_tight_turns(line, cones, cfg).empty());
   const Sweep after = sweep_body(line, cones);
   EXPECT_LE(after.kappa_max, kappa_lock);
   EXPECT_GT(after.clearance, 0.0);
