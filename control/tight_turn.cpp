@@ -13,6 +13,7 @@ namespace fsd {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kHeldRefitTolerance = 0.5;  // m
 
 struct Segment {
   std::size_t first = 0, last = 0;  // point indices, inclusive
@@ -199,8 +200,14 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
     if (!foot || foot->s < s_first || foot->s > s_last || foot->distance() > 4.0) continue;
     ((c - turn.centre).norm() < (foot->foot - turn.centre).norm() ? inner : outer).push_back(c);
   }
-  const bool fitted =
+  bool fitted =
       inner.size() >= 2 && outer.size() >= 2 && inner.size() + outer.size() >= 5 && fit_rings(inner, outer, turn);
+  // A held turn's rings are refined by a refit only if it found the same turn (a few cones on the exit straight
+  // also fit some circle).
+  if (fitted && seg->held)
+    fitted = (turn.centre - seg->held->centre).norm() < kHeldRefitTolerance &&
+             std::abs(turn.inner_radius - seg->held->inner_radius) < kHeldRefitTolerance &&
+             std::abs(turn.outer_radius - seg->held->outer_radius) < kHeldRefitTolerance;
   if (fitted) {
     turn.outer_nearest = turn.outer_radius;
     for (const auto& p : outer) turn.outer_nearest = std::min(turn.outer_nearest, (p - turn.centre).norm());
@@ -384,10 +391,13 @@ std::vector<TightTurn> shape_tight_turns(Path& path, const std::vector<Vec2>& co
                                          const TightTurn* held) {
   std::vector<TightTurn> turns;
   if (!cfg.enabled || path.closed || path.points.size() < 4) return turns;
-  // The index of the first point past a shaped turn: the next turn is looked for from there.
+  // The index of the first point past a shaped turn's turn-out: the next turn is looked for from there (not from
+  // where the path is rejoined, which may lie in the next turn already).
   auto after = [&path](const TightTurn& turn) {
+    const auto out = project(path, turn.exit);
+    const double s_exit = out ? out->s : turn.s_end;
     std::size_t i = 0;
-    while (i < path.points.size() && path.points[i].s <= turn.s_end) ++i;
+    while (i < path.points.size() && path.points[i].s <= s_exit) ++i;
     return i;
   };
   std::size_t from = 0;

@@ -114,6 +114,44 @@ TEST(TightTurn, ACarAlreadyInTheTurnGetsTheArcFromWhereItIs) {
   EXPECT_GT(sweep_body(in_turn, h.cones).clearance, 0.0);
 }
 
+TEST(TightTurn, AHeldTurnKeepsTheCarOnItsArcToTheExitWhenTheConesAheadNoLongerFit) {
+  const Hairpin h;
+  Path line = h.midline;
+  const auto first = shape_tight_turns(line, h.cones, TightTurnConfig{});
+  ASSERT_EQ(first.size(), 1u);
+  // Later, 135° round: the midline from there, and only the cones ahead of the car (the planner drops those
+  // behind): one inner cone is left, too few to fit the rings again.
+  const double a0 = 0.75 * kPi;
+  Path late;
+  for (const auto& q : h.midline.points) {
+    const Vec2 d = q.p - h.c;
+    if (q.p.y() < h.c.y() - 0.01 && q.p.x() < h.c.x()) late.points.push_back(q);  // the straight out
+    else if (q.p.y() >= h.c.y() - 0.01 && std::atan2(d.y(), d.x()) >= a0) late.points.push_back(q);
+  }
+  compute_geometry(late);
+  std::vector<Vec2> ahead;
+  for (const auto& c : h.cones) {
+    const Vec2 d = c - h.c;
+    if (c.y() < h.c.y() - 0.01 ? c.x() < h.c.x() : std::atan2(d.y(), d.x()) > a0 - 0.2) ahead.push_back(c);
+  }
+  Path plain = late;
+  EXPECT_TRUE(shape_tight_turns(plain, ahead, TightTurnConfig{}).empty()) << "the cones ahead alone fit no turn";
+
+  Path held = late;
+  const auto turns = shape_tight_turns(held, ahead, TightTurnConfig{}, &first.front());
+  ASSERT_EQ(turns.size(), 1u);
+  EXPECT_NEAR(turns.front().radius, first.front().radius, 1e-9);  // the rings fitted on the way in
+  // Through the rest of the arc the rear axle stays on the held radius, and the body clears every cone.
+  for (const auto& q : held.points) {
+    const Vec2 d = q.p - h.c;
+    const double a = std::atan2(d.y(), d.x());
+    if (q.p.y() > h.c.y() + 0.3 && a > a0 + 0.3 && a < kPi - 0.4) {
+      EXPECT_NEAR(d.norm(), first.front().radius, 0.05) << q.p.transpose();
+    }
+  }
+  EXPECT_GT(sweep_body(held, h.cones).clearance, 0.0);
+}
+
 TEST(TightTurn, WideTurnsAndTurnsWithoutInnerConesAreLeftAlone) {
   // The same hairpin scaled to an 8 m lane radius: the centre line is drivable, nothing changes.
   Hairpin scaled;
