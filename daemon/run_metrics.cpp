@@ -18,6 +18,9 @@ RunMetrics::RunMetrics(web::Metrics& m)
     : registry_(m),
       perception_(m.summary(kLatency, kLatencyHelp, {{"stage", "perception"}})),
       planning_(m.summary(kLatency, kLatencyHelp, {{"stage", "planning"}})),
+      planning_cpu_(m.summary("fsd_planning_cpu_seconds",
+                              "CPU time of each real-time plan (the planner's budget is about this; its wall time "
+                              "also counts the time the thread waited for a core)")),
       control_(m.summary(kLatency, kLatencyHelp, {{"stage", "control"}})),
       end_to_end_(m.summary(kLatency, kLatencyHelp, {{"stage", "end_to_end"}})),
       period_(m.summary("fsd_control_period_seconds", "Wall time between the starts of consecutive control cycles")),
@@ -28,6 +31,8 @@ RunMetrics::RunMetrics(web::Metrics& m)
       plans_colour_blind_(m.counter("fsd_plans_colour_blind_total",
                                     "Plans that ignored cone colours contradicting the geometry (colour-blind)")),
       plans_tight_turn_(m.counter("fsd_plans_tight_turn_total", "Plans that shaped a turn to the steering lock")),
+      late_plans_(m.counter("fsd_late_plans_total",
+                            "Plans whose CPU time exceeded control.planner.time_budget (a warning: the plan is used)")),
       rate_(m.gauge("fsd_control_loop_rate_hz", "Control cycles per second of wall time, over the last second")),
       as_state_(m.gauge("fsd_as_state", kAsHelp)),
       laps_(m.gauge("fsd_laps_completed", "Laps completed in this run")),
@@ -56,6 +61,8 @@ void RunMetrics::on_cycle(const CycleFigures& f) {
   cycles_.inc();
   if (f.perception_s >= 0) perception_.observe(f.perception_s);
   if (f.planning_s >= 0) planning_.observe(f.planning_s);
+  if (f.planning_cpu_s >= 0) planning_cpu_.observe(f.planning_cpu_s);
+  if (f.late_plan) late_plans_.inc();
   if (f.planned) {
     plans_.inc();
     if (f.plan_one_boundary) plans_one_boundary_.inc();

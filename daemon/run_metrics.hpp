@@ -16,6 +16,8 @@ struct CycleFigures {
   Stamp t = 0;                     // run clock
   double perception_s = -1;        // wall time of the perception stage (sensor frame → cone map update)
   double planning_s = -1;          // wall time of a new plan
+  double planning_cpu_s = -1;      // its CPU time (what the budget is about: the wall time includes waiting for a core)
+  bool late_plan = false;          // that CPU time exceeded control.planner.time_budget (a warning, the plan is used)
   double control_s = -1;           // wall time of the path follower and supervisor
   bool planned = false;            // a real-time plan ran; and what it had to do:
   bool plan_one_boundary = false;  //   only one boundary seen
@@ -38,8 +40,8 @@ class RunMetrics {
  private:
   using clock = std::chrono::steady_clock;
   web::Metrics& registry_;
-  web::Summary &perception_, &planning_, &control_, &end_to_end_, &period_;
-  web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_tight_turn_;
+  web::Summary &perception_, &planning_, &planning_cpu_, &control_, &end_to_end_, &period_;
+  web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_tight_turn_, &late_plans_;
   web::Gauge &rate_, &as_state_, &laps_, &cones_hit_, &sim_time_;
   web::Gauge* as_active_[5];
   clock::time_point last_cycle_{}, window_start_{};

@@ -438,8 +438,10 @@ struct Stack::Impl {
       // Wall time includes the time the thread waited for a core (a loaded desk: 100s of ms); the plan's own
       // cost is its CPU time, and that is what the budget is about.
       const double cost = c1 - c0;
+      fig.planning_cpu_s = cost;
       latency["planning_cpu"].add(cost);
-      if (cost > plan_budget) note_late_plan(now, cost, fig.planning_s);
+      fig.late_plan = cost > plan_budget;
+      if (fig.late_plan) note_late_plan(now, cost, fig.planning_s);
     }
     fig.control_s = w2 - w1;
     latency["control"].add(fig.control_s);
