@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/daemon/sim_report.hpp"
 #include "tests/scratch_dir.hpp"
 
 namespace fsd {
@@ -19,23 +20,7 @@ namespace {
 using nlohmann::json;
 
 json drive(const std::string& name, const json& config, const std::string& track, int laps, bool must_pass = true) {
-  const std::string cfg = test::scratch_path(name + ".json"), report = test::scratch_path(name + "_report.json");
-  std::ofstream(cfg) << config.dump();
-  std::string log;
-  const int rc =
-      test::run_fsd("run --sim --headless --until-finished --laps " + std::to_string(laps) +
-                        " --track ../shared/tracks/" + track + ".csv --config " + cfg + " --report " + report,
-                    &log);
-  if (must_pass)
-    EXPECT_EQ(rc, 0) << log;
-  else
-    EXPECT_NE(rc, 2) << log;  // a run, judged or not; never refused
-  std::ifstream f(report);
-  if (!f) {
-    ADD_FAILURE() << "no report: " << log;
-    return {};
-  }
-  return json::parse(f);
+  return test::sim_report(name, config, track, laps, must_pass);
 }
 
 // Two laps asked of a trackdrive the odometry was not tuned on (its lap figures are from epfl_track_1, _3 and
