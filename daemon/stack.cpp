@@ -320,6 +320,7 @@ struct Stack::Impl {
       const double w = wall();
       close_loop(now, det, pose);
       closing = wall() - w;
+      latency["loop_closure"].add(closing);
     }
     autopilot->on_cones(now, cone_map.cones());
     const double dt = wall() - w0 - closing;
