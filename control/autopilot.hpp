@@ -18,6 +18,7 @@
 // (built once, 10–30 ms) is built inside step() unless a LapBuildService is set: the daemon on the car hands it to
 // a worker so that the control cycle keeps its period, and takes the lap when it is ready.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -82,6 +83,10 @@ class Autopilot {
   bool open_end_seen() const;  // an open layout's end is in sight
   AsState as_state() const { return supervisor_.as_state(); }
   const AutopilotConfig& config() const { return config_; }
+
+  // A loop closure corrected the localization (map ← estimated, by the instant of the estimate): the state, the
+  // plan and what the mission recorded move with it. The caller gives the corrected cone map (on_cones) and state.
+  void relocate(const std::function<Pose2(Stamp)>& correction, Stamp now);
 
   // Live tuning: the planner, follower, speed and supervisor settings take effect from the next step.
   void set_config(const AutopilotConfig& config);

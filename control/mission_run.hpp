@@ -10,6 +10,7 @@
 // The missions: control/mission_trackdrive (trackdrive, autocross), mission_acceleration (acceleration, EBS
 // test), mission_skidpad, mission_inspection. Like every core they do no I/O and read no clock.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -93,6 +94,9 @@ class MissionRun {
   // After the finish: brake to a stop within the mission's stop distance.
   virtual void limit(const MissionInput& in, ControlCommand& command) const;
   virtual AsRequest request(const MissionInput&) { return AsRequest::None; }
+  // A loop closure corrected the localization: what the mission holds in the map frame, placed by poses estimated
+  // so far, moves by `correction(instant of the pose)` (map ← estimated). Nothing by default.
+  virtual void relocate(const std::function<Pose2(Stamp)>& /*correction*/, Stamp /*now*/) {}
 
   bool started() const { return started_; }
   bool finished() const { return finished_; }  // past the finish (stopping or stopped)

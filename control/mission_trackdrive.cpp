@@ -98,6 +98,12 @@ MissionEvents TrackdriveMission::progress(const MissionInput& in, const FollowRe
   const VehicleState& st = *in.state;
   const Vec2 pos = st.pose.position();
   take_lap_build(in, out);
+  // Past lap 1's line when a loop closure dropped the lap path: built again to the line from the moved poses
+  // (before the line, the early build or the line's does it).
+  if (rebuild_ && !lap_path_ && !build_pending_ && lap1_end_ && target_laps() > 1) {
+    rebuild_ = pending_early_ = false;
+    build_lap(in, *lap1_end_, {}, out);
+  }
   const bool was_timing = lap_counter_->timing();
   const auto ev = lap_counter_->update(in.now, pos);
   if (!was_timing && lap_counter_->timing() && !lap1_start_) lap1_start_ = lap_counter_->last_crossing();
@@ -139,6 +145,20 @@ MissionEvents TrackdriveMission::progress(const MissionInput& in, const FollowRe
   return out;
 }
 
+void TrackdriveMission::relocate(const std::function<Pose2(Stamp)>& correction, Stamp now) {
+  constexpr double kRebuild = 0.02;  // m: a lap path from poses moved less than this stands
+  const double moved = trajectory_.relocate(correction);
+  if (run_out_) {
+    const Pose2 c = correction(now);
+    for (auto& q : run_out_->points) q.p = c.transform(q.p), q.yaw = wrap_angle(q.yaw + c.yaw);
+  }
+  if (moved < kRebuild || (!lap_path_ && !build_pending_)) return;
+  lap_path_.reset();
+  lap_zones_.clear();
+  discard_build_ = build_pending_;
+  rebuild_ = true;
+}
+
 void TrackdriveMission::build_lap(const MissionInput& in, Stamp t1, std::vector<Vec2> ahead, MissionEvents& out) {
   static const std::vector<Cone> no_cones;
   const std::vector<Cone>& cones = in.cones ? *in.cones : no_cones;
@@ -163,6 +183,10 @@ void TrackdriveMission::take_lap_build(const MissionInput& in, MissionEvents& ou
   std::optional<TrajectoryResult> built = lap_builder_->poll();
   if (!built) return;
   build_pending_ = false;
+  if (discard_build_) {  // built from poses moved since: built again below or before the line
+    discard_build_ = pending_early_ = false;
+    return;
+  }
   use_lap_build(in, *built, out);
 }
 

@@ -25,6 +25,9 @@ class TrackdriveMission final : public MissionRun {
   void start(const MissionInput& in) override;
   MissionPath update_path(const MissionInput& in) override;
   MissionEvents progress(const MissionInput& in, const FollowResult* follow) override;
+  // The recorded lap-1 poses move with the correction; a lap path already built from them (or being built) is
+  // dropped and built again from the moved poses (the real-time plan drives meanwhile).
+  void relocate(const std::function<Pose2(Stamp)>& correction, Stamp now) override;
 
   // Lap 2's path built by `service` (which must outlive the mission) instead of inside progress(); null: inside.
   void set_lap_builder(LapBuildService* service) { lap_builder_ = service; }
@@ -55,6 +58,8 @@ class TrackdriveMission final : public MissionRun {
   LapBuildService* lap_builder_ = nullptr;
   bool build_pending_ = false;   // a job is out with the lap builder
   bool pending_early_ = false;   // the pending build is the early one (before the line)
+  bool discard_build_ = false;   // the pending build is from poses a loop closure has moved since
+  bool rebuild_ = false;         // the lap path was dropped by a loop closure: build it again
   std::optional<Path> run_out_;  // open layout: the last plan, then straight on to a stop past the end line
   double open_end_s_ = 0;        // arc length of the end line on run_out_
 };

@@ -18,6 +18,16 @@ void RecordedTrajectory::record(const VehicleState& state) {
   samples_.push_back({state.stamp, p});
 }
 
+double RecordedTrajectory::relocate(const std::function<Pose2(Stamp)>& correction) {
+  double moved = 0;
+  for (auto& s : samples_) {
+    const Vec2 p = correction(s.t).transform(s.p);
+    moved = std::max(moved, (p - s.p).norm());
+    s.p = p;
+  }
+  return moved;
+}
+
 double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const ColourConvention& convention, double reach) {
   // Each boundary is the polyline through its cones in their order along the line.
   const Corridor corridor = corridor_along(path, cones, convention, reach);

@@ -2,6 +2,7 @@
 // Lap 2 (paper §IV): the trajectory the car drove on lap 1, recorded pose by pose, closed at the loop,
 // resampled and smoothed, optionally pulled onto the centre of the mapped corridor, with a speed at every
 // waypoint from the lap's forward–backward pass. Followed on the fused GNSS-INS pose.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,9 @@ class RecordedTrajectory {
 
   void record(const VehicleState& state);  // every pose of lap 1; keeps one per sample_spacing
   void clear() { samples_.clear(); }
+  // A loop closure corrected the poses recorded so far: each sample moves by `correction(its stamp)`. Returns the
+  // largest move (m).
+  double relocate(const std::function<Pose2(Stamp)>& correction);
   std::size_t size() const { return samples_.size(); }
 
   // The closed lap from the samples stamped within [t0, t1] (the lap's line crossings, or the run start).

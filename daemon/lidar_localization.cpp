@@ -83,7 +83,7 @@ std::optional<VehicleState> LidarLocalization::state(Stamp now, double steering)
     vx = t.vx, vy = t.vy, r = t.yaw_rate;
   }
   const double ahead = std::max(0.0, now - last_.stamp);
-  const Pose2 at_scan = to_pose2(last_.pose);
+  const Pose2 at_scan = map_from_odometry_ * to_pose2(last_.pose);
   const double half = 0.5 * r * ahead;  // along the chord of the arc
   const Vec2 step = Eigen::Rotation2Dd(half) * Vec2(vx * ahead, vy * ahead);
   VehicleState s;

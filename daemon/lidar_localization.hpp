@@ -40,6 +40,10 @@ class LidarLocalization {
   // The state at `now`, carried forward from the newest scan's pose with the odometry's twist; empty before the
   // first scan. `steering`: the VCU's measured steering angle (not the LiDAR's to know).
   std::optional<VehicleState> state(Stamp now, double steering) const;
+  // A loop closure: the odometry's poses are off by `map_from_estimate` (map ← the pose as state() gave it); state()
+  // gives corrected poses from now on. The odometry itself and its increments stay as they are (output(): raw).
+  void correct(const Pose2& map_from_estimate) { map_from_odometry_ = map_from_estimate * map_from_odometry_; }
+  const Pose2& map_from_odometry() const { return map_from_odometry_; }
   // The newest scan's increment, if it had one (the first scan has none).
   std::optional<fusion::OdometryIncrement> increment() const;
 
@@ -52,6 +56,7 @@ class LidarLocalization {
   std::deque<LidarLocalizationMotion> speeds_, yaw_rates_;  // the last second of each, bounded
   lidar_odometry::OdometryOutput last_;
   bool have_ = false;
+  Pose2 map_from_odometry_;  // the loop closures' corrections so far
 };
 
 }  // namespace fsd

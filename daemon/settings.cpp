@@ -12,6 +12,7 @@
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
 #include "localization/fusion/fusion_config.hpp"
+#include "localization/loop_closure/loop_closure_config.hpp"
 #include "perception/camera/camera_stage.hpp"
 #include "perception/lidar_cone_detector.hpp"
 #include "perception/truth_perception.hpp"
@@ -68,6 +69,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   fusion::describe_fusion_config(*schema);
   start_pose_section().describe(*schema);
   lidar_odometry::describe_lidar_odometry_config(*schema);
+  loop_closure::describe_loop_closure_config(*schema);
   describe_camera_stage(*schema);
   describe_lidar_detector_config(*schema);
   sim::describe_virtual_car_config(*schema);

@@ -1,5 +1,7 @@
 #include "daemon/sim_scoring.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "control/missions.hpp"
@@ -55,6 +57,12 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
   stack.on_detections([this](const ConeDetections& det, const Pose2&) {
     perception_.add_frame(det, truth_cones_, truth_poses_.at(det.stamp).value_or(last_pose_));
   });
+  // Each loop closure with the pose's error against the truth at its instant, before and after the correction.
+  stack.on_loop_closure([this](const LoopClosureRecord& r) {
+    const Vec2 truth = truth_poses_.at(r.t).value_or(last_pose_).position();
+    loop_closures_.push_back(
+        {r, (r.estimate.position() - truth).norm(), ((r.correction * r.estimate).position() - truth).norm()});
+  });
   stack.on_odometry([this](const lidar_odometry::OdometryOutput& out) {
     odometry_.add_lidar(truth_poses_.at(out.stamp).value_or(last_pose_), to_pose2(out.pose));
   });
@@ -86,7 +94,24 @@ void SimScoring::finish(double wall_time_s) {
   auto perception = perception_.to_json();
   perception["source"] = run_.perception_source;
   card_->set_section("perception", perception);
-  card_->set_section("odometry", odometry_.to_json(run_.localization_source));
+  auto odometry = odometry_.to_json(run_.localization_source);
+  if (run_.localization_source == "lidar_odometry") {
+    auto m = [](double v) { return std::round(v * 1e3) / 1e3; };  // 1 mm, 1 µs in ms
+    odometry["loop_closures"] = nlohmann::json::array();
+    for (const auto& [r, before, after] : loop_closures_)
+      odometry["loop_closures"].push_back(
+          {{"time_s", m(r.t)},
+           {"lap", r.lap},
+           {"correction", {{"x_m", m(r.correction.x)}, {"y_m", m(r.correction.y)}, {"yaw_rad", m(r.correction.yaw)}}},
+           {"pairs", r.pairs},
+           {"rms_m", m(r.rms)},
+           {"keyframes", r.keyframes},
+           {"cones_merged", r.cones_merged},
+           {"solve_ms", m(r.solve_s * 1e3)},
+           {"error_before_m", m(before)},
+           {"error_after_m", m(after)}});
+  }
+  card_->set_section("odometry", odometry);
 }
 
 }  // namespace fsd

@@ -9,6 +9,7 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
+#include "daemon/loop_closure_record.hpp"
 #include "daemon/odometry_score.hpp"
 #include "daemon/perception_score.hpp"
 #include "daemon/scorecard.hpp"
@@ -54,6 +55,11 @@ class SimScoring {
   PoseHistory truth_poses_{256};  // the car's true poses of the last 2.5 s, for the perception score
   Pose2 last_pose_;
   std::vector<Cone> truth_cones_;
+  struct ClosureScore {
+    LoopClosureRecord record;
+    double error_before = 0, error_after = 0;  // m from the true pose at its instant
+  };
+  std::vector<ClosureScore> loop_closures_;  // the odometry section's
 };
 
 }  // namespace fsd

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <deque>
 #include <mutex>
+#include <numbers>
 #include <span>
 #include <stdexcept>
 
@@ -26,6 +27,7 @@
 #include "daemon/truth_frames.hpp"
 #include "drivers/vlp16/scan_builder.hpp"
 #include "localization/cone_map.hpp"
+#include "localization/loop_closure/loop_closure_config.hpp"
 #include "localization/pose_history.hpp"
 #include "perception/lidar_camera_detector.hpp"
 #include "perception/truth_perception.hpp"
@@ -100,6 +102,9 @@ struct Stack::Impl {
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
+  std::unique_ptr<loop_closure::LoopCloser> loop_closer;  // lidar_odometry: each lap's loop on the start's cones
+  std::vector<LoopClosureRecord> loop_closures;
+  std::function<void(const LoopClosureRecord&)> loop_closure_hook;
   std::shared_ptr<const ConeDetections> last_detections;
   std::shared_ptr<const LabelledCloud> last_cloud;  // the sensor sources' split of the newest scan
   std::function<void(const ConeDetections&, const Pose2&)> detections_hook;
@@ -156,6 +161,12 @@ struct Stack::Impl {
       const StartPose start = start_pose_section().read(cfg);
       log->info("localization: LiDAR odometry from x {:.2f} y {:.2f} yaw {:.3f}{}", start.x, start.y, start.yaw,
                 fused ? ", its increments into the fusion filter" : "");
+    }
+    // Only the LiDAR odometry drifts without bound: the fused pose is held by GNSS-INS fixes, the truth and gnss
+    // sources have nothing to close.
+    if (localization_source == "lidar_odometry") {
+      const auto lc = loop_closure::read_loop_closure_config(cfg);
+      if (lc.enabled) loop_closer = std::make_unique<loop_closure::LoopCloser>(lc);
     }
     perception_source = run.perception_source;
     if (!opt.simulator && perception_source == "truth") {
@@ -304,13 +315,55 @@ struct Stack::Impl {
   void map_detections(Stamp now, ConeDetections det, const Pose2& pose, std::span<const Cone> camera_rejected,
                       double w0) {
     cone_map.update(det, pose, camera_rejected);
+    double closing = 0;  // the loop closer's time is not perception's
+    if (loop_closer) {
+      const double w = wall();
+      close_loop(now, det, pose);
+      closing = wall() - w;
+      latency["loop_closure"].add(closing);
+    }
     autopilot->on_cones(now, cone_map.cones());
-    const double dt = wall() - w0;
+    const double dt = wall() - w0 - closing;
     latency["perception"].add(dt);
     cycle.figures.perception_s = dt;
     if (detections_hook) detections_hook(det, pose);  // the scorecard's, outside the stage's time
     last_detections = std::make_shared<const ConeDetections>(std::move(det));
     ++perception_frames;
+  }
+
+  // The frame to the loop closer; when it closes the lap's loop, the correction to everything placed by the poses
+  // estimated so far: the odometry's output from now on, the pose history, the cone map, the autopilot's state,
+  // plan and recorded lap-1 poses.
+  void close_loop(Stamp now, const ConeDetections& det, const Pose2& pose) {
+    const double w0 = wall();
+    const auto closed = loop_closer->add(det.stamp, pose, det.cones);
+    if (!closed) return;
+    const auto at = [&closed](Stamp t) { return closed->correction_at(t); };
+    odometry->correct(closed->correction);
+    poses.correct(at);
+    const int merged = cone_map.correct(at);
+    autopilot->relocate(at, now);
+    if (state) {
+      state->pose = at(state->stamp) * state->pose;
+      autopilot->on_state(*state);
+    }
+    LoopClosureRecord r;
+    r.t = closed->t;
+    r.lap = closed->lap;
+    r.estimate = closed->keyframes.back().estimate;
+    r.correction = closed->correction;
+    r.pairs = closed->pairs;
+    r.rms = closed->rms;
+    r.keyframes = int(closed->keyframes.size());
+    r.cones_merged = merged;
+    r.solve_s = wall() - w0;
+    log->info(
+        "loop {} closed at {:.2f} s on {} start cones (rms {:.2f} m): moved x {:.2f} y {:.2f} m yaw {:.2f} deg, "
+        "{} keyframes, {} cones merged, {:.0f} ms",
+        r.lap, r.t, r.pairs, r.rms, r.correction.x, r.correction.y, r.correction.yaw * 180 / std::numbers::pi,
+        r.keyframes, merged, r.solve_s * 1e3);
+    loop_closures.push_back(r);
+    if (loop_closure_hook) loop_closure_hook(r);
   }
 
   // The lidar and lidar_camera sources: the newest scan through the stages, placed by the localization's poses.
@@ -579,6 +632,10 @@ void Stack::on_detections(std::function<void(const ConeDetections&, const Pose2&
   impl_->detections_hook = std::move(hook);
 }
 
+void Stack::on_loop_closure(std::function<void(const LoopClosureRecord&)> hook) {
+  impl_->loop_closure_hook = std::move(hook);
+}
+
 void Stack::on_odometry(std::function<void(const lidar_odometry::OdometryOutput&)> hook) {
   impl_->odometry_hook = std::move(hook);
 }
@@ -592,6 +649,7 @@ const std::optional<VehicleState>& Stack::state() const { return impl_->state; }
 AsState Stack::as_state() const { return impl_->as_state(); }
 std::vector<FaultRecord> Stack::faults() const { return impl_->faults(); }
 const std::map<std::string, LatencyStats>& Stack::latencies() const { return impl_->latency; }
+const std::vector<LoopClosureRecord>& Stack::loop_closures() const { return impl_->loop_closures; }
 
 StackCounters Stack::counters() const {
   std::lock_guard lock(impl_->counters_m);

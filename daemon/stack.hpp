@@ -22,6 +22,8 @@
 //                 fused: GNSS-INS, wheel speeds (and the LiDAR odometry's increments) through a fusion filter;
 //                 lidar_odometry: the LiDAR odometry alone from the start pose (localization.start.*).
 //   Detections of every perception source are placed in the map by the localization's pose of their instant.
+//   With lidar_odometry each lap's loop is closed on the start's cones (localization.loop_closure.*): from then on
+//   the pose is corrected, the cone map and the recorded lap-1 poses are moved with the lap's solved pose graph.
 #include <functional>
 #include <map>
 #include <memory>
@@ -36,6 +38,7 @@
 #include "common/types.hpp"
 #include "control/autopilot.hpp"
 #include "daemon/fault_record.hpp"
+#include "daemon/loop_closure_record.hpp"
 #include "daemon/raw_frame.hpp"
 #include "daemon/run_metrics.hpp"
 #include "daemon/telemetry.hpp"
@@ -127,6 +130,8 @@ class Stack {
   void on_detections(std::function<void(const ConeDetections&, const Pose2&)> hook);
   // Sees each scan the LiDAR odometry took (lidar_odometry, or fused with its increments): the scorecard's drift.
   void on_odometry(std::function<void(const lidar_odometry::OdometryOutput&)> hook);
+  // Sees each loop closure as it is applied (the scorecard's pose error before and after).
+  void on_loop_closure(std::function<void(const LoopClosureRecord&)> hook);
 
   // Read-outs, on the Stack's thread or after the run.
   Mission mission() const;
@@ -140,6 +145,7 @@ class Stack {
   AsState as_state() const;                          // as the VCU reports it
   std::vector<FaultRecord> faults() const;           // the VCU link's, then the supervisor's
   const std::map<std::string, LatencyStats>& latencies() const;
+  const std::vector<LoopClosureRecord>& loop_closures() const;
   StackCounters counters() const;  // any thread
 
  private:

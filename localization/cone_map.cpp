@@ -19,11 +19,17 @@ const ConfigSection<ConeMapConfig>& cone_map_section() {
                    "Camera rejections before a mapped cone the camera rejected more often than it "
                    "verified is withheld (a distractor the LiDAR took for a cone).")
           .number("max_range", &ConeMapConfig::max_range, 1.0, 100.0, "m",
-                  "Detections beyond this range are not mapped.");
+                  "Detections beyond this range are not mapped.")
+          .number("merge_gate", &ConeMapConfig::merge_gate, 0.01, 5.0, "m",
+                  "After a loop closure moved the map, cones this close that were first mapped at different times "
+                  "are one cone.");
   return s;
 }
 
 namespace {
+
+constexpr double kVisitGap = 3.0;      // s unseen before a sighting starts a new visit (a lap takes far longer)
+constexpr std::size_t kMaxVisits = 8;  // per cone: the oldest two merge beyond (they are long corrected alike)
 
 ConeColour voted_colour(const std::array<int, 6>& votes) {
   const auto top = std::max_element(votes.begin(), votes.end());
@@ -95,6 +101,22 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
       entries_.emplace_back().id = next_id_++;
     }
     Entry& e = entries_[entry_of[i]];
+    const Stamp t = detections.stamp;
+    if (e.visits.empty() || t - e.visits.back().last > kVisitGap) {
+      if (e.visits.empty()) e.first_from = t;
+      e.visits.push_back({Eigen::Matrix2d::Zero(), Vec2::Zero(), t, t, 0.0, 0});
+      if (e.visits.size() > kMaxVisits) {
+        add_visit(e, e.visits[1]);  // into visits[0]: see add_visit
+        e.visits.erase(e.visits.begin() + 1);
+      }
+    }
+    Visit& v = e.visits.back();
+    v.info += seen[i].info;
+    v.info_vec += seen[i].info * seen[i].p;
+    v.last = t;
+    v.t_sum += t;
+    ++v.n;
+    if (e.visits.size() == 1) e.first_to = t;
     e.info += seen[i].info;
     e.info_vec += seen[i].info * seen[i].p;
     e.mean = e.info.ldlt().solve(e.info_vec);
@@ -103,6 +125,76 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     const auto c = static_cast<std::size_t>(seen[i].colour);
     if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size()) ++e.colour_votes[c];
   }
+}
+
+void ConeMap::add_visit(Entry& e, const Visit& v) {
+  Visit& into = e.visits.front();
+  into.info += v.info;
+  into.info_vec += v.info_vec;
+  into.first = std::min(into.first, v.first);
+  into.last = std::max(into.last, v.last);
+  into.t_sum += v.t_sum;
+  into.n += v.n;
+}
+
+void ConeMap::refresh(Entry& e) {
+  e.info.setZero();
+  e.info_vec.setZero();
+  for (const auto& v : e.visits) e.info += v.info, e.info_vec += v.info_vec;
+  if (e.info.determinant() > 0) e.mean = e.info.ldlt().solve(e.info_vec);
+}
+
+int ConeMap::correct(const std::function<Pose2(Stamp)>& correction) {
+  for (auto& e : entries_) {
+    for (auto& v : e.visits) {
+      if (v.n == 0) continue;
+      // The visit's mean position and information, moved rigidly by the correction of its mean instant.
+      const Pose2 c = correction(v.t_sum / v.n);
+      const Eigen::Matrix2d R = c.rotation().toRotationMatrix();
+      const Vec2 mean = c.transform(v.info.ldlt().solve(v.info_vec));
+      v.info = R * v.info * R.transpose();
+      v.info_vec = v.info * mean;
+    }
+    refresh(e);
+  }
+  // Cones that now coincide, nearest pairs first, each merged once per call.
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < entries_.size(); ++a)
+    for (std::size_t b = a + 1; b < entries_.size(); ++b) {
+      const Entry &ea = entries_[a], &eb = entries_[b];
+      const double d = (ea.mean - eb.mean).norm();
+      if (d >= cfg_.merge_gate) continue;
+      const ConeColour ca = voted_colour(ea.colour_votes), cb = voted_colour(eb.colour_votes);
+      if (ca != cb && ca != ConeColour::Unknown && cb != ConeColour::Unknown) continue;
+      if (ea.first_from <= eb.first_to && eb.first_from <= ea.first_to) continue;  // seen together: two cones
+      pairs.emplace_back(d, a, b);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> gone(entries_.size(), 0), used(entries_.size(), 0);
+  int merged = 0;
+  for (const auto& [d, a, b] : pairs) {
+    if (used[a] || used[b]) continue;
+    used[a] = used[b] = 1;
+    Entry &keep = entries_[a], &from = entries_[b];  // a: the older id (entries are in order of creation)
+    for (const auto& v : from.visits) keep.visits.push_back(v);
+    std::sort(keep.visits.begin(), keep.visits.end(), [](const Visit& x, const Visit& y) { return x.first < y.first; });
+    while (keep.visits.size() > kMaxVisits) {
+      add_visit(keep, keep.visits[1]);
+      keep.visits.erase(keep.visits.begin() + 1);
+    }
+    keep.observations += from.observations;
+    keep.verified += from.verified;
+    keep.rejected += from.rejected;
+    for (std::size_t c = 0; c < keep.colour_votes.size(); ++c) keep.colour_votes[c] += from.colour_votes[c];
+    refresh(keep);
+    gone[b] = 1;
+    ++merged;
+  }
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < entries_.size(); ++i)
+    if (!gone[i]) entries_[w++] = std::move(entries_[i]);
+  entries_.resize(w);
+  return merged;
 }
 
 std::vector<Cone> ConeMap::cones() const {

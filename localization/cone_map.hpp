@@ -7,7 +7,13 @@
 // camera rejected more often than it verified, at least `min_rejections` times, is not reported (it stays mapped,
 // so a real cone the camera doubted once comes back with its next verifications). Without a camera nothing is
 // rejected and every LiDAR-only cone is reported.
+//
+// Loop closure moves the poses a map was built from (localization/loop_closure): each cone keeps its sightings per
+// visit (seen without a gap of more than a few seconds), so that correct() moves each visit with the correction of
+// its instant, a cone seen at the start and again on the next lap with the correction of each. Two cones that then
+// coincide are one (a cone mapped at the start and again, drifted, at the lap's end).
 #include <array>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -23,6 +29,7 @@ struct ConeMapConfig {
   int min_observations = 2;  // a cone is reported once seen this often
   int min_rejections = 2;    // camera rejections before a mapped cone may be withheld
   double max_range = 20.0;   // detections farther than this are ignored (m)
+  double merge_gate = 0.45;  // m: corrected cones this close, first mapped at different times, are one cone
 };
 const ConfigSection<ConeMapConfig>& cone_map_section();
 
@@ -36,8 +43,20 @@ class ConeMap {
   std::vector<Cone> cones() const;
   std::size_t size() const { return entries_.size(); }
   void clear() { entries_.clear(); }
+  // Moves every cone with the poses it was seen from: `correction(t)` takes a position placed by the pose of
+  // instant t into the corrected map frame (LoopClosure::correction_at). Then merges the cones that coincide
+  // (within merge_gate, compatible colours, first mapped in visits that do not overlap: a frame's cones are
+  // distinct). Returns the number of merges.
+  int correct(const std::function<Pose2(Stamp)>& correction);
 
  private:
+  struct Visit {  // the sightings of one pass, in information form
+    Eigen::Matrix2d info = Eigen::Matrix2d::Zero();
+    Vec2 info_vec = Vec2::Zero();
+    Stamp first = 0, last = 0;
+    double t_sum = 0;
+    int n = 0;
+  };
   struct Entry {
     Eigen::Matrix2d info = Eigen::Matrix2d::Zero();  // Σ⁻¹
     Vec2 info_vec = Vec2::Zero();                    // Σ⁻¹ μ
@@ -46,7 +65,11 @@ class ConeMap {
     int verified = 0, rejected = 0;  // camera verdicts on it
     std::array<int, 6> colour_votes{};
     std::uint32_t id = 0;
+    std::vector<Visit> visits;           // bounded: the oldest two merge beyond kMaxVisits
+    Stamp first_from = 0, first_to = 0;  // its first visit's span
   };
+  static void add_visit(Entry& e, const Visit& v);
+  static void refresh(Entry& e);
   ConeMapConfig cfg_;
   std::vector<Entry> entries_;
   std::uint32_t next_id_ = 1;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <optional>
 
 #include "common/geometry.hpp"
@@ -34,6 +35,10 @@ class PoseHistory {
   bool empty() const { return poses_.empty(); }
   std::size_t size() const { return poses_.size(); }
   void clear() { poses_.clear(); }
+  // A loop closure corrected the estimates: each pose moves by `correction(its stamp)` (map ← estimated).
+  void correct(const std::function<Pose2(Stamp)>& correction) {
+    for (auto& s : poses_) s.pose = correction(s.t) * s.pose;
+  }
   std::optional<Stamp> newest() const {
     if (poses_.empty()) return std::nullopt;
     return poses_.back().t;

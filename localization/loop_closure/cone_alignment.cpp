@@ -59,17 +59,34 @@ Pose2 fit(const std::vector<std::pair<int, int>>& pairs, const std::vector<Cone>
   return {t.x(), t.y(), yaw};
 }
 
+// Current cones that land within `radius` of a reference cone (any colour) under `t`, paired or not.
+int landed(const Pose2& t, const std::vector<Cone>& cur, const std::vector<Cone>& ref,
+           const std::vector<std::vector<int>>& near_any, double radius) {
+  int n = 0;
+  for (std::size_t i = 0; i < cur.size(); ++i) {
+    const Vec2 p = t.transform(xy(cur[i]));
+    for (int j : near_any[i])
+      if ((p - xy(ref[std::size_t(j)])).norm() <= radius) {
+        ++n;
+        break;
+      }
+  }
+  return n;
+}
+
 }  // namespace
 
 std::optional<ConeAlignment> align_cones(const std::vector<Cone>& current, const std::vector<Cone>& reference,
                                          const ConeAlignmentConfig& cfg) {
   if (int(current.size()) < cfg.min_pairs || int(reference.size()) < cfg.min_pairs) return std::nullopt;
-  std::vector<std::vector<int>> candidates(current.size());
+  std::vector<std::vector<int>> candidates(current.size()), near_any(current.size());
   for (std::size_t i = 0; i < current.size(); ++i)
-    for (std::size_t j = 0; j < reference.size(); ++j)
-      if (compatible(current[i].colour, reference[j].colour) &&
-          (xy(current[i]) - xy(reference[j])).norm() <= cfg.max_drift + cfg.pair_tolerance)
+    for (std::size_t j = 0; j < reference.size(); ++j) {
+      const double d = (xy(current[i]) - xy(reference[j])).norm();
+      if (d <= cfg.max_drift + cfg.landing_radius) near_any[i].push_back(int(j));
+      if (compatible(current[i].colour, reference[j].colour) && d <= cfg.max_drift + cfg.pair_tolerance)
         candidates[i].push_back(int(j));
+    }
 
   std::vector<Hypothesis> hyps;
   const double tol = cfg.pair_tolerance;
@@ -94,17 +111,21 @@ std::optional<ConeAlignment> align_cones(const std::vector<Cone>& current, const
     }
   }
   if (hyps.empty()) return std::nullopt;
-  const auto best = std::max_element(hyps.begin(), hyps.end(),
-                                     [](const Hypothesis& a, const Hypothesis& b) { return a.pairs < b.pairs; });
-  if (best->pairs < cfg.min_pairs) return std::nullopt;
-  // A rival elsewhere with nearly as many pairs: the scene does not say which (a lane slid along itself).
+  auto consistent = [&](const Hypothesis& h) {
+    return landed(h.t, current, reference, near_any, cfg.landing_radius) - h.pairs <= cfg.max_unpaired;
+  };
+  // Most pairs first: the first consistent one is the answer.
+  std::stable_sort(hyps.begin(), hyps.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.pairs > b.pairs; });
+  const auto best = std::find_if(hyps.begin(), hyps.end(), consistent);
+  if (best == hyps.end() || best->pairs < cfg.min_pairs) return std::nullopt;
+  // A consistent rival elsewhere: the scene does not say which (a lane slid along itself).
   Vec2 centre = Vec2::Zero();
   for (const auto& c : current) centre += xy(c);
   centre /= double(current.size());
   const Vec2 at_best = best->t.transform(centre);
-  for (const auto& h : hyps)
-    if (h.pairs >= best->pairs - cfg.ambiguity_margin && (h.t.transform(centre) - at_best).norm() > 2 * tol)
-      return std::nullopt;
+  for (auto h = best + 1; h != hyps.end() && h->pairs >= cfg.rival_min_pairs; ++h)
+    if ((h->t.transform(centre) - at_best).norm() > 2 * tol && consistent(*h)) return std::nullopt;
 
   ConeAlignment out;
   out.pairs = pairs_under(best->t, current, reference, candidates, tol);

@@ -6,9 +6,14 @@
 //
 // Every hypothesis from two current cones and two reference cones of the same colours, as far apart as each
 // other and within the drift bound of where they are, is tried (no random sampling: the same input gives the same
-// loop); the best is refined by least squares over its pairs. A symmetric scene (a straight lane of one colour)
-// is ambiguous along itself: the answer is accepted only when no other hypothesis, shifted by more than the
-// tolerance, has nearly as many pairs.
+// loop); the best is refined by least squares over its pairs. A hypothesis is consistent when at most
+// `max_unpaired` current cones land near a reference cone (within `landing_radius`) without pairing: the right
+// one leaves none but noise, one slid by a cone spacing leaves the cones that make the scene unlike itself (a start
+// line's big orange cones landing by blue ones) unpaired. The answer is the consistent hypothesis with the most
+// pairs; it is accepted only when no consistent hypothesis elsewhere (shifted by more than twice the tolerance)
+// pairs `rival_min_pairs`. A symmetric scene (a straight lane, an arc of one radius) slid along itself by a spacing
+// is consistent, so it is ambiguous; counting pairs alone is not enough: a scene cut off at its ends (the start seen
+// driving out, the same lane seen coming back) slid by a spacing can pair more cones than the right answer.
 #include <optional>
 #include <utility>
 #include <vector>
@@ -18,11 +23,13 @@
 namespace fsd::loop_closure {
 
 struct ConeAlignmentConfig {
-  double max_drift = 4.0;         // m: how far a current cone may be from its reference (the drift over a lap)
-  double max_rotation = 0.2;      // rad: the heading drift over a lap
-  double pair_tolerance = 0.3;    // m: a pair after the transform
-  int min_pairs = 4;              // fewer: no loop
-  double ambiguity_margin = 2.0;  // a rival hypothesis with at least (best − this) pairs elsewhere: ambiguous
+  double max_drift = 4.0;       // m: how far a current cone may be from its reference (the drift over a lap)
+  double max_rotation = 0.2;    // rad: the heading drift over a lap
+  double pair_tolerance = 0.3;  // m: a pair after the transform
+  int min_pairs = 4;            // fewer: no loop
+  double landing_radius = 2.0;  // m: a current cone this close to a reference cone after the transform should pair
+  int max_unpaired = 2;         // consistent: at most this many cones landed near a reference cone unpaired
+  int rival_min_pairs = 3;      // a consistent hypothesis elsewhere with this many pairs makes the scene ambiguous
 };
 
 struct ConeAlignment {

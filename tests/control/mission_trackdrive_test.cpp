@@ -176,6 +176,37 @@ TEST(TrackdriveMission, TrackdriveFollowsTheRecordedLapFromLapTwoWhileGnssIsGood
   EXPECT_TRUE(run.finished());
 }
 
+TEST(TrackdriveMission, ALoopClosureMovesTheRecordedLapAndTheLapPathIsBuiltAgainFromIt) {
+  AutopilotConfig config = circle_config();
+  config.mission.laps = 2;
+  TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
+  CircleDrive d(run);
+  d.drive(kFirstCrossing + kLap + 0.1);
+  ASSERT_EQ(d.lap_lines.size(), 1u);
+  ASSERT_NE(run.lap_path(), nullptr);
+  auto centroid = [](const Path& p) {
+    Vec2 c = Vec2::Zero();
+    for (const auto& q : p.points) c += q.p;
+    return Vec2(c / double(p.points.size()));
+  };
+  const Vec2 before = centroid(*run.lap_path());
+  // A correction of nothing (a later lap's closure, before which lap 1's poses lie) keeps the path as built.
+  run.relocate([](Stamp) { return Pose2{}; }, d.step * kDt);
+  ASSERT_NE(run.lap_path(), nullptr);
+  // Lap 1's poses 0.5 m off along x: the lap path goes, the recorded lap follows the plan meanwhile, and the next
+  // cycle builds it again from the moved poses.
+  run.relocate([](Stamp) { return Pose2{-0.5, 0, 0}; }, d.step * kDt);
+  EXPECT_EQ(run.lap_path(), nullptr);
+  d.paths.clear();
+  d.drive(kFirstCrossing + kLap + 0.2);
+  ASSERT_EQ(d.lap_lines.size(), 2u);
+  ASSERT_NE(run.lap_path(), nullptr);
+  const Vec2 after = centroid(*run.lap_path());
+  EXPECT_NEAR(after.x() - before.x(), -0.5, 0.02);
+  EXPECT_NEAR(after.y() - before.y(), 0.0, 0.02);
+  EXPECT_EQ(d.paths.back().second.source, PathSource::Recorded);
+}
+
 TEST(TrackdriveMission, AStartJustPastTheLineTimesLapOneFromTheStart) {
   // Big orange cones 3 m behind the start: the first lap runs from the start to the first crossing.
   AutopilotConfig config = circle_config();

@@ -158,6 +158,30 @@ TEST(RecordedTrajectory, RecentringRoundACornerFollowsTheCentreLineNotTheNearest
   for (const auto& q : p.points) EXPECT_LT(centre_distance(q.p), 1e-6) << q.p.transpose();
 }
 
+TEST(RecordedTrajectory, RelocateMovesEachPoseByTheCorrectionOfItsInstant) {
+  // A circle lap recorded by a pose drifting 2 m along +y over the lap (its end 2 m from its start), then the loop
+  // closure's correction, growing with time as the drift did: the lap lies on the true circle again.
+  RecordedTrajectory rec;
+  const double r = 20.0, lap = 2 * std::numbers::pi * r, v = 5.0, T = lap / v;
+  for (double t = 0; t <= T; t += 0.02) {
+    const double a = v * t / r;
+    rec.record(at(t, r * Vec2(std::cos(a), std::sin(a)) + Vec2(0, 2.0 * t / T)));
+  }
+  SpeedLimits lim;
+  lim.mu = 1.0;
+  lim.v_max = 30;
+  const auto drifted = rec.build(0, T, {}, ColourConvention{}, SpeedProfile(lim));
+  ASSERT_TRUE(drifted.path) << drifted.reason;
+  double off = 0;  // the drifted lap's worst distance from the true circle
+  for (const auto& q : drifted.path->points) off = std::max(off, std::abs(q.p.norm() - r));
+  EXPECT_GT(off, 0.8);
+  const double moved = rec.relocate([&](Stamp t) { return Pose2{0, -2.0 * t / T, 0}; });
+  EXPECT_NEAR(moved, 2.0, 0.01);
+  const auto res = rec.build(0, T, {}, ColourConvention{}, SpeedProfile(lim));
+  ASSERT_TRUE(res.path) << res.reason;
+  for (const auto& q : res.path->points) EXPECT_NEAR(q.p.norm(), r, 0.05);
+}
+
 TEST(RecordedTrajectory, ALapThatDoesNotCloseIsRefused) {
   RecordedTrajectory rec;
   for (int i = 0; i < 300; ++i) rec.record(at(0.1 * i, Vec2(0.5 * i, 0)));

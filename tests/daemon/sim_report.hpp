@@ -17,7 +17,7 @@ namespace fsd::test {
 // `name`). Expects exit 0, or with `must_pass` false any judged run (never a refusal, exit 2). The report, or an
 // empty value (a test failure) when none was written.
 inline nlohmann::json sim_report(const std::string& name, const nlohmann::json& config, const std::string& args,
-                                 bool must_pass = true) {
+                                 bool must_pass = true, std::string* log_out = nullptr) {
   const std::string cfg = scratch_path(name + ".json"), report = scratch_path(name + "_report.json");
   std::ofstream(cfg) << config.dump();
   std::string log;
@@ -27,6 +27,7 @@ inline nlohmann::json sim_report(const std::string& name, const nlohmann::json& 
     EXPECT_EQ(rc, 0) << log;
   else
     EXPECT_NE(rc, 2) << log;
+  if (log_out) *log_out = log;
   std::ifstream f(report);
   if (!f) {
     ADD_FAILURE() << "no report: " << log;

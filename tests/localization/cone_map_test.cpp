@@ -178,5 +178,54 @@ TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
   EXPECT_EQ(cones.size(), 2u);
 }
 
+// Loop closure: a layout mapped at the start by the true pose (t < 10 s), then seen again a lap later (t >= 60 s) by
+// a pose that drifted by a known 1.4 m and 1.7 degrees: two copies. Corrected by the drift's inverse for the later
+// sightings (identity for the earlier), every cone is one again, at its true place, with its colour.
+TEST(ConeMap, CorrectMovesEachVisitWithItsPosesAndMergesTheCopies) {
+  const World world{{{6, 1.5}, ConeColour::Blue},        {{6, -1.5}, ConeColour::Yellow},
+                    {{9, 1.5}, ConeColour::Blue},        {{9, -1.5}, ConeColour::Yellow},
+                    {{7.3, 2.2}, ConeColour::BigOrange}, {{7.3, -2.2}, ConeColour::BigOrange},
+                    {{7.8, 2.2}, ConeColour::BigOrange}, {{7.8, -2.2}, ConeColour::BigOrange}};
+  const Pose2 drift{-1.4, 0.0, 0.03};
+  ConeMap map;
+  std::mt19937 rng(5);
+  for (int k = 0; k < 40; ++k) {
+    const Pose2 truth{0.1 * k, 0.0, 0.0};
+    ConeDetections d = detect(world, truth, 0.03, rng);
+    d.stamp = 0.2 * k;
+    map.update(d, truth);
+  }
+  for (int k = 0; k < 40; ++k) {
+    const Pose2 truth{0.1 * k, 0.0, 0.0};
+    ConeDetections d = detect(world, truth, 0.03, rng);
+    d.stamp = 60 + 0.1 * k;
+    map.update(d, drift * truth);  // what the drifted estimator believed
+  }
+  ASSERT_EQ(map.cones().size(), 2 * world.size());  // the lap's seam: every cone twice
+  const int merged = map.correct([&](Stamp t) { return t < 30 ? Pose2{} : drift.inverse(); });
+  EXPECT_EQ(merged, int(world.size()));
+  expect_each_cone_mapped(world, map.cones());
+  // Cones seen in the same frames stay two, however close the correction brings them: nothing more merges.
+  EXPECT_EQ(map.correct([](Stamp) { return Pose2{}; }), 0);
+  EXPECT_EQ(map.cones().size(), world.size());
+}
+
+TEST(ConeMap, CorrectKeepsConesSeenTogetherApart) {
+  // Two same-colour cones 0.3 m apart (under the merge gate), seen in the same frames: two cones before and after.
+  const World world{{{10.0, 1.5}, ConeColour::BigOrange}, {{10.3, 1.5}, ConeColour::BigOrange}};
+  ConeMap map;
+  std::mt19937 rng(9);
+  for (int k = 0; k < 30; ++k) {
+    const Pose2 pose{0.1 * k, 0.0, 0.0};
+    ConeDetections d = detect(world, pose, 0.01, rng);
+    d.stamp = 0.1 * k;
+    map.update(d, pose);
+  }
+  ASSERT_EQ(map.cones().size(), 2u);
+  EXPECT_EQ(map.correct([](Stamp) { return Pose2{0.5, 0.0, 0.0}; }), 0);
+  ASSERT_EQ(map.cones().size(), 2u);
+  for (const auto& c : map.cones()) EXPECT_NEAR(c.position.x(), c.position.x() < 10.65 ? 10.5 : 10.8, 0.05);
+}
+
 }  // namespace
 }  // namespace fsd

@@ -57,5 +57,18 @@ TEST(PoseHistory, KeepsOnlyTheNewestPosesAndIgnoresOlderOnes) {
   EXPECT_EQ(h.size(), 3u);
 }
 
+TEST(PoseHistory, CorrectMovesEachPoseByTheCorrectionOfItsInstant) {
+  PoseHistory h;
+  h.add(1.0, {1, 0, 0});
+  h.add(2.0, {2, 0, 0});
+  // Identity up to 1.5 s, then 1 m to the left and a quarter turn about the map's origin.
+  h.correct([](Stamp t) { return t < 1.5 ? Pose2{} : Pose2{0, 1, kPi / 2}; });
+  EXPECT_NEAR(h.at(1.0)->x, 1.0, 1e-12);
+  const Pose2 moved = *h.at(2.0);
+  EXPECT_NEAR(moved.x, 0.0, 1e-12);
+  EXPECT_NEAR(moved.y, 3.0, 1e-12);
+  EXPECT_NEAR(moved.yaw, kPi / 2, 1e-12);
+}
+
 }  // namespace
 }  // namespace fsd
