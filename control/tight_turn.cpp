@@ -13,7 +13,6 @@ namespace fsd {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kHeldRefitTolerance = 0.5;  // m
 
 struct Segment {
   std::size_t first = 0, last = 0;  // point indices, inclusive
@@ -200,14 +199,8 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
     if (!foot || foot->s < s_first || foot->s > s_last || foot->distance() > 4.0) continue;
     ((c - turn.centre).norm() < (foot->foot - turn.centre).norm() ? inner : outer).push_back(c);
   }
-  bool fitted =
+  const bool fitted =
       inner.size() >= 2 && outer.size() >= 2 && inner.size() + outer.size() >= 5 && fit_rings(inner, outer, turn);
-  // A held turn's rings are refined by a refit only if it found the same turn (a few cones on the exit straight
-  // also fit some circle).
-  if (fitted && seg->held)
-    fitted = (turn.centre - seg->held->centre).norm() < kHeldRefitTolerance &&
-             std::abs(turn.inner_radius - seg->held->inner_radius) < kHeldRefitTolerance &&
-             std::abs(turn.outer_radius - seg->held->outer_radius) < kHeldRefitTolerance;
   if (fitted) {
     turn.outer_nearest = turn.outer_radius;
     for (const auto& p : outer) turn.outer_nearest = std::min(turn.outer_nearest, (p - turn.centre).norm());

@@ -119,8 +119,8 @@ TEST(TightTurn, AHeldTurnKeepsTheCarOnItsArcToTheExitWhenTheConesAheadNoLongerFi
   Path line = h.midline;
   const auto first = shape_tight_turns(line, h.cones, TightTurnConfig{});
   ASSERT_EQ(first.size(), 1u);
-  // Later, 135° round: the midline from there, and only the cones ahead of the car (the planner drops those
-  // behind): one inner cone is left, too few to fit the rings again.
+  // Later, 135° round: the midline from there, and only the cones of the turn still ahead of the car (the planner
+  // drops those behind; the exit straight's are beyond its view here): four, too few to fit the rings again.
   const double a0 = 0.75 * kPi;
   Path late;
   for (const auto& q : h.midline.points) {
@@ -132,9 +132,10 @@ TEST(TightTurn, AHeldTurnKeepsTheCarOnItsArcToTheExitWhenTheConesAheadNoLongerFi
   std::vector<Vec2> ahead;
   for (const auto& c : h.cones) {
     const Vec2 d = c - h.c;
-    if (c.y() < h.c.y() - 0.01 ? c.x() < h.c.x() : std::atan2(d.y(), d.x()) > a0 - 0.2) ahead.push_back(c);
+    if (c.y() >= h.c.y() - 0.01 && std::atan2(d.y(), d.x()) > a0 - 0.2) ahead.push_back(c);
   }
   Path plain = late;
+  ASSERT_EQ(ahead.size(), 4u);
   EXPECT_TRUE(shape_tight_turns(plain, ahead, TightTurnConfig{}).empty()) << "the cones ahead alone fit no turn";
 
   Path held = late;
