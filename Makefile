@@ -27,10 +27,10 @@ build: deps $(BUILD)/build.ninja
 run: build
 	@$(BUILD)/daemon/fsd $(RUN_ARGS)
 
-# One retry, for two known timing bugs under load, not yet found (2026-12-04, a full run without retries on the
-# loaded 2-core machine): HardwareRun.AccelerationOnItsOwnLidarAgainstFsdSim once drove for 88 s without finishing
-# (13 s alone), and Telemetry.EveryClientEndsWithTheStacksConeMapALateOneFromOneMessage counts scene updates paced
-# by wall time (1 where it asks for 2). Remove the retry when both are fixed.
+# One retry, for two known bugs under load, not yet found (2026-12-04, full runs on the loaded 2-core machine):
+# HardwareRun.AccelerationOnItsOwnLidarAgainstFsdSim stayed in Driving for 88 s without finishing in 2 of 3 runs
+# (13 s alone; links and LiDAR flowing), and Telemetry.EveryClientEndsWithTheStacksConeMapALateOneFromOneMessage
+# counts scene updates paced by wall time (1 where it asks for 2). Remove the retry when both are fixed.
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600 --repeat until-pass:2
 
