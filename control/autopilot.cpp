@@ -103,10 +103,7 @@ void Autopilot::relocate(const std::function<Pose2(Stamp)>& correction, Stamp no
   if (state_) state_->pose = correction(state_->stamp) * state_->pose;
   // Moved with the pose, so that the correction is no distance driven.
   if (last_position_) last_position_ = correction(now).transform(*last_position_);
-  if (plan_) {
-    const Pose2 c = correction(plan_->stamp);
-    for (auto& q : plan_->points) q.p = c.transform(q.p), q.yaw = wrap_angle(q.yaw + c.yaw);
-  }
+  if (plan_) transform_path(*plan_, correction(plan_->stamp));
   run_->relocate(correction, now);
 }
 

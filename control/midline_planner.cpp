@@ -459,23 +459,12 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
   }
   std::vector<SpeedZone> zones;
   std::optional<TightTurn> held;
-  if (held_turn) {
-    held = *held_turn;
-    held->centre = pose.inverse_transform(held->centre);
-    held->exit = pose.inverse_transform(held->exit);
-    held->exit_direction = pose.rotation().inverse() * held->exit_direction;
-  }
-  for (TightTurn& turn : shape_tight_turns(smooth, positions, config_.tight_turn, held ? &*held : nullptr)) {
+  if (held_turn) held = transformed(*held_turn, pose.inverse());
+  for (const TightTurn& turn : shape_tight_turns(smooth, positions, config_.tight_turn, held ? &*held : nullptr)) {
     zones.push_back({turn.s_begin, turn.s_end, config_.tight_turn.v_max});
-    turn.centre = pose.transform(turn.centre);
-    turn.exit = pose.transform(turn.exit);
-    turn.exit_direction = pose.rotation() * turn.exit_direction;
-    if (!result.tight_turn) result.tight_turn = turn;
+    if (!result.tight_turn) result.tight_turn = transformed(turn, pose);
   }
-  for (auto& p : smooth.points) {
-    p.p = pose.transform(p.p);
-    p.yaw = wrap_angle(p.yaw + pose.yaw);
-  }
+  transform_path(smooth, pose);
   speed_.apply(smooth, state.speed(), config_.end_speed, zones);
   for (const Vec2& m : mids) result.midpoints.push_back(pose.transform(m));
   result.path = std::move(smooth);

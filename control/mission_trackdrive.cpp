@@ -148,10 +148,7 @@ MissionEvents TrackdriveMission::progress(const MissionInput& in, const FollowRe
 void TrackdriveMission::relocate(const std::function<Pose2(Stamp)>& correction, Stamp now) {
   constexpr double kRebuild = 0.02;  // m: a lap path from poses moved less than this stands
   const double moved = trajectory_.relocate(correction);
-  if (run_out_) {
-    const Pose2 c = correction(now);
-    for (auto& q : run_out_->points) q.p = c.transform(q.p), q.yaw = wrap_angle(q.yaw + c.yaw);
-  }
+  if (run_out_) transform_path(*run_out_, correction(now));
   if (moved < kRebuild || (!lap_path_ && !build_pending_)) return;
   lap_path_.reset();
   lap_zones_.clear();

@@ -51,6 +51,13 @@ double Path::length() const {
   return closed ? open + (points.front().p - points.back().p).norm() : open;
 }
 
+void transform_path(Path& path, const Pose2& by) {
+  for (auto& q : path.points) {
+    q.p = by.transform(q.p);
+    q.yaw = wrap_angle(q.yaw + by.yaw);
+  }
+}
+
 void compute_geometry(Path& path) {
   auto& pts = path.points;
   const std::size_t n = pts.size();

@@ -42,6 +42,8 @@ struct PathProjection {
 
 // Recomputes s, yaw and kappa from the positions (kappa by the circle through three neighbours).
 void compute_geometry(Path& path);
+// Moves every point by the rigid `by` (position and heading; s, kappa and speeds are unchanged by it).
+void transform_path(Path& path, const Pose2& by);
 // Points at uniform arc-length spacing `ds` along the positions (the last spacing of an open path may be
 // shorter); speeds interpolated; geometry recomputed.
 Path resample(const Path& path, double ds);

@@ -216,7 +216,8 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   // The rear axle's radius: at least the lock's (with a margin), at most what keeps the nose off the outer cones,
   // in the middle of what the cones leave where that fits.
   const double keep = cfg.cone_radius + cfg.clearance;
-  const double r_lock = cfg.wheelbase / std::tan(cfg.max_steer) * (1.0 + cfg.lock_margin);
+  const double r_kinematic = cfg.wheelbase / std::tan(cfg.max_steer);  // the rear axle's at the lock
+  const double r_lock = r_kinematic * (1.0 + cfg.lock_margin);
   const double r_in = turn.inner_radius + keep + cfg.body_half_width;
   const double out = turn.outer_nearest - keep;
   const double r_out =
@@ -225,7 +226,7 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   // line keeps off the lock by lock_authority if the nose leaves room, else by half of what it leaves: on an arc at
   // the lock the follower has no steering left, and an entry a few centimetres off becomes an eccentric circle
   // that carries the nose out by twice as much.
-  const double r_authority = cfg.wheelbase / std::tan(cfg.max_steer) * (1.0 + cfg.lock_authority);
+  const double r_authority = r_kinematic * (1.0 + cfg.lock_authority);
   const double wanted = std::max(0.5 * (r_in + r_out), std::min(r_authority, 0.5 * (r_lock + r_out)));
   turn.radius = std::max(r_lock, std::min(wanted, r_out));
 
@@ -379,6 +380,13 @@ std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::option
 }
 
 }  // namespace
+
+TightTurn transformed(TightTurn turn, const Pose2& by) {
+  turn.centre = by.transform(turn.centre);
+  turn.exit = by.transform(turn.exit);
+  turn.exit_direction = by.rotation() * turn.exit_direction;
+  return turn;
+}
 
 std::vector<TightTurn> shape_tight_turns(Path& path, const std::vector<Vec2>& cones, const TightTurnConfig& cfg,
                                          const TightTurn* held) {

@@ -50,6 +50,9 @@ struct TightTurn {
   double s_begin = 0, s_end = 0;              // m: the rebuilt stretch of the path, from leaving it to rejoining
 };
 
+// The turn in another frame: `by` (frame ← the turn's frame) applied to its centre and exit.
+TightTurn transformed(TightTurn turn, const Pose2& by);
+
 // Finds the tight turns along the open `path` (any frame; `cones` in the same frame) that the cones confirm, and
 // rebuilds the path through each (turns back to back, an S of two hairpins, get one line). Returns the turns
 // shaped, in path order. The path keeps its first point; its geometry (s, yaw, kappa) is recomputed, speeds are
