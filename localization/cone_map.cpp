@@ -105,10 +105,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     if (e.visits.empty() || t - e.visits.back().last > kVisitGap) {
       if (e.visits.empty()) e.first_from = t;
       e.visits.push_back({Eigen::Matrix2d::Zero(), Vec2::Zero(), t, t, 0.0, 0});
-      if (e.visits.size() > kMaxVisits) {
-        add_visit(e, e.visits[1]);  // into visits[0]: see add_visit
-        e.visits.erase(e.visits.begin() + 1);
-      }
+      cap_visits(e);
     }
     Visit& v = e.visits.back();
     v.info += seen[i].info;
@@ -135,6 +132,13 @@ void ConeMap::add_visit(Entry& e, const Visit& v) {
   into.last = std::max(into.last, v.last);
   into.t_sum += v.t_sum;
   into.n += v.n;
+}
+
+void ConeMap::cap_visits(Entry& e) {
+  while (e.visits.size() > kMaxVisits) {
+    add_visit(e, e.visits[1]);  // into visits[0]: see add_visit
+    e.visits.erase(e.visits.begin() + 1);
+  }
 }
 
 void ConeMap::refresh(Entry& e) {
@@ -178,10 +182,7 @@ int ConeMap::correct(const std::function<Pose2(Stamp)>& correction) {
     Entry &keep = entries_[a], &from = entries_[b];  // a: the older id (entries are in order of creation)
     for (const auto& v : from.visits) keep.visits.push_back(v);
     std::sort(keep.visits.begin(), keep.visits.end(), [](const Visit& x, const Visit& y) { return x.first < y.first; });
-    while (keep.visits.size() > kMaxVisits) {
-      add_visit(keep, keep.visits[1]);
-      keep.visits.erase(keep.visits.begin() + 1);
-    }
+    cap_visits(keep);
     keep.observations += from.observations;
     keep.verified += from.verified;
     keep.rejected += from.rejected;

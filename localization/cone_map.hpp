@@ -69,6 +69,7 @@ class ConeMap {
     Stamp first_from = 0, first_to = 0;  // its first visit's span
   };
   static void add_visit(Entry& e, const Visit& v);
+  static void cap_visits(Entry& e);  // at most kMaxVisits: the oldest two merge
   static void refresh(Entry& e);
   ConeMapConfig cfg_;
   std::vector<Entry> entries_;
