@@ -132,6 +132,11 @@ Supervision AsSupervisor::evaluate(Stamp now, double speed, bool finished) {
     if (now - since > config_.plan_timeout)
       stop(now, "planning", "no usable plan for " + seconds(config_.plan_timeout));
   }
+  // A car standing in Driving before its finish has no way on (a lane closed by cones it will not drive into, a
+  // path it cannot follow): end the mission with that reason rather than stand there until someone presses RES.
+  if (required_[idx(InputStream::Plan)] && !finished && standing_since_ &&
+      now - std::max(*standing_since_, *driving_since_) > config_.stuck_timeout)
+    stop(now, "mission", "standing for " + seconds(config_.stuck_timeout) + " before the finish");
 
   if (stop_reason_) {
     out.controlled_stop = true;

@@ -39,6 +39,7 @@ struct SupervisorConfig {
   double standstill_speed = 0.1;           // m/s
   double standstill_time = 0.5;            // s below standstill_speed counts as standing
   double stop_timeout = 10.0;              // s: a controlled stop not at standstill by then asks for Emergency
+  double stuck_timeout = 15.0;             // s standing in Driving before the finish: controlled stop
   bool emergency_after_fault_stop = true;  // at standstill after a fault stop, ask for Emergency (EBS)
   int max_faults = 256;                    // the fault log keeps the first ones
 };

@@ -203,6 +203,8 @@ const ConfigSection<SupervisorConfig>& supervisor_section() {
           .number("standstill_time", &C::standstill_time, 0, 10, "s", "Standing this long counts as standstill.")
           .number("stop_timeout", &C::stop_timeout, 1, 60, "s",
                   "A controlled stop longer than this asks for Emergency.")
+          .number("stuck_timeout", &C::stuck_timeout, 2, 600, "s",
+                  "Standing this long in Driving before the finish (no way on): controlled stop.")
           .boolean("emergency_after_fault_stop", &C::emergency_after_fault_stop,
                    "Ask for Emergency at standstill after a fault stop.")
           .integer("max_faults", &C::max_faults, 1, 100000, "", "Faults kept in the log.");

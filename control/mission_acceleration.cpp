@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/straight_lane.hpp"
+
 namespace fsd {
 
 AccelerationMission::AccelerationMission(const AutopilotConfig& config, bool ebs_test, ColourConvention convention)

@@ -1,5 +1,5 @@
 #pragma once
-// Acceleration and the EBS test: a straight lane fitted to its cones (control/missions.hpp straight_from_cones),
+// Acceleration and the EBS test: a straight lane fitted to its cones (control/straight_lane.hpp),
 // refitted as more of it is seen until the car is well down it. Acceleration times the run from the start line
 // to acceleration_length past it, then stops hard; the EBS test asks for Emergency ebs_trigger_distance past the
 // start line instead. On the lane the speed never exceeds what stops the car short of a cone across it (the

@@ -1,6 +1,5 @@
 #include "control/missions.hpp"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
@@ -24,61 +23,6 @@ SpeedLimits SpeedConfig::known() const {
   l.mu = mu * mu_margin_known;
   l.v_max = v_max;
   return l;
-}
-
-std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Pose2& start, double length, double ds) {
-  // The lane from the start heading first, then from its own fit: the start pose may be a few degrees off the
-  // lane, which a long lane turns into metres.
-  Vec2 origin = start.position(), dir(std::cos(start.yaw), std::sin(start.yaw));
-  double reach = 8.0;
-  Vec2 centre = origin;
-  bool fitted = false;
-  for (int round = 0; round < 3; ++round) {
-    const Vec2 left_axis(-dir.y(), dir.x());
-    std::vector<Vec2> pts;
-    for (const auto& c : cones) {
-      if (!c.position.allFinite()) continue;
-      const Vec2 m = c.position.head<2>();
-      if ((m - origin).dot(dir) < -5.0 || std::abs((m - origin).dot(left_axis)) > reach) continue;
-      pts.push_back(m);
-    }
-    if (pts.size() < 8) break;
-    // Direction: principal axis of the cone cloud (a long narrow lane).
-    Vec2 mean = Vec2::Zero();
-    for (const auto& p : pts) mean += p;
-    mean /= static_cast<double>(pts.size());
-    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-    for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-    Vec2 d = eig.eigenvectors().col(1);
-    if (d.dot(dir) < 0) d = -d;
-    const Vec2 left(-d.y(), d.x());
-    // Lateral centre: midway between the mean offsets of the cones on either side of the axis.
-    double sum_l = 0, sum_r = 0;
-    int nl = 0, nr = 0;
-    for (const auto& p : pts) {
-      const double lat = (p - mean).dot(left);
-      if (lat > 0) {
-        sum_l += lat;
-        ++nl;
-      } else {
-        sum_r += lat;
-        ++nr;
-      }
-    }
-    if (nl < 4 || nr < 4) break;
-    centre = mean + 0.5 * (sum_l / nl + sum_r / nr) * left;
-    dir = d;
-    origin = centre;
-    reach = 5.0;
-    fitted = true;
-  }
-  if (!fitted) return std::nullopt;
-  const double s0 = (start.position() - centre).dot(dir);
-  Path p;
-  for (double s = 0; s <= length + 1e-9; s += ds) p.points.push_back({centre + (s0 + s) * dir, 0, 0, 0, 0});
-  compute_geometry(p);
-  return p;
 }
 
 double stop_speed(double v_finish, double travelled, double decel, double max_distance) {

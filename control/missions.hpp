@@ -1,6 +1,6 @@
 #pragma once
 // Mission-level settings and the pieces of the missions that are plain geometry: the car's limits for the
-// speed profiles, the acceleration straight fitted to its cones, and the braking to a stop after the finish.
+// speed profiles and the braking to a stop after the finish.
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,11 +63,6 @@ inline int timed_laps(Mission mission, int trackdrive_laps) {
       return 1;
   }
 }
-
-// The acceleration lane's centre line (the rules make it straight): direction from the principal axis of the
-// cones near the start heading, lateral position midway between the cones on either side; a path from the
-// start pose's foot for `length` m. nullopt when fewer than 4 cones on each side are known.
-std::optional<Path> straight_from_cones(const std::vector<Cone>& cones, const Pose2& start, double length, double ds);
 
 // Target speed while stopping after the finish: v² = 2·a·(d_stop − travelled), with a the larger of the
 // configured deceleration and what stopping within 80 % of `max_distance` from `v_finish` needs.

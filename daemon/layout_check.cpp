@@ -5,6 +5,7 @@
 #include "control/missions.hpp"
 #include "control/path.hpp"
 #include "control/skidpad.hpp"
+#include "control/straight_lane.hpp"
 
 namespace fsd {
 

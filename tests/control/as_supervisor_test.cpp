@@ -180,6 +180,58 @@ TEST(AsSupervisor, FinishedOnlyAtStandstillAfterTheFinish) {
   EXPECT_TRUE(sup.faults().empty());
 }
 
+// A car that stands in Driving before its finish (its way closed) is stopped after stuck_timeout, with the reason,
+// and asks for Emergency; standing after the finish is the Finished request instead, and a mission that needs no
+// path (inspection, on its jacks) is not watched.
+TEST(AsSupervisor, StandingBeforeTheFinishForTooLongStops) {
+  SupervisorConfig config;
+  config.stuck_timeout = 5.0;
+  AsSupervisor sup(config);
+  sup.set_mission(Mission::Acceleration);
+  double t = 0;
+  Supervision d;
+  for (; t < 3.0; t += 0.1) {
+    feed_all(sup, t, AsState::Driving);
+    d = sup.evaluate(t, 8.0, false);  // driving
+  }
+  const double stood_at = t;
+  for (; t < stood_at + 5.0 - 0.05; t += 0.1) {
+    feed_all(sup, t, AsState::Driving);
+    d = sup.evaluate(t, 0.0, false);
+    ASSERT_TRUE(d.may_move) << t;
+  }
+  for (; t < stood_at + 5.3; t += 0.1) {
+    feed_all(sup, t, AsState::Driving);
+    d = sup.evaluate(t, 0.0, false);
+  }
+  EXPECT_TRUE(d.controlled_stop);
+  EXPECT_EQ(d.request, AsRequest::Emergency);
+  ASSERT_EQ(sup.faults().size(), 1u);
+  EXPECT_EQ(sup.faults()[0].source, "mission");
+  EXPECT_EQ(sup.faults()[0].what, "standing for 5.00 s before the finish");
+
+  // After the finish the same standstill is the end of the mission.
+  AsSupervisor done(config);
+  done.set_mission(Mission::Acceleration);
+  for (t = 0; t < 20.0; t += 0.1) {
+    feed_all(done, t, AsState::Driving);
+    d = done.evaluate(t, 0.0, true);
+  }
+  EXPECT_EQ(d.request, AsRequest::Finished);
+  EXPECT_TRUE(done.faults().empty());
+
+  // Inspection needs no path: the car stands on its jacks as long as the sweep lasts.
+  AsSupervisor jacks(config);
+  jacks.set_mission(Mission::Inspection);
+  jacks.require(InputStream::Plan, false);
+  for (t = 0; t < 20.0; t += 0.1) {
+    feed_all(jacks, t, AsState::Driving);
+    d = jacks.evaluate(t, 0.0, false);
+  }
+  EXPECT_TRUE(d.may_move);
+  EXPECT_TRUE(jacks.faults().empty());
+}
+
 TEST(AsSupervisor, MissionFaultsAreLoggedOncePerOnset) {
   AsSupervisor sup;
   sup.report(1.0, "gnss", "fix lost", "fallback to real-time planning");
