@@ -20,8 +20,11 @@ struct Segment {
   std::optional<TightTurn> held;    // the turn when known already (a held turn)
 };
 
-// The stretch from the car that lies within a held turn's outer ring (with a metre to spare), turning its way.
-std::optional<Segment> held_segment(const Path& path, const TightTurn& held) {
+// The stretch from the car that lies within a held turn's outer ring (with a metre to spare), turning its way,
+// up to where the path curves the other way (an S: the next hairpin's entry lies within this one's ring, and a
+// rejoin beyond it would cut straight through the next hairpin's inner cones). Beside the car the midline may bend
+// either way past the middle of a hairpin, so only bends `lead` or more ahead end the stretch.
+std::optional<Segment> held_segment(const Path& path, const TightTurn& held, const TightTurnConfig& cfg) {
   const auto& pts = path.points;
   const double reach = held.outer_radius + 1.0;
   if ((pts.front().p - held.centre).norm() > reach) return std::nullopt;
@@ -30,6 +33,8 @@ std::optional<Segment> held_segment(const Path& path, const TightTurn& held) {
   Segment seg;
   seg.held = held;
   while (seg.last + 1 < pts.size() && (pts[seg.last + 1].p - held.centre).norm() <= reach) {
+    const auto& next = pts[seg.last + 1];
+    if (next.s - pts.front().s >= cfg.lead && next.kappa * held.direction < -cfg.kappa_on) break;
     seg.turn += 0.5 * (pts[seg.last + 1].kappa + pts[seg.last].kappa) * (pts[seg.last + 1].s - pts[seg.last].s);
     ++seg.last;
   }
@@ -403,7 +408,7 @@ std::vector<TightTurn> shape_tight_turns(Path& path, const std::vector<Vec2>& co
   };
   std::size_t from = 0;
   if (held && held->direction != 0)
-    if (auto turn = shape_segment_within_lock(path, held_segment(path, *held), cones, cfg)) {
+    if (auto turn = shape_segment_within_lock(path, held_segment(path, *held, cfg), cones, cfg)) {
       turns.push_back(*turn);
       from = after(*turn);
     }
