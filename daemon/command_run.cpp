@@ -66,12 +66,18 @@ int finish(int rc, const std::string& path, const nlohmann::json& report) {
 }
 
 // A report or map that could not be written would be found missing only after the run: checked before anything
-// starts.
+// starts. A file that did not exist is not left behind by the check (a refused run writes nothing).
 void require_writable(const char* flag, const std::string& path) {
   if (path.empty()) return;
-  std::ofstream f(path, std::ios::app);
-  if (!f)
-    throw std::invalid_argument(std::string(flag) + " " + path + ": cannot be written (" + std::strerror(errno) + ")");
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(path, ec);
+  {
+    std::ofstream f(path, std::ios::app);
+    if (!f)
+      throw std::invalid_argument(std::string(flag) + " " + path + ": cannot be written (" + std::strerror(errno) +
+                                  ")");
+  }
+  if (!existed) std::filesystem::remove(path, ec);
 }
 
 // --map-out: the Stack's cone map at the end of the run, as a track file.
@@ -86,13 +92,13 @@ void export_map(const std::string& path, const Stack& stack) {
 }
 
 int run_command(const RunOptions& o) {
-  require_writable("--report", o.report);
-  require_writable("--map-out", o.map_out);
   if (!o.replay.empty() && (o.sim || !o.record.empty() || o.track || o.mission || o.laps || o.seed))
     throw std::invalid_argument(
         "--replay takes the run from the recording: --sim, --record, --track, --mission, "
         "--laps and --seed do not apply (a --config file overrides recorded keys)");
   if (!(o.rate > 0.0 && o.rate <= 1000.0)) throw std::invalid_argument("--rate must be in (0, 1000]");
+  require_writable("--report", o.report);
+  require_writable("--map-out", o.map_out);
   // A replay's configuration is the recording's (daemon/replay_run.hpp).
   std::unique_ptr<ReplayRun> replay;
   if (!o.replay.empty()) {

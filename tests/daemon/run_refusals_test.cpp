@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -59,6 +60,19 @@ TEST(RunRefusals, AnUnwritableReportIsFoundBeforeTheRun) {
   EXPECT_EQ(test::run_fsd("run --sim --headless --until-finished --report /nonexistent-dir/r.json", &out), 2) << out;
   EXPECT_NE(out.find("--report /nonexistent-dir/r.json: cannot be written"), std::string::npos) << out;
   EXPECT_EQ(out.find("driving"), std::string::npos) << out;  // refused before the run started
+}
+
+// A run refused for its usage writes nothing: the report path it was given does not appear (the writability check
+// once left an empty file behind, which a script then took for a report).
+TEST(RunRefusals, ARefusedRunLeavesNoReportFileBehind) {
+  const auto report = test::scratch_path("refused_report.json");
+  std::remove(report.c_str());
+  std::string out;
+  EXPECT_EQ(test::run_fsd("run --replay /nonexistent.mcap --sim --headless --report " + report, &out), 2) << out;
+  EXPECT_NE(out.find("--replay takes the run from the recording"), std::string::npos) << out;
+  EXPECT_FALSE(std::ifstream(report).good()) << report;
+  EXPECT_EQ(test::run_fsd("run --sim --headless --rate 0 --report " + report, &out), 2) << out;
+  EXPECT_FALSE(std::ifstream(report).good()) << report;
 }
 
 TEST(RunRefusals, TheVerdictNamesWhyARunFailed) {
