@@ -141,7 +141,8 @@ struct HardwareRun::Impl {
     StackOptions so;
     so.mission = mission;
     so.laps = run.laps;
-    so.lap_build_worker = true;  // the lap-2 build must not hold up the 100 Hz control thread
+    so.lap_build_worker = true;     // the lap-2 build must not hold up the 100 Hz control thread
+    so.loop_closure_worker = true;  // nor the loop closure's solve
     so.start = clock.now();
     // The camera stage sees through the calibrated camera; its frames are stamped at capture already.
     if (!cam_cfg.calibration.empty())

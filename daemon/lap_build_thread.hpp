@@ -2,33 +2,26 @@
 // Lap 2's path built on a thread of its own (Autopilot::set_lap_builder), so that the control thread keeps its
 // period: the build takes 10–30 ms, once per run (bench/control_bench BM_LapBuild). The thread is started with the
 // object and joined by its destructor, which waits for a build under way (at most a few tens of ms).
-#include <condition_variable>
-#include <mutex>
-#include <optional>
-#include <thread>
-
 #include "control/lap_build_service.hpp"
+#include "daemon/job_thread.hpp"
 
 namespace fsd {
 
 class LapBuildThread final : public LapBuildService {
  public:
-  LapBuildThread();
-  ~LapBuildThread() override;
-  LapBuildThread(const LapBuildThread&) = delete;
-  LapBuildThread& operator=(const LapBuildThread&) = delete;
+  // A build that throws comes back without a path, the reason its message (failed): the autopilot reports it.
+  LapBuildThread() : worker_(failed) {}
 
-  bool submit(LapBuildJob job) override;  // false while a job is still out
-  std::optional<TrajectoryResult> poll() override;
+  bool submit(LapBuildJob job) override { return worker_.submit(std::move(job)); }  // false while a job is out
+  std::optional<TrajectoryResult> poll() override { return worker_.poll(); }
 
  private:
-  void run();
-  std::mutex m_;
-  std::condition_variable cv_;
-  std::optional<LapBuildJob> job_;
-  std::optional<TrajectoryResult> result_;
-  bool busy_ = false, stop_ = false;
-  std::thread thread_;
+  static TrajectoryResult failed(const std::exception& e) {
+    TrajectoryResult r;
+    r.reason = e.what();
+    return r;
+  }
+  JobThread<TrajectoryResult> worker_;
 };
 
 }  // namespace fsd

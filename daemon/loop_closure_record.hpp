@@ -15,7 +15,9 @@ struct LoopClosureRecord {
   double rms = 0;        // m over those pairs
   int keyframes = 0;     // of the solved lap
   int cones_merged = 0;  // mapped twice, one cone again after the correction
-  double solve_s = 0;    // wall time of the closing (alignment and graph), s
+  double solve_s = 0;    // wall time of the lap's pose-graph solve, wherever it ran (a worker in real time), s
+  double control_s = 0;  // the control thread's wall time of the closing (the alignment, the solve when it ran
+                         // there, the correction applied), s
 };
 
 }  // namespace fsd

@@ -16,6 +16,7 @@ struct RunOptions {
   std::string replay, record;  // --replay FILE (daemon/replay_run.hpp), --record FILE (daemon/recorder.hpp)
   double rate = 1.0;           // --rate: a replay with the dashboard at this multiple of real time
   bool headless = false;
+  bool workers = false;  // --workers: headless too, the slow jobs on the Stack's threads as on the car (not repeatable)
   bool until_finished = false;
   std::string report;   // scorecard JSON path, empty: none
   std::string map_out;  // --map-out: the cone map at the end as a track CSV (daemon/map_export.hpp), empty: none

@@ -88,9 +88,10 @@ struct SimRun::Impl {
     so.mission = mission;
     so.laps = run.laps;
     so.simulator = true;
-    // In real time the lap-2 build runs beside the control loop as on the car; in lockstep inside the step that
-    // asks for it, so that a run is the same every time.
-    so.lap_build_worker = !headless;
+    // In real time the lap-2 build and the loop closure's solve run beside the control loop as on the car; in
+    // lockstep inside the step that asks for them, so that a run is the same every time (unless --workers).
+    so.lap_build_worker = !headless || opt.workers;
+    so.loop_closure_worker = so.lap_build_worker;
     // The camera stage sees through the virtual camera, calibrated perfectly; its frames arrive after the latency.
     so.camera = StackOptions::Camera{sim::calibration_of(car_settings.camera), car_settings.camera.latency};
     if (run.perception_source != "truth" && !car_settings.run.lidar)

@@ -4,8 +4,8 @@
 // NMEA, camera JPEGs, VCU status), the simulator's truth follows as truth frames (state, standing cones, the ideal
 // detector's scan tick), the VCU Command due is sent to the car, and the Stack steps. The scorecard measures the
 // run against the truth. Headless runs advance simulated time as fast as the CPU allows (deterministic, the lap-2
-// build inside the step); otherwise the loop is paced in real time, the lap is built on the Stack's worker and the
-// dashboard is served.
+// build and the loop closure's solve inside the step; --workers puts them on the Stack's threads); otherwise the
+// loop is paced in real time, those jobs run on the Stack's workers and the dashboard is served.
 #include <atomic>
 #include <functional>
 #include <memory>

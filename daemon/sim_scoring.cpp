@@ -108,6 +108,7 @@ void SimScoring::finish(double wall_time_s) {
            {"keyframes", r.keyframes},
            {"cones_merged", r.cones_merged},
            {"solve_ms", m(r.solve_s * 1e3)},
+           {"control_ms", m(r.control_s * 1e3)},
            {"error_before_m", m(before)},
            {"error_after_m", m(after)}});
   }

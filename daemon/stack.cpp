@@ -22,6 +22,7 @@
 #include "daemon/gnss_state.hpp"
 #include "daemon/lap_build_thread.hpp"
 #include "daemon/lidar_localization.hpp"
+#include "daemon/loop_solve_thread.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/step_log.hpp"
 #include "daemon/truth_frames.hpp"
@@ -103,6 +104,8 @@ struct Stack::Impl {
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
   std::unique_ptr<loop_closure::LoopCloser> loop_closer;  // lidar_odometry: each lap's loop on the start's cones
+  std::unique_ptr<LoopSolveThread> loop_worker;           // real time: the loop's solve off the control thread
+  double loop_step_s = 0;  // the control thread's time of the closing frame whose solve is out
   std::vector<LoopClosureRecord> loop_closures;
   std::function<void(const LoopClosureRecord&)> loop_closure_hook;
   std::shared_ptr<const ConeDetections> last_detections;
@@ -167,6 +170,7 @@ struct Stack::Impl {
     if (localization_source == "lidar_odometry") {
       const auto lc = loop_closure::read_loop_closure_config(cfg);
       if (lc.enabled) loop_closer = std::make_unique<loop_closure::LoopCloser>(lc);
+      if (loop_closer && opt.loop_closure_worker) loop_worker = std::make_unique<LoopSolveThread>();
     }
     perception_source = run.perception_source;
     if (!opt.simulator && perception_source == "truth") {
@@ -331,13 +335,44 @@ struct Stack::Impl {
     ++perception_frames;
   }
 
-  // The frame to the loop closer; when it closes the lap's loop, the correction to everything placed by the poses
-  // estimated so far: the odometry's output from now on, the pose history, the cone map, the autopilot's state,
-  // plan and recorded lap-1 poses.
+  // The frame to the loop closer; when it closes the lap's loop, the lap's graph solved: on the worker (its result
+  // taken by a later step, collect_loop_closure) or here.
   void close_loop(Stamp now, const ConeDetections& det, const Pose2& pose) {
     const double w0 = wall();
-    const auto closed = loop_closer->add(det.stamp, pose, det.cones);
-    if (!closed) return;
+    auto solve = loop_closer->feed(det.stamp, pose, det.cones);
+    if (!solve) return;
+    LoopSolveJob job = [s = std::move(*solve), wall = wall] {
+      const double w = wall();
+      SolvedLoop out{loop_closure::solve_loop(s)};
+      out.solve_s = wall() - w;
+      return out;
+    };
+    if (loop_worker && loop_worker->submit(job)) {
+      loop_step_s = wall() - w0;
+      return;
+    }
+    const SolvedLoop solved = job();
+    finish_loop(now, solved, wall() - w0, false);
+  }
+
+  // The worker's solve, when it is done: applied before this cycle's localization, so that the cycle runs on the
+  // corrected pose and map. Its time is the loop closer's (latency_ms.loop_closure), not this step's.
+  void collect_loop_closure(Stamp now) {
+    if (!loop_worker) return;
+    const auto solved = loop_worker->poll();
+    if (!solved) return;
+    latency["loop_closure"].add(solved->solve_s);
+    if (finish_loop(now, *solved, loop_step_s, true)) autopilot->on_cones(now, cone_map.cones());
+  }
+
+  // A solve's result to the closer. When it closes the loop, the correction goes to everything placed by the poses
+  // estimated so far: the odometry's output from now on, the pose history, the cone map, the autopilot's state,
+  // plan and recorded lap-1 poses. Poses estimated after the closing frame (while the solve was out) move with the
+  // newest keyframe's correction (correction_at). `step_s`: the control thread's time of the closing frame.
+  bool finish_loop(Stamp now, const SolvedLoop& solved, double step_s, bool on_worker) {
+    const double w0 = wall();
+    const auto closed = loop_closer->finish(solved.result);
+    if (!closed) return false;
     const auto at = [&closed](Stamp t) { return closed->correction_at(t); };
     odometry->correct(closed->correction);
     poses.correct(at);
@@ -356,14 +391,16 @@ struct Stack::Impl {
     r.rms = closed->rms;
     r.keyframes = int(closed->keyframes.size());
     r.cones_merged = merged;
-    r.solve_s = wall() - w0;
+    r.solve_s = solved.solve_s;
+    r.control_s = step_s + (wall() - w0);
     log->info(
         "loop {} closed at {:.2f} s on {} start cones (rms {:.2f} m): moved x {:.2f} y {:.2f} m yaw {:.2f} deg, "
-        "{} keyframes, {} cones merged, {:.0f} ms",
+        "{} keyframes, {} cones merged, solved in {:.0f} ms ({}), control thread {:.1f} ms",
         r.lap, r.t, r.pairs, r.rms, r.correction.x, r.correction.y, r.correction.yaw * 180 / std::numbers::pi,
-        r.keyframes, merged, r.solve_s * 1e3);
+        r.keyframes, merged, r.solve_s * 1e3, on_worker ? "worker" : "in the step", r.control_s * 1e3);
     loop_closures.push_back(r);
     if (loop_closure_hook) loop_closure_hook(r);
+    return true;
   }
 
   // The lidar and lidar_camera sources: the newest scan through the stages, placed by the localization's poses.
@@ -466,6 +503,7 @@ struct Stack::Impl {
     if (const auto st = vcu->status()) autopilot->on_vcu(*st);
     if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
     const double w_perception = wall();
+    collect_loop_closure(now);
     localize(now);  // first: the sensor sources place this cycle's scan by the newest pose
     if (state && !first_pose) first_pose = state->pose;
     cycle.perceived = perceive(now);

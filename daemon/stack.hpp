@@ -5,7 +5,7 @@
 // run.localization_source; the autopilot (planning, missions, following, supervision); the dashboard's view.
 // Three feeders drive it: the car's driver threads (daemon/hardware_run), the virtual car's lockstep or real-time
 // loop (daemon/sim_run) and the replayer of a recording. They own the transports, threads and clocks; the Stack
-// owns none of them but the lap-2 build worker.
+// owns none of them but the workers of the lap-2 build and the loop closure's solve.
 //
 // One thread (the feeder's control thread) calls everything, in this order each control cycle:
 //   feed(frame) ...       every raw frame that arrived since the last cycle, in arrival order
@@ -23,7 +23,8 @@
 //                 lidar_odometry: the LiDAR odometry alone from the start pose (localization.start.*).
 //   Detections of every perception source are placed in the map by the localization's pose of their instant.
 //   With lidar_odometry each lap's loop is closed on the start's cones (localization.loop_closure.*): from then on
-//   the pose is corrected, the cone map and the recorded lap-1 poses are moved with the lap's solved pose graph.
+//   the pose is corrected, the cone map and the recorded lap-1 poses are moved with the lap's solved pose graph
+//   (solved on the loop-closure worker in real time: applied at a later step to all estimated since).
 #include <functional>
 #include <map>
 #include <memory>
@@ -54,10 +55,11 @@ class ParamRegistry;
 
 struct StackOptions {
   Mission mission = Mission::Trackdrive;
-  int laps = 2;                   // trackdrive laps (run.laps, or --laps)
-  bool lap_build_worker = false;  // lap 2 built on a thread of the Stack's (real time); else inside the step
-  bool simulator = false;         // the feeder sends the simulator's truth frames (the truth sources need them)
-  Stamp start = 0;                // the run clock when the VCU session starts waiting for its first status
+  int laps = 2;                      // trackdrive laps (run.laps, or --laps)
+  bool lap_build_worker = false;     // lap 2 built on a thread of the Stack's (real time); else inside the step
+  bool loop_closure_worker = false;  // the loop's solve so (that thread reads wall_clock: the solve's time)
+  bool simulator = false;            // the feeder sends the simulator's truth frames (the truth sources need them)
+  Stamp start = 0;                   // the run clock when the VCU session starts waiting for its first status
   // The control settings when the caller has them typed already (the tests' harness); else the configuration's.
   std::optional<AutopilotConfig> control;
   // The camera the camera stage sees through (perception_source = lidar_camera): its calibration and the time from

@@ -18,22 +18,7 @@ ConeColour voted(const std::array<int, 6>& votes) {
   return *top > 0 ? static_cast<ConeColour>(top - votes.begin()) : ConeColour::Unknown;
 }
 
-Pose2 lerp(const Pose2& a, const Pose2& b, double u) {
-  return {a.x + u * (b.x - a.x), a.y + u * (b.y - a.y), wrap_angle(a.yaw + u * wrap_angle(b.yaw - a.yaw))};
-}
-
 }  // namespace
-
-Pose2 LoopClosure::correction_at(Stamp when) const {
-  if (keyframes.empty() || when < keyframes.front().t) return {};
-  auto fix = [](const ClosedKeyframe& k) { return k.optimised * k.estimate.inverse(); };
-  if (when >= keyframes.back().t) return fix(keyframes.back());
-  const auto hi = std::upper_bound(keyframes.begin(), keyframes.end(), when,
-                                   [](Stamp v, const ClosedKeyframe& k) { return v < k.t; });
-  const auto lo = hi - 1;
-  const double span = hi->t - lo->t;
-  return lerp(fix(*lo), fix(*hi), span > 0 ? (when - lo->t) / span : 0.0);
-}
 
 Cone LoopCloser::Landmark::cone(int id) const {
   Cone c;
@@ -45,7 +30,41 @@ Cone LoopCloser::Landmark::cone(int id) const {
 }
 
 std::optional<LoopClosure> LoopCloser::add(Stamp t, const Pose2& estimate, const std::vector<Cone>& seen) {
+  const auto solve = feed(t, estimate, seen);
+  if (!solve) return std::nullopt;
+  return finish(solve_loop(*solve));
+}
+
+std::optional<LoopSolve> LoopCloser::feed(Stamp t, const Pose2& estimate, const std::vector<Cone>& seen) {
   if (!cfg_.enabled) return std::nullopt;
+  if (solving_) {
+    held_.push_back({t, estimate, seen});
+    return std::nullopt;
+  }
+  return take(t, estimate, seen, true);
+}
+
+std::optional<LoopClosure> LoopCloser::finish(const LoopSolveResult& r) {
+  if (!solving_) return std::nullopt;
+  solving_ = false;
+  std::vector<Frame> held = std::move(held_);
+  held_.clear();
+  std::optional<LoopClosure> out;
+  if (r.solved) {
+    out = r.closure;
+    out->lap = ++laps_closed_;
+    if (start_scene_.empty()) start_scene_ = r.start_scene;
+    const Pose2& end = out->keyframes.back().optimised;
+    last_pose_ = end;
+    start_lap(out->t, end);
+  }
+  // Not closing again here: the next lap is too short for it, and after a failure the next live keyframe tries.
+  for (const Frame& f : held) take(f.t, out ? out->correction * f.estimate : f.estimate, f.seen, false);
+  return out;
+}
+
+std::optional<LoopSolve> LoopCloser::take(Stamp t, const Pose2& estimate, const std::vector<Cone>& seen,
+                                          bool may_close) {
   if (!start_pose_) {
     start_pose_ = last_pose_ = estimate;
     start_lap(t, estimate);
@@ -60,7 +79,7 @@ std::optional<LoopClosure> LoopCloser::add(Stamp t, const Pose2& estimate, const
   estimates_.push_back(estimate);
   stamps_.push_back(t);
   observe(k, estimate, seen);
-  return try_close();
+  return may_close ? try_close() : std::nullopt;
 }
 
 void LoopCloser::start_lap(Stamp t, const Pose2& pose) {
@@ -130,7 +149,7 @@ void LoopCloser::observe(int k, const Pose2& pose, const std::vector<Cone>& seen
   }
 }
 
-std::optional<LoopClosure> LoopCloser::try_close() {
+std::optional<LoopSolve> LoopCloser::try_close() {
   if (lap_distance() < cfg_.min_lap_distance) return std::nullopt;
   if ((estimates_.back().position() - start_pose_->position()).norm() > cfg_.near_start) return std::nullopt;
   std::vector<Cone> current, reference;
@@ -145,30 +164,17 @@ std::optional<LoopClosure> LoopCloser::try_close() {
   }
   const auto a = align_cones(current, reference, cfg_.alignment);
   if (!a) return std::nullopt;
-  LapGraph closed = graph_;  // a failed solve leaves the lap's graph as it was, to try again
+  // The lap's graph stays as it is: after a failed solve the next keyframe tries again.
+  LoopSolve s{.graph = graph_,
+              .stamps = stamps_,
+              .estimates = estimates_,
+              .reference = reference,
+              .pairs = int(a->pairs.size()),
+              .rms = a->rms};
   for (const auto& [i, j] : a->pairs)
-    closed.same_cone(int(current[std::size_t(i)].id), int(reference[std::size_t(j)].id));
-  const LapGraphResult r = closed.optimise();
-  if (!r.solved || r.poses.size() != estimates_.size()) return std::nullopt;
-
-  LoopClosure out;
-  out.t = stamps_.back();
-  out.lap = ++laps_closed_;
-  out.correction = r.poses.back() * estimates_.back().inverse();
-  out.pairs = int(a->pairs.size());
-  out.rms = a->rms;
-  for (std::size_t k = 0; k < estimates_.size(); ++k) out.keyframes.push_back({stamps_[k], estimates_[k], r.poses[k]});
-  if (start_scene_.empty()) {
-    for (const Cone& c : reference) {
-      Cone m = c;
-      const Vec2 p = r.landmarks.at(int(c.id));
-      m.position = Vec3(p.x(), p.y(), 0.0);
-      start_scene_.push_back(m);
-    }
-  }
-  last_pose_ = r.poses.back();
-  start_lap(out.t, r.poses.back());
-  return out;
+    s.graph.same_cone(int(current[std::size_t(i)].id), int(reference[std::size_t(j)].id));
+  solving_ = true;
+  return s;
 }
 
 }  // namespace fsd::loop_closure

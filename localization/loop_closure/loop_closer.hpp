@@ -9,10 +9,15 @@
 // ← estimated) and the lap's optimised keyframes, so that the caller can move its pose, map and recorded lap.
 // Then the next lap's graph starts at the corrected pose, with the start's scene (now in the map frame) held.
 //
+// The solve (110–410 ms) may run elsewhere: feed() does the cheap part and hands out the lap's LoopSolve; frames fed
+// while it is out are held, and finish() takes its result, starts the next lap at the corrected pose and replays
+// the held frames moved by the correction, so that the next lap is what it would have been had the solve taken no
+// time. add() is both at once.
+//
 // A sighting joins a landmark of this lap seen within the last `live_distance` metres; a cone seen at the start
 // and again at the lap's end is therefore two landmarks until the loop ties them, whatever the drift.
 //
-// A pure core: no clock, no I/O, no thread (Ceres runs on the caller's thread).
+// A pure core: no clock, no I/O, no thread (Ceres runs on whichever thread runs solve_loop).
 #include <array>
 #include <optional>
 #include <vector>
@@ -20,6 +25,7 @@
 #include "common/types.hpp"
 #include "localization/loop_closure/cone_alignment.hpp"
 #include "localization/loop_closure/lap_graph.hpp"
+#include "localization/loop_closure/loop_solve.hpp"
 
 namespace fsd::loop_closure {
 
@@ -39,31 +45,21 @@ struct LoopCloserConfig {
   LapGraphConfig graph;
 };
 
-// One keyframe of a closed lap: where the estimator had the car, and where the solved graph puts it.
-struct ClosedKeyframe {
-  Stamp t = 0;
-  Pose2 estimate, optimised;
-};
-
-struct LoopClosure {
-  Stamp t = 0;                            // the newest keyframe's instant
-  int lap = 0;                            // 1 for the first loop closed
-  Pose2 correction;                       // map ← estimated, at the newest keyframe
-  int pairs = 0;                          // cones of the start's scene seen again
-  double rms = 0;                         // m over those pairs after the alignment
-  std::vector<ClosedKeyframe> keyframes;  // the lap's, in time order
-
-  // map ← estimated for a pose estimated at `t`: identity before the lap's first keyframe (already in the map
-  // frame), the newest keyframe's after the last, interpolated between keyframes.
-  Pose2 correction_at(Stamp t) const;
-};
-
 class LoopCloser {
  public:
   explicit LoopCloser(const LoopCloserConfig& cfg = {}) : cfg_(cfg) {}
 
-  // One perception frame, in time order: the estimated pose at `t` (map frame, as corrected by earlier closures)
-  // and the cones seen (vehicle frame). Returns the loop's closure when this frame closes it.
+  // One perception frame, in time order: the estimated pose at `t` (map frame, as corrected by the closures taken
+  // so far) and the cones seen (vehicle frame). Returns the lap's loop to solve when this frame closes it; while
+  // that solve is out (solving()) the frames are held for finish().
+  std::optional<LoopSolve> feed(Stamp t, const Pose2& estimate, const std::vector<Cone>& seen);
+  // The result of the solve feed() handed out: the loop's closure, the next lap started at the corrected pose and
+  // the held frames replayed moved by the correction (their poses were estimated before it). Nullopt when the solve
+  // failed: the lap goes on, its held frames replayed as they were, and the next keyframe tries again.
+  std::optional<LoopClosure> finish(const LoopSolveResult& r);
+  bool solving() const { return solving_; }
+
+  // feed() and the solve at once, on the caller's thread. Returns the loop's closure when this frame closes it.
   std::optional<LoopClosure> add(Stamp t, const Pose2& estimate, const std::vector<Cone>& seen);
 
   int laps_closed() const { return laps_closed_; }
@@ -80,9 +76,15 @@ class LoopCloser {
     bool reference = false;  // the start's scene (this lap's part of the graph to close against)
     Cone cone(int id) const;
   };
+  struct Frame {
+    Stamp t;
+    Pose2 estimate;
+    std::vector<Cone> seen;
+  };
+  std::optional<LoopSolve> take(Stamp t, const Pose2& estimate, const std::vector<Cone>& seen, bool may_close);
   void start_lap(Stamp t, const Pose2& pose);
   void observe(int k, const Pose2& pose, const std::vector<Cone>& seen);
-  std::optional<LoopClosure> try_close();
+  std::optional<LoopSolve> try_close();
 
   LoopCloserConfig cfg_;
   LapGraph graph_;
@@ -93,6 +95,8 @@ class LoopCloser {
   std::vector<Cone> start_scene_;  // the start's cones in the map frame (ids: this lap's landmarks of them)
   double odometer_ = 0, lap_start_odometer_ = 0;
   int laps_closed_ = 0;
+  bool solving_ = false;
+  std::vector<Frame> held_;  // fed while solving (a solve's time: a few frames)
 };
 
 }  // namespace fsd::loop_closure
