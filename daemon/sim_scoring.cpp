@@ -59,9 +59,15 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
   });
   // Each loop closure with the pose's error against the truth at its instant, before and after the correction.
   stack.on_loop_closure([this](const LoopClosureRecord& r) {
-    const Vec2 truth = truth_poses_.at(r.t).value_or(last_pose_).position();
+    auto truth = truth_poses_.at(r.t);
+    if (!truth) truth = truth_track_.at(r.t);
+    if (!truth) {  // older than two minutes of simulated time: no figure rather than a wrong one
+      loop_closures_.push_back({r, std::nan(""), std::nan("")});
+      return;
+    }
+    const Vec2 p = truth->position();
     loop_closures_.push_back(
-        {r, (r.estimate.position() - truth).norm(), ((r.correction * r.estimate).position() - truth).norm()});
+        {r, (r.estimate.position() - p).norm(), ((r.correction * r.estimate).position() - p).norm()});
   });
   stack.on_odometry([this](const lidar_odometry::OdometryOutput& out) {
     odometry_.add_lidar(truth_poses_.at(out.stamp).value_or(last_pose_), to_pose2(out.pose));
@@ -70,6 +76,10 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
 
 void SimScoring::on_truth(const sim::VehicleTruth& truth) {
   truth_poses_.add(truth.t, truth.pose);
+  if (truth_track_last_ < 0 || truth.t - truth_track_last_ >= 0.05) {
+    truth_track_.add(truth.t, truth.pose);
+    truth_track_last_ = truth.t;
+  }
   last_pose_ = truth.pose;
   card_->on_truth(truth);
 }

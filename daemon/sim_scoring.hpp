@@ -53,11 +53,15 @@ class SimScoring {
   PerceptionScore perception_;
   OdometryScore odometry_;
   PoseHistory truth_poses_{256};  // the car's true poses of the last 2.5 s, for the perception score
+  // A loop closure is scored when its solve comes back, which on a worker (--workers) is seconds of simulated time
+  // later when the simulation runs fast: its truth from a coarser history of the last two minutes (20 Hz).
+  PoseHistory truth_track_{2400};
+  Stamp truth_track_last_ = -1;
   Pose2 last_pose_;
   std::vector<Cone> truth_cones_;
   struct ClosureScore {
     LoopClosureRecord record;
-    double error_before = 0, error_after = 0;  // m from the true pose at its instant
+    double error_before = 0, error_after = 0;  // m from the true pose at its instant; NaN: not known
   };
   std::vector<ClosureScore> loop_closures_;  // the odometry section's
 };
