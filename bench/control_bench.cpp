@@ -28,11 +28,8 @@ struct Fixture {
   Path lap;                  // closed centre line
   Fixture() {
     std::vector<Vec2> left, right;
+    cones = cones_of(track);
     for (const auto& c : track.cones) {
-      Cone k;
-      k.position = Vec3(c.position.x(), c.position.y(), 0);
-      k.colour = c.colour;
-      cones.push_back(k);
       if (c.role == ConeRole::Left) left.push_back(c.position);
       if (c.role == ConeRole::Right) right.push_back(c.position);
     }

@@ -45,6 +45,18 @@ std::size_t Track::count(ConeRole role) const {
       std::count_if(cones.begin(), cones.end(), [&](const TrackCone& c) { return c.role == role; }));
 }
 
+std::vector<Cone> cones_of(const Track& track) {
+  std::vector<Cone> out;
+  out.reserve(track.cones.size());
+  for (const auto& c : track.cones) {
+    Cone k;
+    k.position = Vec3(c.position.x(), c.position.y(), 0);
+    k.colour = c.colour;
+    out.push_back(k);
+  }
+  return out;
+}
+
 namespace {
 
 std::vector<std::string> split_csv(const std::string& line) {

@@ -43,6 +43,9 @@ struct Track {
   std::size_t count(ConeRole role) const;
 };
 
+// The track's cones as a perfect cone map would hold them (map frame, on the ground, with their colours).
+std::vector<Cone> cones_of(const Track& track);
+
 // Thrown for unreadable or malformed files; what() is "FILE:LINE: problem".
 class TrackError : public std::runtime_error {
  public:

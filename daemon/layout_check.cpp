@@ -15,13 +15,7 @@ constexpr double kLaneShare = 0.8;  // of control.mission.acceleration_length th
 }  // namespace
 
 std::optional<std::string> layout_refusal(const Track& track, Mission mission, const AutopilotConfig& control) {
-  std::vector<Cone> cones;
-  for (const auto& c : track.cones) {
-    Cone k;
-    k.position = Vec3(c.position.x(), c.position.y(), 0);
-    k.colour = c.colour;
-    cones.push_back(k);
-  }
+  const std::vector<Cone> cones = cones_of(track);
   const std::string what = "mission '" + std::string(to_string(mission)) + "' on " + track.name + ": ";
   switch (mission) {
     case Mission::Trackdrive:

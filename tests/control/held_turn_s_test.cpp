@@ -36,13 +36,7 @@ TEST(HeldTurn, AHairpinIntoAHairpinTheOtherWayKeepsEveryPlanClearOfTheCones) {
   options.kind = sim::LayoutKind::Autocross;
   options.seed = 54;
   const Track track = sim::generate_track(options);
-  std::vector<Cone> cones;
-  for (const auto& tc : track.cones) {
-    Cone c;
-    c.position = Vec3(tc.position.x(), tc.position.y(), 0.0);
-    c.colour = tc.colour;
-    cones.push_back(c);
-  }
+  const std::vector<Cone> cones = cones_of(track);
   // The rear axle's pose every 0.1 s from 32.5 s, as the car came down to the first hairpin and round it.
   const std::vector<Pose2> poses = {
       {94.22, 45.43, -0.673}, {94.74, 45.01, -0.746}, {95.20, 44.57, -0.801}, {95.63, 44.12, -0.815},

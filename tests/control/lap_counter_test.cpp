@@ -8,7 +8,6 @@
 namespace fsd {
 namespace {
 
-using test::cones_of;
 
 TEST(LapCounter, CountsForwardCrossingsWithInterpolatedTimes) {
   // Line across x = 0 (from y = +2 to y = −2), travel +x. The car drives a 100 m loop at 10 m/s: straight

@@ -12,7 +12,6 @@
 namespace fsd {
 namespace {
 
-using test::cones_of;
 
 TEST(Skidpad, EpflCirclesMatchTheRules) {
   const Track t = test::shared_track("epfl_skidpad");

@@ -129,16 +129,5 @@ inline const std::vector<std::string>& loop_tracks() {
 
 inline Track shared_track(const std::string& name) { return load_track("../shared/tracks/" + name + ".csv"); }
 
-// A track's true cones as a perfect cone map would hold them (map frame, on the ground).
-inline std::vector<Cone> cones_of(const Track& t) {
-  std::vector<Cone> out;
-  for (const auto& c : t.cones) {
-    Cone k;
-    k.position = Vec3(c.position.x(), c.position.y(), 0);
-    k.colour = c.colour;
-    out.push_back(k);
-  }
-  return out;
-}
 
 }  // namespace fsd::test
