@@ -25,6 +25,19 @@ struct World {
     cones.push_back(p);
     colours.push_back(c);
   }
+  // What a car at `truth` sees: the cones ahead within 15 m, in its frame, with noise on each axis.
+  std::vector<Cone> seen_from(const Pose2& truth, std::mt19937& rng, std::normal_distribution<double>& noise) const {
+    std::vector<Cone> seen;
+    for (std::size_t c = 0; c < cones.size(); ++c) {
+      const Vec2 v = truth.inverse_transform(cones[c]);
+      if (v.norm() > 15 || v.x() < 0) continue;
+      Cone k;
+      k.position = Vec3(v.x() + noise(rng), v.y() + noise(rng), 0);
+      k.colour = colours[c];
+      seen.push_back(k);
+    }
+    return seen;
+  }
 };
 
 // A circle of radius 30 m driven counter-clockwise from (30, 0) heading +y (188 m a lap); cones every 3 m on rings
@@ -104,15 +117,7 @@ Drive drive(const World& w, const std::function<Pose2(double)>& path, double len
     const Pose2 estimate = map_from_raw * raw;
     if (!out.closures.empty())
       out.worst_corrected_after = std::max(out.worst_corrected_after, (estimate.position() - truth.position()).norm());
-    std::vector<Cone> seen;
-    for (std::size_t c = 0; c < w.cones.size(); ++c) {
-      const Vec2 v = truth.inverse_transform(w.cones[c]);
-      if (v.norm() > 15 || v.x() < 0) continue;
-      Cone k;
-      k.position = Vec3(v.x() + noise(rng), v.y() + noise(rng), 0);
-      k.colour = w.colours[c];
-      seen.push_back(k);
-    }
+    const std::vector<Cone> seen = w.seen_from(truth, rng, noise);
     const Stamp t = 0.1 * frame;
     if (delay < 0) {
       if (auto c = closer.add(t, estimate, seen)) take(*c, s, truth, estimate);
@@ -224,15 +229,7 @@ TEST(LoopCloser, AFailedSolveLeavesTheLapToCloseAtTheNextKeyframe) {
       EXPECT_FALSE(closer.solving());
       first.reset();
     }
-    std::vector<Cone> seen;
-    for (std::size_t c = 0; c < w.cones.size(); ++c) {
-      const Vec2 v = truth.inverse_transform(w.cones[c]);
-      if (v.norm() > 15 || v.x() < 0) continue;
-      Cone k;
-      k.position = Vec3(v.x() + noise(rng), v.y() + noise(rng), 0);
-      k.colour = w.colours[c];
-      seen.push_back(k);
-    }
+    const std::vector<Cone> seen = w.seen_from(truth, rng, noise);
     if (auto s = closer.feed(0.1 * frame, raw, seen)) {
       ++solves;
       if (solves == 1) {
