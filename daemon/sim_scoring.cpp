@@ -76,10 +76,8 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
 
 void SimScoring::on_truth(const sim::VehicleTruth& truth) {
   truth_poses_.add(truth.t, truth.pose);
-  if (truth_track_last_ < 0 || truth.t - truth_track_last_ >= 0.05) {
+  if (const auto newest = truth_track_.newest(); !newest || truth.t - *newest >= 0.05)
     truth_track_.add(truth.t, truth.pose);
-    truth_track_last_ = truth.t;
-  }
   last_pose_ = truth.pose;
   card_->on_truth(truth);
 }

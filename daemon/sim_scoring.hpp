@@ -56,7 +56,6 @@ class SimScoring {
   // A loop closure is scored when its solve comes back, which on a worker (--workers) is seconds of simulated time
   // later when the simulation runs fast: its truth from a coarser history of the last two minutes (20 Hz).
   PoseHistory truth_track_{2400};
-  Stamp truth_track_last_ = -1;
   Pose2 last_pose_;
   std::vector<Cone> truth_cones_;
   struct ClosureScore {
