@@ -59,8 +59,11 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
   });
   // Each loop closure with the pose's error against the truth at its instant, before and after the correction.
   stack.on_loop_closure([this](const LoopClosureRecord& r) {
-    auto truth = truth_poses_.at(r.t);
-    if (!truth) truth = truth_track_.at(r.t);
+    // (PoseHistory::at clamps to its oldest pose: a late solve was scored against a pose of seconds later.)
+    const PoseHistory* history = truth_poses_.reaches_back_to(r.t)   ? &truth_poses_
+                                 : truth_track_.reaches_back_to(r.t) ? &truth_track_
+                                                                     : nullptr;
+    const auto truth = history ? history->at(r.t) : std::nullopt;
     if (!truth) {  // older than two minutes of simulated time: no figure rather than a wrong one
       loop_closures_.push_back({r, std::nan(""), std::nan("")});
       return;

@@ -43,6 +43,8 @@ class PoseHistory {
     if (poses_.empty()) return std::nullopt;
     return poses_.back().t;
   }
+  // Whether the poses held go back to t (before the oldest, at() holds the oldest: no pose of that instant).
+  bool reaches_back_to(Stamp t) const { return !poses_.empty() && poses_.front().t <= t; }
 
   // The pose at t; empty without any pose.
   std::optional<Pose2> at(Stamp t) const {

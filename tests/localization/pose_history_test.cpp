@@ -55,6 +55,11 @@ TEST(PoseHistory, KeepsOnlyTheNewestPosesAndIgnoresOlderOnes) {
   h.add(4.0, {8, 0, 0});  // the same instant: replaces it
   EXPECT_DOUBLE_EQ(h.at(4.0)->x, 8.0);
   EXPECT_EQ(h.size(), 3u);
+  // What at() clamps to is not a pose of that instant: the history reaches back to its oldest kept pose only.
+  EXPECT_FALSE(h.reaches_back_to(1.0));
+  EXPECT_TRUE(h.reaches_back_to(2.0));
+  EXPECT_TRUE(h.reaches_back_to(9.0));  // ahead of the newest: the newest holds (a scan's last firing)
+  EXPECT_FALSE(PoseHistory().reaches_back_to(0.0));
 }
 
 TEST(PoseHistory, CorrectMovesEachPoseByTheCorrectionOfItsInstant) {
