@@ -33,7 +33,7 @@ function truthSeries(label) {
   return { label, color: '#f5f5f5', dash: [2, 3], hidden: true };
 }
 
-const hook = (window.__fsd = { webgl: scene.webgl, connected: false, topics: {}, status: [], scene: () => scene.counts(), plots: {}, truth: { on: false, samples: 0 } });
+const hook = (window.__fsd = { webgl: scene.webgl, connected: false, topics: {}, status: [], scene: () => scene.counts(), positions: (topic) => scene.positions(topic), plots: {}, truth: { on: false, samples: 0 } });
 
 function onVehicleState(m) {
   const t = seconds(m.timestamp);

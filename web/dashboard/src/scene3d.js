@@ -272,6 +272,17 @@ export class Scene3D {
     this.dirty = true;
   }
 
+  // Where the cylinders and cubes of a topic are drawn (the map frame, x/y): for the browser test that checks
+  // detection boxes against the truth overlay. Entity groups carry no transform, so a mesh's position is its place.
+  positions(topic) {
+    const out = [];
+    for (const { group } of this.entities.values()) {
+      if (group.userData.topic !== topic) continue;
+      for (const o of group.children) if (o.isMesh) out.push({ x: o.position.x, y: o.position.y });
+    }
+    return out;
+  }
+
   // What is on screen, per topic: for the status line and the browser test.
   counts() {
     const out = {};
