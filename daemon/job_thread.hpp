@@ -11,6 +11,8 @@
 #include <thread>
 #include <utility>
 
+#include "common/job_service.hpp"
+
 namespace fsd {
 
 template <class Result>
@@ -79,6 +81,18 @@ class JobThread {
   std::optional<Result> result_;
   bool busy_ = false, stop_ = false;
   std::thread thread_;  // last: started once the members it uses are
+};
+
+// A JobService whose jobs run on a JobThread: LapBuildThread, LoopSolveThread.
+template <class Result>
+class JobServiceThread : public JobService<Result> {
+ public:
+  explicit JobServiceThread(std::function<Result(const std::exception&)> failed) : worker_(std::move(failed)) {}
+  bool submit(typename JobService<Result>::Job job) override { return worker_.submit(std::move(job)); }
+  std::optional<Result> poll() override { return worker_.poll(); }
+
+ private:
+  JobThread<Result> worker_;
 };
 
 }  // namespace fsd

@@ -7,13 +7,10 @@
 
 namespace fsd {
 
-class LapBuildThread final : public LapBuildService {
+class LapBuildThread final : public JobServiceThread<TrajectoryResult> {
  public:
   // A build that throws comes back without a path, the reason its message (failed): the autopilot reports it.
-  LapBuildThread() : worker_(failed) {}
-
-  bool submit(LapBuildJob job) override { return worker_.submit(std::move(job)); }  // false while a job is out
-  std::optional<TrajectoryResult> poll() override { return worker_.poll(); }
+  LapBuildThread() : JobServiceThread(failed) {}
 
  private:
   static TrajectoryResult failed(const std::exception& e) {
@@ -21,7 +18,6 @@ class LapBuildThread final : public LapBuildService {
     r.reason = e.what();
     return r;
   }
-  JobThread<TrajectoryResult> worker_;
 };
 
 }  // namespace fsd

@@ -3,9 +3,7 @@
 // lap). The Stack hands the job over and polls for its result each step; meanwhile frames keep coming and the
 // LoopCloser holds them. On the car and in real-time runs a thread of the Stack's runs it (LoopSolveThread);
 // without a service (headless runs and replay, which must stay deterministic) the Stack solves inside the step.
-#include <functional>
-#include <optional>
-
+#include "common/job_service.hpp"
 #include "localization/loop_closure/loop_solve.hpp"
 
 namespace fsd {
@@ -15,16 +13,7 @@ struct SolvedLoop {
   double solve_s = 0;  // wall time of the solve where it ran, s
 };
 
-// A solve with copies of its inputs (the lap's graph), safe to run on any thread.
-using LoopSolveJob = std::function<SolvedLoop()>;
-
-class LoopSolveService {
- public:
-  virtual ~LoopSolveService() = default;
-  // Takes the job to solve elsewhere; false when it cannot (the caller then solves it itself). One job at a time.
-  virtual bool submit(LoopSolveJob job) = 0;
-  // The submitted job's result, once, when it is ready; nullopt while it is still being solved.
-  virtual std::optional<SolvedLoop> poll() = 0;
-};
+using LoopSolveService = JobService<SolvedLoop>;
+using LoopSolveJob = LoopSolveService::Job;  // with copies of its inputs (the lap's graph)
 
 }  // namespace fsd

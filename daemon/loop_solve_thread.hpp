@@ -7,15 +7,9 @@
 
 namespace fsd {
 
-class LoopSolveThread final : public LoopSolveService {
+class LoopSolveThread final : public JobServiceThread<SolvedLoop> {
  public:
-  LoopSolveThread() : worker_([](const std::exception&) { return SolvedLoop{}; }) {}  // unsolved: tried again
-
-  bool submit(LoopSolveJob job) override { return worker_.submit(std::move(job)); }  // false while a job is out
-  std::optional<SolvedLoop> poll() override { return worker_.poll(); }
-
- private:
-  JobThread<SolvedLoop> worker_;
+  LoopSolveThread() : JobServiceThread([](const std::exception&) { return SolvedLoop{}; }) {}  // unsolved: tried again
 };
 
 }  // namespace fsd
