@@ -12,7 +12,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifacts, chromiumArgs, chromiumPath, requireDev, requireToolsOrSkip, root, startDaemon, stopDaemon, waitFor } from './harness.mjs';
+import { artifacts, chromiumArgs, chromiumPath, requireDev, requireToolsOrSkip, root, startDaemon, stopDaemon, waitFor, zoomOnCar } from './harness.mjs';
 
 const { chromium } = requireToolsOrSkip();
 const TOKEN = 'pit-lane-test-token';
@@ -213,11 +213,7 @@ test("the truth overlay draws the simulator's cones and car and adds the true cu
   // The dashboard's /vehicle/state is the stack's own; for now the stack runs on the sim's truth, so they agree.
   const { truth, est } = await page.evaluate(() => ({ truth: window.__fsd.truth.last.speed, est: window.__fsd.plots.speed.values[0] / 3.6 }));
   assert.ok(Math.abs(truth - est) < 1.0, `true speed ${truth} vs the stack's ${est}`);
-  // A closer look from above: zoom in on the car (the view follows it).
-  const box = await page.locator('#view3d canvas').boundingBox();
-  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
-  for (let i = 0; i < 6; i++) await page.mouse.wheel(0, -250);
-  await page.waitForTimeout(400);
+  await zoomOnCar(page);
   await page.screenshot({ path: path.join(artifacts, 'dashboard-truth-overlay.png') });
   // Remembered across a reload, and off again with one click.
   await page.reload();

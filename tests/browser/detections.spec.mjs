@@ -9,7 +9,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { artifacts, chromiumArgs, chromiumPath, requireToolsOrSkip, startDaemon, stopDaemon, waitFor } from './harness.mjs';
+import { artifacts, chromiumArgs, chromiumPath, requireToolsOrSkip, startDaemon, stopDaemon, waitFor, zoomOnCar } from './harness.mjs';
 
 const { chromium } = requireToolsOrSkip();
 const MOVING = 3.0;          // m/s: samples below this say nothing about where a late box is drawn
@@ -70,10 +70,7 @@ test('detection boxes are drawn on their cones while driving, against the truth 
     looks++;
   }
   // Zoomed in on the car: boxes (translucent cubes) inside the truth overlay's wireframe cones.
-  const box = await page.locator('#view3d canvas').boundingBox();
-  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
-  for (let i = 0; i < 6; i++) await page.mouse.wheel(0, -250);
-  await page.waitForTimeout(400);
+  await zoomOnCar(page);
   await page.screenshot({ path: path.join(artifacts, 'dashboard-detections.png') });
 
   const median = quantile(errors, 0.5), p90 = quantile(errors, 0.9);

@@ -72,3 +72,11 @@ export async function waitFor(page, fn, arg, what, timeout = 15000) {
     throw new Error(`timed out waiting for ${what}`);
   }
 }
+
+// A closer look from above: zooms the 3D view in on the car (the view follows it), for a screenshot.
+export async function zoomOnCar(page) {
+  const box = await page.locator('#view3d canvas').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  for (let i = 0; i < 6; i++) await page.mouse.wheel(0, -250);
+  await page.waitForTimeout(400);
+}
