@@ -181,7 +181,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--headless", o.headless, "no dashboard; the simulation runs as fast as the CPU allows (lockstep)");
   cmd->add_flag("--workers", o.workers,
                 "with --headless: lap 2's build and the loop closure's solve on the stack's worker threads, as on the "
-                "car (the run is then not repeatable bit for bit)");
+                "car, the simulation held to real time while one runs (the run is then not repeatable bit for bit)");
   cmd->add_flag("--until-finished", o.until_finished,
                 "stop when the mission is over; exit 1 if it failed (not finished, cones hit, no stop)");
   cmd->add_option("--report", o.report, "write the scorecard (JSON) here at the end");

@@ -3,6 +3,8 @@
 // submit() hands a job over, poll() takes its result once. The thread is started with the object and joined by its
 // destructor, which waits for a job under way to end (jobs cannot be interrupted midway; they are bounded).
 // The workers of the Stack's slow, once-a-lap jobs (LapBuildThread, LoopSolveThread) are this.
+#include <algorithm>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -46,6 +48,17 @@ class JobThread {
     return true;
   }
 
+  using Clock = std::chrono::steady_clock;
+
+  // When the submitted job's result became ready, waiting for it at most until `deadline`; nullopt while it still
+  // runs (or with nothing out).
+  std::optional<Clock::time_point> ready_at(Clock::time_point deadline) {
+    std::unique_lock lock(m_);
+    cv_.wait_until(lock, deadline, [this] { return result_.has_value() || !busy_; });
+    if (!result_) return std::nullopt;
+    return ready_at_;
+  }
+
   // The submitted job's result, once, when it is ready; nullopt while it still runs (or with nothing out).
   std::optional<Result> poll() {
     std::lock_guard lock(m_);
@@ -71,6 +84,8 @@ class JobThread {
       }
       lock.lock();
       result_ = std::move(r);
+      ready_at_ = Clock::now();
+      cv_.notify_all();
     }
   }
 
@@ -79,20 +94,50 @@ class JobThread {
   std::condition_variable cv_;
   std::optional<Job> job_;
   std::optional<Result> result_;
+  Clock::time_point ready_at_;
   bool busy_ = false, stop_ = false;
   std::thread thread_;  // last: started once the members it uses are
 };
 
 // A JobService whose jobs run on a JobThread: LapBuildThread, LoopSolveThread.
+//
+// Paced by a run clock (pace_by: a simulation that runs faster than real time), a job's result is taken only once
+// as much run time has passed since it was submitted as the job took on the wall clock, and poll() waits while the
+// run clock is ahead of the job's wall time: the run drives on meanwhile for as long as the car would have, not for
+// the many seconds a fast simulation covers in a solve's few hundred milliseconds.
 template <class Result>
 class JobServiceThread : public JobService<Result> {
  public:
+  using Clock = typename JobThread<Result>::Clock;
+
   explicit JobServiceThread(std::function<Result(const std::exception&)> failed) : worker_(std::move(failed)) {}
-  bool submit(typename JobService<Result>::Job job) override { return worker_.submit(std::move(job)); }
-  std::optional<Result> poll() override { return worker_.poll(); }
+
+  // `run_clock`: the run's time in seconds (the Stack's step time), read on the calling thread.
+  void pace_by(std::function<double()> run_clock) { run_clock_ = std::move(run_clock); }
+
+  bool submit(typename JobService<Result>::Job job) override {
+    if (!worker_.submit(std::move(job))) return false;
+    if (run_clock_) submitted_ = {run_clock_(), Clock::now()};
+    return true;
+  }
+
+  std::optional<Result> poll() override {
+    if (!run_clock_) return worker_.poll();
+    const auto run_elapsed = std::chrono::duration_cast<typename Clock::duration>(
+        std::chrono::duration<double>(std::max(0.0, run_clock_() - submitted_.run)));
+    const auto due = submitted_.wall + run_elapsed;  // the wall time the run clock stands for
+    const auto ready = worker_.ready_at(due);
+    if (!ready || *ready > due) return std::nullopt;
+    return worker_.poll();
+  }
 
  private:
   JobThread<Result> worker_;
+  std::function<double()> run_clock_;
+  struct {
+    double run = 0;
+    typename Clock::time_point wall;
+  } submitted_;
 };
 
 }  // namespace fsd

@@ -92,6 +92,7 @@ struct SimRun::Impl {
     // lockstep inside the step that asks for them, so that a run is the same every time (unless --workers).
     so.lap_build_worker = !headless || opt.workers;
     so.loop_closure_worker = so.lap_build_worker;
+    so.paced_workers = headless && opt.workers;
     // The camera stage sees through the virtual camera, calibrated perfectly; its frames arrive after the latency.
     so.camera = StackOptions::Camera{sim::calibration_of(car_settings.camera), car_settings.camera.latency};
     if (run.perception_source != "truth" && !car_settings.run.lidar)

@@ -85,9 +85,23 @@ void SimScoring::on_truth(const sim::VehicleTruth& truth) {
   card_->on_truth(truth);
 }
 
+namespace {
+
+nlohmann::json map_section(const Track& track, const std::vector<Cone>& map, const RunSettings& run) {
+  auto out = to_json(score_map(track.cones, map));
+  out["source"] = run.perception_source;
+  out["localization_source"] = run.localization_source;
+  return out;
+}
+
+}  // namespace
+
 void SimScoring::after_step(AsState as, int cones_hit) {
   card_->set_as_state(as);
   card_->set_cones_hit(cones_hit);
+  if (map_lap1_.is_null() && card_->laps_completed() >= 1) {
+    map_lap1_ = map_section(track_, stack_.cone_map(), run_);
+  }
   if (const auto& s = stack_.state()) {
     odometry_.add_state(truth_poses_.at(s->stamp).value_or(last_pose_), s->pose);
   }
@@ -98,10 +112,8 @@ void SimScoring::finish(double wall_time_s) {
   card_->set_latencies(stack_.latencies());
   for (const auto& f : stack_.faults()) card_->add_fault(f);
   // Each section says where its figures came from (DESIGN.md §8): the sources the stack ran on.
-  auto map = to_json(score_map(track_.cones, stack_.cone_map()));
-  map["source"] = run_.perception_source;
-  map["localization_source"] = run_.localization_source;
-  card_->set_section("map", map);
+  card_->set_section("map", map_section(track_, stack_.cone_map(), run_));
+  if (!map_lap1_.is_null()) card_->set_section("map_lap1", map_lap1_);
   auto perception = perception_.to_json();
   perception["source"] = run_.perception_source;
   card_->set_section("perception", perception);

@@ -7,6 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "common/track.hpp"
 #include "common/types.hpp"
 #include "daemon/loop_closure_record.hpp"
@@ -37,9 +39,11 @@ class SimScoring {
   void on_truth(const sim::VehicleTruth& truth);
   // The standing cones, whenever they change (a cone knocked over), as the Stack is sent them.
   void set_truth_cones(std::vector<Cone> cones) { truth_cones_ = std::move(cones); }
-  // After the step: the VCU's true AS state and the cones hit so far; the Stack's pose against the truth.
+  // After the step: the VCU's true AS state and the cones hit so far; the Stack's pose against the truth; the
+  // cone map as it is when lap 1 is timed ("map_lap1": the map lap 2 drives on, before lap 2's sightings).
   void after_step(AsState as, int cones_hit);
-  // The end of the run: wall time, the Stack's latencies and faults, the "map" and "perception" sections.
+  // The end of the run: wall time, the Stack's latencies and faults, the "map", "map_lap1" and "perception"
+  // sections.
   void finish(double wall_time_s);
 
   Scorecard& card() { return *card_; }
@@ -63,6 +67,7 @@ class SimScoring {
     double error_before = 0, error_after = 0;  // m from the true pose at its instant; NaN: not known
   };
   std::vector<ClosureScore> loop_closures_;  // the odometry section's
+  nlohmann::json map_lap1_;                   // the "map_lap1" section, once lap 1 is timed
 };
 
 }  // namespace fsd

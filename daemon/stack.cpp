@@ -108,6 +108,7 @@ struct Stack::Impl {
   double loop_step_s = 0;  // the control thread's time of the closing frame whose solve is out
   std::vector<LoopClosureRecord> loop_closures;
   std::function<void(const LoopClosureRecord&)> loop_closure_hook;
+  Stamp step_now = 0;  // the cycle's time: the paced workers' run clock
   std::shared_ptr<const ConeDetections> last_detections;
   std::shared_ptr<const LabelledCloud> last_cloud;  // the sensor sources' split of the newest scan
   std::function<void(const ConeDetections&, const Pose2&)> detections_hook;
@@ -170,7 +171,10 @@ struct Stack::Impl {
     if (localization_source == "lidar_odometry") {
       const auto lc = loop_closure::read_loop_closure_config(cfg);
       if (lc.enabled) loop_closer = std::make_unique<loop_closure::LoopCloser>(lc);
-      if (loop_closer && opt.loop_closure_worker) loop_worker = std::make_unique<LoopSolveThread>();
+      if (loop_closer && opt.loop_closure_worker) {
+        loop_worker = std::make_unique<LoopSolveThread>();
+        if (opt.paced_workers) loop_worker->pace_by([this] { return step_now; });
+      }
     }
     perception_source = run.perception_source;
     if (!opt.simulator && perception_source == "truth") {
@@ -198,6 +202,7 @@ struct Stack::Impl {
     autopilot = std::make_unique<Autopilot>(control, opt.mission, convention);
     if (opt.lap_build_worker) {
       lap_worker = std::make_unique<LapBuildThread>();
+      if (opt.paced_workers) lap_worker->pace_by([this] { return step_now; });
       autopilot->set_lap_builder(lap_worker.get());
     }
   }
@@ -497,6 +502,7 @@ struct Stack::Impl {
   }
 
   const StackCycle& step(Stamp now) {
+    step_now = now;
     for (auto* tap : taps) tap->on_cycle(now);
     cycle = {};
     ++cycles;

@@ -58,6 +58,10 @@ struct StackOptions {
   int laps = 2;                      // trackdrive laps (run.laps, or --laps)
   bool lap_build_worker = false;     // lap 2 built on a thread of the Stack's (real time); else inside the step
   bool loop_closure_worker = false;  // the loop's solve so (that thread reads wall_clock: the solve's time)
+  // The feeder runs faster than real time (a headless simulation with workers): a worker's result is taken once
+  // as much run time has passed as the job took on the wall clock, the step waiting while the run is ahead of it
+  // (JobServiceThread::pace_by), so that the car drives on meanwhile as long as on the car, not for seconds.
+  bool paced_workers = false;
   bool simulator = false;            // the feeder sends the simulator's truth frames (the truth sources need them)
   Stamp start = 0;                   // the run clock when the VCU session starts waiting for its first status
   // The control settings when the caller has them typed already (the tests' harness); else the configuration's.

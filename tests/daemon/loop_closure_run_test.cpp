@@ -64,11 +64,12 @@ TEST(LoopClosureRun, TheLapsLoopClosesOnceNearTheStartAndTheMapIsOneMapAgain) {
 }
 
 TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
-  // --workers: the solve on the Stack's thread as on the car, its result taken steps later while the lockstep
-  // simulation runs on (headless, several times real time: the frames of 0.3–1 s of driving estimated uncorrected
-  // meanwhile). Up to the closure the runs are the same, so the closure is; the map must be as good as with the
-  // solve in the step (each cone mapped meanwhile moved once, none lost), and the control thread did not pay the
-  // solve.
+  // --workers: the solve on the Stack's thread as on the car, its result taken steps later while the simulation
+  // runs on, held to real time while the solve is out (the frames of the solve's 0.1–0.9 s estimated uncorrected
+  // meanwhile). Up to the closure the runs are the same, so the closure is; the map lap 2 drives on (map_lap1) must
+  // be as good as with the solve in the step (each cone mapped meanwhile moved once, none lost), and the control
+  // thread did not pay the solve. The map at the end is not compared: lap 2 on the odometry alone goes differently
+  // with every solve time (8 to 57 cones hit, 98 to 271 ghosts in runs on a loaded machine).
   const json step = lidar_odometry_run("loop_closure_step", "epfl_track_1", true);
   const json worker = lidar_odometry_run("loop_closure_worker", "epfl_track_1", true, "--workers");
   ASSERT_TRUE(step.is_object() && worker.is_object());
@@ -80,12 +81,15 @@ TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
   EXPECT_LT(b[0]["error_after_m"].get<double>(), 0.1) << b.dump();  // measured 0.013 m from 0.486
   EXPECT_LT(b[0]["control_ms"].get<double>(), 0.2 * b[0]["solve_ms"].get<double>()) << b.dump();
   EXPECT_GE(a[0]["control_ms"].get<double>(), a[0]["solve_ms"].get<double>()) << a.dump();  // in the step
-  // Measured in the step: RMSE 0.050 m, 202 of 202 matched, none missed (without loop closure 0.295 m, 120 missed).
-  const json &ma = step["map"], &mb = worker["map"];
+  // Measured at lap 1's line: RMSE 0.053 m, 202 of 202 matched, 20 ghosts either way, also with every core busy
+  // (without loop closure 0.295 m, 120 missed at the end).
+  ASSERT_TRUE(step.contains("map_lap1") && worker.contains("map_lap1"));
+  const json &ma = step["map_lap1"], &mb = worker["map_lap1"];
   EXPECT_EQ(mb["missed"], 0) << mb.dump();
   EXPECT_EQ(mb["matched"], ma["matched"]) << mb.dump();
+  EXPECT_LE(mb["ghosts"].get<int>(), ma["ghosts"].get<int>() + 2) << mb.dump() << ma.dump();
   EXPECT_LT(mb["rmse_m"].get<double>(), 0.1) << mb.dump();
-  EXPECT_LT(mb["rmse_m"].get<double>(), 1.5 * ma["rmse_m"].get<double>()) << mb.dump() << ma.dump();
+  EXPECT_LT(mb["rmse_m"].get<double>(), 1.2 * ma["rmse_m"].get<double>()) << mb.dump() << ma.dump();
 }
 
 }  // namespace

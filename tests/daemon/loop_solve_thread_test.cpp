@@ -1,6 +1,7 @@
 // The loop closure's solve worker (LoopSolveThread, the Stack's in real time): a job runs on the worker's thread,
 // not the caller's, and its result is taken once; one job at a time; a job that throws comes back unsolved; the
-// destructor waits for a job under way.
+// destructor waits for a job under way. Paced by a run clock (a simulation faster than real time), a result comes
+// once as much run time has passed as the job took, and a run clock ahead of the job waits for it.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -99,6 +100,44 @@ TEST(LoopSolveThread, DestroyedIdleOrWithAnUntakenResultItJoins) {
     ASSERT_TRUE(test::wait_until([&] { return ran.load(); }));
   }
   EXPECT_TRUE(ran);
+}
+
+TEST(LoopSolveThread, PacedByARunClockAResultComesOnceAsMuchRunTimeHasPassedAsTheJobTook) {
+  LoopSolveThread worker;
+  std::atomic<double> run{100.0};
+  worker.pace_by([&run] { return run.load(); });
+  std::atomic<bool> done{false};
+  ASSERT_TRUE(worker.submit([&done] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    done = true;
+    return solved_at(1.0);
+  }));
+  ASSERT_TRUE(test::wait_until([&] { return done.load(); }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  run = 100.05;  // the job is over on the wall clock, but only 50 ms of the run have passed: not yet
+  EXPECT_FALSE(worker.poll());
+  run = 110.0;  // its 100 ms (and more) have
+  const auto r = worker.poll();
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->result.closure.t, 1.0);
+  EXPECT_FALSE(worker.poll());  // taken once
+}
+
+TEST(LoopSolveThread, PacedByARunClockAheadOfTheJobThePollWaitsForIt) {
+  LoopSolveThread worker;
+  std::atomic<double> run{0.0};
+  worker.pace_by([&run] { return run.load(); });
+  std::atomic<bool> done{false};
+  ASSERT_TRUE(worker.submit([&done] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    done = true;
+    return solved_at(2.0);
+  }));
+  run = 5.0;  // a fast simulation's 5 s since the job went out: the run must not drive on without its result
+  const auto r = worker.poll();
+  EXPECT_TRUE(done);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->result.closure.t, 2.0);
 }
 
 }  // namespace
