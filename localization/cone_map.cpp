@@ -22,7 +22,17 @@ const ConfigSection<ConeMapConfig>& cone_map_section() {
                   "Detections beyond this range are not mapped.")
           .number("merge_gate", &ConeMapConfig::merge_gate, 0.01, 5.0, "m",
                   "After a loop closure moved the map, cones this close that were first mapped at different times "
-                  "are one cone.");
+                  "are one cone.")
+          .number("expect_min_range", &ConeMapConfig::expect_min_range, 0.0, 50.0, "m",
+                  "Ghost pruning: a mapped cone nearer than this to the car may be hidden (the body's cut-out).")
+          .number("expect_range", &ConeMapConfig::expect_range, 0.0, 50.0, "m",
+                  "Ghost pruning: a mapped cone between expect_min_range and this range of the car is expected "
+                  "to be detected in every frame.")
+          .integer("min_misses", &ConeMapConfig::min_misses, 0, 1000, "",
+                   "Ghost pruning: frames a mapped cone within the expected range went undetected before it is "
+                   "withheld, when it was missed there more often than seen (0: never withheld).")
+          .number("expect_spacing", &ConeMapConfig::expect_spacing, 0.0, 10.0, "m",
+                  "Ghost pruning: distance driven between the frames that count (a standing car counts once).");
   return s;
 }
 
@@ -93,6 +103,16 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     if (entry_of[i] != kNone || taken[k]) continue;
     entry_of[i] = k;
     taken[k] = true;
+  }
+
+  // Ghost pruning's evidence: the mapped cones near the car, detected in this frame or not.
+  if (!expect_at_ || (pose.position() - *expect_at_).norm() >= cfg_.expect_spacing) {
+    expect_at_ = pose.position();
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+      const double range = pose.inverse_transform(entries_[k].mean).norm();
+      if (range < cfg_.expect_min_range || range > cfg_.expect_range) continue;
+      ++(taken[k] ? entries_[k].near_seen : entries_[k].near_missed);
+    }
   }
 
   for (std::size_t i = 0; i < seen.size(); ++i) {
@@ -186,6 +206,8 @@ int ConeMap::correct(const std::function<Pose2(Stamp)>& correction) {
     keep.observations += from.observations;
     keep.verified += from.verified;
     keep.rejected += from.rejected;
+    keep.near_seen += from.near_seen;
+    keep.near_missed += from.near_missed;
     for (std::size_t c = 0; c < keep.colour_votes.size(); ++c) keep.colour_votes[c] += from.colour_votes[c];
     refresh(keep);
     gone[b] = 1;
@@ -203,6 +225,8 @@ std::vector<Cone> ConeMap::cones() const {
   for (const auto& e : entries_) {
     if (e.observations < cfg_.min_observations) continue;
     if (e.rejected >= cfg_.min_rejections && e.rejected > e.verified) continue;  // the camera says: not a cone
+    if (cfg_.min_misses > 0 && e.near_missed >= cfg_.min_misses && e.near_missed > e.near_seen)
+      continue;  // not seen where a cone would have been: not a cone
     Cone c;
     c.position = Vec3(e.mean.x(), e.mean.y(), 0.0);
     c.covariance = e.info.inverse();

@@ -8,12 +8,20 @@
 // so a real cone the camera doubted once comes back with its next verifications). Without a camera nothing is
 // rejected and every LiDAR-only cone is reported.
 //
+// Ghost pruning: a mapped cone the car came near and did not see is not reported. Each frame, a mapped cone between
+// `expect_min_range` and `expect_range` of the car with no detection of the frame paired to it counts a miss; one
+// missed at least `min_misses` times and more often than seen in that range is withheld: what looks like a cone
+// from far away and does not from near (a tyre stack, a post beside a fence, a piece of fence). Real cones are
+// detected near the car in nearly every frame. Frames count only once the car has moved `expect_spacing` since the
+// last one counted: a car standing with a cone hidden behind another would otherwise count it out.
+//
 // Loop closure moves the poses a map was built from (localization/loop_closure): each cone keeps its sightings per
 // visit (seen without a gap of more than a few seconds), so that correct() moves each visit with the correction of
 // its instant, a cone seen at the start and again on the next lap with the correction of each. Two cones that then
 // coincide are one (a cone mapped at the start and again, drifted, at the lap's end).
 #include <array>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -30,6 +38,10 @@ struct ConeMapConfig {
   int min_rejections = 2;    // camera rejections before a mapped cone may be withheld
   double max_range = 20.0;   // detections farther than this are ignored (m)
   double merge_gate = 0.45;  // m: corrected cones this close, first mapped at different times, are one cone
+  double expect_min_range = 2.0;  // m: nearer, a cone may be hidden by the car's own body cut-out
+  double expect_range = 10.0;     // m: a cone this near is detected in nearly every frame
+  int min_misses = 3;             // frames a cone near the car was not detected before it may be withheld; 0: never
+  double expect_spacing = 0.5;    // m driven between the frames that count
 };
 const ConfigSection<ConeMapConfig>& cone_map_section();
 
@@ -42,7 +54,10 @@ class ConeMap {
   // Confirmed cones in the map frame with fused position, covariance and voted colour.
   std::vector<Cone> cones() const;
   std::size_t size() const { return entries_.size(); }
-  void clear() { entries_.clear(); }
+  void clear() {
+    entries_.clear();
+    expect_at_.reset();
+  }
   // Moves every cone with the poses it was seen from: `correction(t)` takes a position placed by the pose of
   // instant t into the corrected map frame (LoopClosure::correction_at). Then merges the cones that coincide
   // (within merge_gate, compatible colours, first mapped in visits that do not overlap: a frame's cones are
@@ -63,6 +78,7 @@ class ConeMap {
     Vec2 mean = Vec2::Zero();
     int observations = 0;
     int verified = 0, rejected = 0;  // camera verdicts on it
+    int near_seen = 0, near_missed = 0;  // frames with it within the expected range: detected, not detected
     std::array<int, 6> colour_votes{};
     std::uint32_t id = 0;
     std::vector<Visit> visits;           // bounded: the oldest two merge beyond kMaxVisits
@@ -72,6 +88,7 @@ class ConeMap {
   static void cap_visits(Entry& e);  // at most kMaxVisits: the oldest two merge
   static void refresh(Entry& e);
   ConeMapConfig cfg_;
+  std::optional<Vec2> expect_at_;  // where the last frame that counted for ghost pruning was taken
   std::vector<Entry> entries_;
   std::uint32_t next_id_ = 1;
 };
