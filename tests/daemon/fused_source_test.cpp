@@ -1,6 +1,8 @@
 // run.localization_source = fused on the virtual car: the GNSS-INS samples (RTK fix, dual-antenna heading, ROT)
 // and the VCU's wheel speeds through the EKF instead of the GNSS-INS pose as reported. The scorecard measures the
 // car's true path against the true centre line, so a fused pose that is off shows as cross-track error or cones.
+// And the whole real pipeline: the fused pose with the LiDAR and camera stages on every sensor of the virtual car
+// and its distractors, the map lap 2 drives on against the true cones (issue #17's bars).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -9,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/daemon/sim_report.hpp"
 #include "tests/scratch_dir.hpp"
 
 namespace fsd {
@@ -33,6 +36,25 @@ TEST(FusedSource, TrackdriveTwoLapsOnTheFusedPose) {
   // The bounds the truth pose meets (sim_run_test.cpp); measured: lap 2 cte 0.083 m RMS, 0.254 m max.
   EXPECT_LE(r["laps"][1]["cte_rms_m"].get<double>(), 0.15);
   EXPECT_LE(r["laps"][1]["cte_max_m"].get<double>(), 0.5);
+}
+
+TEST(FusedSource, OnTheRealPerceptionTheMapAfterLapOneMeetsTheBars) {
+  const nlohmann::json r = test::sim_report(
+      "fused_lidar_camera", {{"run", {{"localization_source", "fused"}, {"perception_source", "lidar_camera"}}}},
+      "--laps 2 --track ../shared/tracks/epfl_track_2.csv");
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r["verdict"], "pass") << r["verdict_reasons"].dump();
+  ASSERT_TRUE(r.contains("map_lap1"));
+  const auto& m = r["map_lap1"];
+  EXPECT_EQ(m["source"], "lidar_camera");
+  EXPECT_EQ(m["localization_source"], "fused");
+  // Measured: RMSE 0.023 m, colour 1.0, none missed, 1 ghost of 232 cones (docs/localization.md, ghost pruning).
+  const double true_cones = m["true_cones"].get<double>();
+  EXPECT_LE(m["rmse_m"].get<double>(), 0.10) << m.dump();
+  EXPECT_GE(m["colour_accuracy"].get<double>(), 0.98) << m.dump();
+  EXPECT_LE(m["missed"].get<double>(), 0.02 * true_cones) << m.dump();
+  EXPECT_LE(m["ghosts"].get<double>(), 0.02 * true_cones) << m.dump();
+  EXPECT_LE(r["odometry"]["ate_m"].get<double>(), 0.10) << r["odometry"].dump();
 }
 
 }  // namespace
