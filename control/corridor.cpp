@@ -9,13 +9,42 @@ namespace fsd {
 Corridor corridor_along(const Path& path, const std::vector<Cone>& cones, const ColourConvention& convention,
                         double reach) {
   Corridor c;
+  struct Unnamed {
+    double s, lateral;
+    Vec2 p;
+  };
+  std::vector<Unnamed> unnamed;  // cones without a side's colour: placed once the named ones are
+  // The named cones' distance from the path on each side, by arc length: what the boundary is near an unnamed cone.
+  std::vector<std::pair<double, double>> named_left, named_right;
   for (const auto& cone : cones) {
     if (!cone.position.allFinite()) continue;
     const auto foot = project(path, cone.position.head<2>());
     if (!foot || foot->distance() > reach) continue;
     const ConeRole role = convention.role_of(cone.colour);
-    const bool is_left = role == ConeRole::Left || (role != ConeRole::Right && foot->lateral > 0);
-    (is_left ? c.left : c.right).push_back({foot->s, cone.position.head<2>()});
+    const Vec2 p = cone.position.head<2>();
+    if (role == ConeRole::Left) {
+      c.left.push_back({foot->s, p});
+      named_left.emplace_back(foot->s, std::abs(foot->lateral));
+    } else if (role == ConeRole::Right) {
+      c.right.push_back({foot->s, p});
+      named_right.emplace_back(foot->s, std::abs(foot->lateral));
+    } else {
+      unnamed.push_back({foot->s, foot->lateral, p});
+    }
+  }
+  // A cone without a colour is on the side of the path it stands, unless it stands farther out than that side's
+  // named cones nearby: outside the boundary it bounds nothing (a tyre, a post, a fence the LiDAR took for a cone,
+  // which would bend the boundary out and the centre line with it). Inside, or where no named cone is near, it
+  // counts: a narrower corridor is the safe side.
+  constexpr double kOutside = 0.5;  // m beyond the farthest named cone nearby
+  const double window = kMaxSpanInReach * reach;
+  for (const auto& u : unnamed) {
+    const bool left = u.lateral > 0;
+    double farthest = -1;
+    for (const auto& [s, lateral] : left ? named_left : named_right)
+      if (std::abs(s_difference(path, u.s, s)) <= window) farthest = std::max(farthest, lateral);
+    if (farthest >= 0 && std::abs(u.lateral) > farthest + kOutside) continue;
+    (left ? c.left : c.right).push_back({u.s, u.p});
   }
   auto by_s = [](const BoundaryCone& a, const BoundaryCone& b) { return a.s < b.s; };
   std::sort(c.left.begin(), c.left.end(), by_s);

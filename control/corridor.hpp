@@ -20,7 +20,8 @@ struct Corridor {
   std::vector<BoundaryCone> left, right;  // sorted by s
 };
 
-// Cones within `reach` of the path; colour names the side, a cone without one is on the side of the path it stands.
+// Cones within `reach` of the path; colour names the side, a cone without one is on the side of the path it stands
+// unless it stands more than 0.5 m farther out than that side's named cones nearby (outside the boundary: left out).
 Corridor corridor_along(const Path& path, const std::vector<Cone>& cones, const ColourConvention& convention,
                         double reach);
 

@@ -69,6 +69,38 @@ TEST(RecordedTrajectory, RecentringPullsTheLineToTheMiddleOfTheCones) {
   for (const auto& q : open.points) EXPECT_NEAR(q.p.y(), 0.0, 1e-9);
 }
 
+TEST(RecordedTrajectory, RecentringLeavesOutAnUncolouredConeOutsideTheBoundaryAndKeepsOneInside) {
+  // The lane above (boundaries at y = ±1.8, the line 0.4 m left of centre), and two cones without a colour, as
+  // the LiDAR alone maps a tyre or a post: one 2.2 m outside the left boundary at x = 21 (it bounds nothing: the
+  // centre stays at y = 0 there), one 0.6 m inside the right boundary at x = 39 (it narrows the lane: the centre
+  // there is half way between y = 1.8 and y = −1.2).
+  Path open;
+  for (int i = 0; i <= 100; ++i) open.points.push_back({Vec2(0.5 * i, 0.4), 0, 0, 0, 0});
+  compute_geometry(open);
+  std::vector<Cone> cones;
+  auto add = [&cones](double x, double y, ConeColour colour) {
+    Cone c;
+    c.position = Vec3(x, y, 0);
+    c.colour = colour;
+    cones.push_back(c);
+  };
+  for (int i = -2; i <= 20; ++i) {
+    add(3.0 * i, 1.8, ConeColour::Blue);
+    add(3.0 * i, -1.8, ConeColour::Yellow);
+  }
+  add(21.0, 4.0, ConeColour::Unknown);
+  add(39.0, -1.2, ConeColour::Unknown);
+  recentre_on_cones(open, cones, ColourConvention{}, 4.0);
+  for (const auto& q : open.points) {
+    if (std::abs(q.p.x() - 21.0) < 1.0) {
+      EXPECT_NEAR(q.p.y(), 0.0, 1e-9) << q.p.x();
+    }
+    if (std::abs(q.p.x() - 39.0) < 0.01) {
+      EXPECT_NEAR(q.p.y(), 0.3, 1e-9) << q.p.x();
+    }
+  }
+}
+
 // Distance from p to the closed polyline through `v`.
 double polyline_distance(const std::vector<Vec2>& v, const Vec2& p) {
   double best = 1e9;
