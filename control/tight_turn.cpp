@@ -18,6 +18,7 @@ struct Segment {
   std::size_t first = 0, last = 0;  // point indices, inclusive
   double turn = 0;                  // signed heading change, rad
   std::optional<TightTurn> held;    // the turn when known already (a held turn)
+  bool refit = true;                // a held turn's rings fitted again from the cones beside it
 };
 
 // The stretch from the car that lies within a held turn's outer ring (with a metre to spare), turning its way,
@@ -28,10 +29,17 @@ std::optional<Segment> held_segment(const Path& path, const TightTurn& held, con
   const auto& pts = path.points;
   const double reach = held.outer_radius + 1.0;
   if ((pts.front().p - held.centre).norm() > reach) return std::nullopt;
-  // Past the end of its turn-out the car has left the turn: the next turn is found as any other.
-  if ((held.exit - pts.front().p).dot(held.exit_direction) <= 0) return std::nullopt;
+  // Past the end of its turn-out the car has left the turn: the next turn is found as any other. Past along the
+  // exit's direction and, round the turn's centre, just beyond the exit (within a quarter turn): a hairpin's exit
+  // straight runs back beside its entry, where a car still coming in stands "past" the exit along that direction.
+  const Vec2 a = pts.front().p - held.centre, b = held.exit - held.centre;
+  const double to_exit = held.direction * std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));  // still to turn
+  const bool beyond_exit_line = (held.exit - pts.front().p).dot(held.exit_direction) <= 0;
+  if (beyond_exit_line && to_exit <= 0 && to_exit > -kPi / 2) return std::nullopt;
   Segment seg;
   seg.held = held;
+  // Still coming in beside the exit straight: the rings fitted further out, with the whole turn in view, hold.
+  seg.refit = !beyond_exit_line;
   while (seg.last + 1 < pts.size() && (pts[seg.last + 1].p - held.centre).norm() <= reach) {
     const auto& next = pts[seg.last + 1];
     if (next.s - pts.front().s >= cfg.lead && next.kappa * held.direction < -cfg.kappa_on) break;
@@ -204,8 +212,8 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
     if (!foot || foot->s < s_first || foot->s > s_last || foot->distance() > 4.0) continue;
     ((c - turn.centre).norm() < (foot->foot - turn.centre).norm() ? inner : outer).push_back(c);
   }
-  const bool fitted =
-      inner.size() >= 2 && outer.size() >= 2 && inner.size() + outer.size() >= 5 && fit_rings(inner, outer, turn);
+  const bool fitted = seg->refit && inner.size() >= 2 && outer.size() >= 2 && inner.size() + outer.size() >= 5 &&
+                      fit_rings(inner, outer, turn);
   if (fitted) {
     turn.outer_nearest = turn.outer_radius;
     for (const auto& p : outer) turn.outer_nearest = std::min(turn.outer_nearest, (p - turn.centre).norm());

@@ -2,6 +2,7 @@
 // hairpin (9 m outside diameter, 3 m lane) built by hand, with the body swept along the line it gets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -151,6 +152,38 @@ TEST(TightTurn, AHeldTurnKeepsTheCarOnItsArcToTheExitWhenTheConesAheadNoLongerFi
     }
   }
   EXPECT_GT(sweep_body(held, h.cones).clearance, 0.0);
+}
+
+TEST(TightTurn, AHeldHairpinIsKeptAtItsEntryBesideItsOwnExitStraight) {
+  // A hairpin's exit straight runs back beside its entry: a car still coming in stands "past" the exit along the
+  // exit's direction. Round the turn's centre it has the whole turn still ahead, and the held turn is kept.
+  const Hairpin h;
+  Path line = h.midline;
+  const auto first = shape_tight_turns(line, h.cones, TightTurnConfig{});
+  ASSERT_EQ(first.size(), 1u);
+  const TightTurn& held = first.front();
+  ASSERT_NEAR(held.exit_direction.y(), -1.0, 0.05);  // down the exit straight
+  // The path from the car on the entry straight, within the turn's reach, already farther down than the exit.
+  const auto& pts = h.midline.points;
+  const auto at = std::find_if(pts.begin(), pts.end(), [&](const PathPoint& q) {
+    return q.p.x() > h.c.x() && q.p.y() < held.exit.y() - 0.1 && (q.p - h.c).norm() <= held.outer_radius + 1.0;
+  });
+  ASSERT_NE(at, pts.end()) << "exit " << held.exit.transpose();
+  ASSERT_LE((held.exit - at->p).dot(held.exit_direction), 0.0);
+  Path entry;
+  entry.points.assign(at, pts.end());
+  compute_geometry(entry);
+  // Only the outer cones are in view (the inner ring hidden): nothing to fit the rings from afresh.
+  std::vector<Vec2> outer_only;
+  for (const auto& c : h.cones)
+    if ((c - h.c).norm() > 4.0) outer_only.push_back(c);
+  Path plain = entry;
+  ASSERT_TRUE(shape_tight_turns(plain, outer_only, TightTurnConfig{}).empty());
+  Path kept = entry;
+  const auto turns = shape_tight_turns(kept, outer_only, TightTurnConfig{}, &held);
+  ASSERT_EQ(turns.size(), 1u);
+  EXPECT_NEAR(turns.front().radius, held.radius, 1e-9);
+  EXPECT_GT(sweep_body(kept, h.cones).clearance, 0.0);
 }
 
 TEST(TightTurn, WideTurnsAndTurnsWithoutInnerConesAreLeftAlone) {
