@@ -218,6 +218,7 @@ void EkfFilter::on_gnss(const GnssFix& f) {
     }
     return;
   }
+  if (f.velocity_valid) on_gnss_velocity(f);
   const GnssCheck c = gate_.check(f, t_, Vec2(x_(X), x_(Y)), P_.topLeftCorner<2, 2>(), motion_since_fix_);
   if (c.verdict != GnssVerdict::RejectedQuality && c.verdict != GnssVerdict::RejectedStale) motion_since_fix_.setZero();
   out_.gnss_nis = c.nis;
@@ -242,6 +243,34 @@ void EkfFilter::on_gnss(const GnssFix& f) {
     ++out_.gnss_counters.accepted;
   else
     ++out_.gnss_counters.down_weighted;
+}
+
+void EkfFilter::on_gnss_velocity(const GnssFix& f) {
+  // The receiver's velocity over ground (Doppler), at lever (lx, 0) ahead of the reference point: rotated into the
+  // body it is (vx, vy + r·lx). It measures vy, which the wheels cannot: without it the wheels' row holds vy near 0
+  // and a sliding car leaves the filter behind, its fixes rejected as multipath until the gate recovers.
+  // Taken by itself, before the position's gate: Doppler is not what multipath shifts.
+  if (!cfg_.ekf.gnss_velocity || !heading_known_ || f.fix_quality <= 0 || f.fix_quality < cfg_.gnss.min_fix_quality ||
+      !f.velocity.allFinite() || f.velocity.norm() < cfg_.common.moving_speed)
+    return;
+  const double c = std::cos(x_(Yaw)), s = std::sin(x_(Yaw)), lx = cfg_.ekf.gnss_velocity_lever_x;
+  const double bx = x_(Vx), by = x_(Vy) + x_(R) * lx;
+  Eigen::Matrix<double, 2, kN> H = Eigen::Matrix<double, 2, kN>::Zero();
+  H(0, Yaw) = -s * bx - c * by;
+  H(1, Yaw) = c * bx - s * by;
+  H(0, Vx) = c;
+  H(1, Vx) = s;
+  H(0, Vy) = -s;
+  H(1, Vy) = c;
+  H(0, R) = -s * lx;
+  H(1, R) = c * lx;
+  const Vec2 h(c * bx - s * by, s * bx + c * by);
+  const double sig2 = cfg_.ekf.gnss_velocity_sigma * cfg_.ekf.gnss_velocity_sigma;
+  const Eigen::Matrix2d Rm = Eigen::Matrix2d::Identity() * sig2;
+  const Vec2 nu = f.velocity - h;
+  const Eigen::Matrix2d S = H * P_ * H.transpose() + Rm;
+  if (nu.dot(S.inverse() * nu) > cfg_.ekf.gnss_velocity_gate) return;
+  update<2>(f.velocity, h, H, Rm);
 }
 
 LocalizationState EkfFilter::state() const {

@@ -4,7 +4,8 @@
 // Between measurements a constant-velocity, constant-turn model (vx, vy, r random walks); each gyro sample
 // measures r + b, each optical sample k·(v + r × lever), the wheels vx + r × lever (only while no optical sample
 // comes), a LiDAR odometry increment the mean (vx, vy, r) over its interval, a GNSS fix the position (through
-// the gate). A standing car is held to r = 0, so the gyro's bias shows at once; GNSS while driving makes the bias
+// the gate) and, when the receiver gives one, its velocity over ground (vx, vy + r·lx rotated: the sideslip). A
+// standing car is held to r = 0, so the gyro's bias shows at once; GNSS while driving makes the bias
 // and the speed scale observable, which is what keeps dead reckoning through an outage well under the raw
 // sensors' drift.
 #include <Eigen/Core>
@@ -36,6 +37,7 @@ class EkfFilter final : public FusionFilter {
   void on_imu(const ImuSample& s) override;
   void on_speed(const BodySpeed& s) override;
   void on_gnss(const GnssFix& f) override;
+  void on_gnss_velocity(const GnssFix& f);
   void on_odometry(const OdometryIncrement& o) override;
   void apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma);
 

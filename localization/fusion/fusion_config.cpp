@@ -75,7 +75,15 @@ const ConfigSection<EkfConfig>& ekf_section() {
           .number("initial_scale_sigma", &C::initial_scale_sigma, 1e-6, 1.0, "",
                   "Initial σ of the optical speed scale.")
           .number("standstill_rate_sigma", &C::standstill_rate_sigma, 1e-6, 1.0, "rad/s",
-                  "σ of the zero yaw rate a standing car is held to.");
+                  "σ of the zero yaw rate a standing car is held to.")
+          .boolean("gnss_velocity", &C::gnss_velocity,
+                   "Take the GNSS receiver's velocity over ground (speed and course): it measures the sideslip.")
+          .number("gnss_velocity_sigma", &C::gnss_velocity_sigma, 1e-3, 10.0, "m/s",
+                  "GNSS velocity noise per axis.")
+          .number("gnss_velocity_lever_x", &C::gnss_velocity_lever_x, -5.0, 5.0, "m",
+                  "Where the receiver gives its velocity: this far ahead of the reference point (rear axle).")
+          .number("gnss_velocity_gate", &C::gnss_velocity_gate, 1.0, 1e6, "",
+                  "Normalised innovation squared beyond which a GNSS velocity is not taken.");
   return s;
 }
 

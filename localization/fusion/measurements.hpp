@@ -43,6 +43,8 @@ struct GnssFix {
   double sigma = 0;            // m per horizontal axis
   bool heading_valid = false;  // a dual-antenna heading
   double heading = 0;          // rad, ENU
+  bool velocity_valid = false;  // the receiver's velocity over ground (Doppler: RMC/VTG speed and course)
+  Vec2 velocity = Vec2::Zero();  // m/s, ENU, of the point localization.fusion.ekf.gnss_velocity_lever_x names
 };
 
 // A relative pose from LiDAR odometry: the body at t1 seen from the body at t0, with its covariance over
