@@ -176,6 +176,9 @@ const ConfigSection<MissionConfig>& mission_section() {
           .number("open_end_settle", &C::open_end_settle, 0, 10, "s",
                   "Open layout: cone updates unbroken this long before an end of the track is believed (the map "
                   "refills after a sensor gap).")
+          .number("open_end_confirm", &C::open_end_confirm, 0, 50, "m",
+                  "An open layout's end is believed once it stayed in sight, with no cone beyond, on every fresh "
+                  "plan over this distance driven (a plan that ends short for a moment is no end).")
           .number("ebs_trigger_distance", &C::ebs_trigger_distance, 1, 500, "m",
                   "EBS test: ask for Emergency this far past the start line.")
           .number("skidpad_exit_length", &C::skidpad_exit_length, 5, 100, "m", "Skid pad exit lane past the crossing.")

@@ -33,7 +33,7 @@ void TrackdriveMission::start(const MissionInput& in) {
   }
 }
 
-bool TrackdriveMission::detect_open_end(const MissionInput& in) {
+bool TrackdriveMission::open_end_in_sight(const MissionInput& in) const {
   const Path* plan = in.plan;
   // Only the first time round on real-time plans: a loop's recorded lap never ends.
   if (run_out_ || finished() || !plan || !in.state || !in.cones || plan->points.size() < 2 || !lap_counter_ ||
@@ -56,6 +56,22 @@ bool TrackdriveMission::detect_open_end(const MissionInput& in) {
     const Vec2 d = c.position.head<2>() - end.p;
     if (d.dot(dir) > 1.0 && d.norm() < 10.0) return false;
   }
+  return true;
+}
+
+bool TrackdriveMission::detect_open_end(const MissionInput& in) {
+  // Believed once the end stayed in sight on every fresh plan over open_end_confirm driven: a plan that ends short
+  // for a moment (a sharp turn beyond the walk's end whose cones the real perception has not confirmed yet) is no
+  // end of the track; it ended epfl_autoX_Vaudoise_Sponso's first lap in its slalom.
+  if (!open_end_in_sight(in)) {
+    open_end_since_.reset();
+    return false;
+  }
+  if (!open_end_since_) open_end_since_ = in.odometer;
+  if (in.odometer - *open_end_since_ < config_.mission.open_end_confirm) return false;
+  const Path* plan = in.plan;
+  const PathPoint& end = plan->points.back();
+  const Vec2 dir(std::cos(end.yaw), std::sin(end.yaw));
   Path out = *plan;
   out.closed = false;
   open_end_s_ = out.length();

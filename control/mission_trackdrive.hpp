@@ -40,6 +40,7 @@ class TrackdriveMission final : public MissionRun {
   // An open layout's end in the plan of this cycle: the plan, then straight on to a stop (run_out_). True when
   // found now.
   bool detect_open_end(const MissionInput& in);
+  bool open_end_in_sight(const MissionInput& in) const;  // this cycle's plan ends short with no cone beyond
   SpeedLimits lap2_limits() const;
   // Lap 2's path from lap 1's poses up to t1 (and the plan `ahead` of an early build): built now, or handed to
   // the lap builder and taken by take_lap_build() once ready.
@@ -60,6 +61,7 @@ class TrackdriveMission final : public MissionRun {
   bool pending_early_ = false;   // the pending build is the early one (before the line)
   bool discard_build_ = false;   // the pending build is from poses a loop closure has moved since
   bool rebuild_ = false;         // the lap path was dropped by a loop closure: build it again
+  std::optional<double> open_end_since_;  // odometer where the end came into sight, on every plan since
   std::optional<Path> run_out_;  // open layout: the last plan, then straight on to a stop past the end line
   double open_end_s_ = 0;        // arc length of the end line on run_out_
 };

@@ -42,6 +42,7 @@ struct MissionConfig {
   double open_end_sight = 12.0;              // m: a plan ending this near with no cone beyond is an open layout's end
   double open_end_min_travel = 20.0;         // m driven before an end of the track is believed
   double open_end_settle = 0.5;              // s of unbroken cone updates before an end of the track is believed
+  double open_end_confirm = 3.0;  // m driven with the end in sight on every fresh plan before it is believed
   double ebs_trigger_distance = 40.0;        // m past the start line where the EBS test asks for Emergency
   double skidpad_exit_length = 25.0;         // m of exit lane past the crossing
   double skidpad_entry_speed = 4.0;          // m/s until the circles are fitted

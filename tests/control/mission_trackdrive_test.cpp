@@ -264,25 +264,29 @@ TEST_F(OpenLane, WhereThePlanEndsWithNoConeBeyondTheRunEndsAndTheCarStopsStraigh
   // 12.5 m from the plan's end: not yet within open_end_sight (12 m).
   EXPECT_EQ(drive(run, 1, 28).source, PathSource::Planner);
   EXPECT_FALSE(run.open_end_seen());
-  const MissionPath p = drive(run, 29, 29);  // 11.5 m
+  // In sight from x = 29 (11.5 m), believed once it stayed so over open_end_confirm (3 m) driven: at x = 32.
+  ASSERT_EQ(config.mission.open_end_confirm, 3.0);
+  EXPECT_EQ(drive(run, 29, 31).source, PathSource::Planner);
+  EXPECT_FALSE(run.open_end_seen());
+  const MissionPath p = drive(run, 32, 32);
   ASSERT_NE(p.path, nullptr);
   EXPECT_EQ(p.source, PathSource::Straight);
   EXPECT_TRUE(p.fixed);
   EXPECT_TRUE(p.replaced);
   EXPECT_TRUE(run.open_end_seen());
-  // The plan (x 29 → 40.5), then straight on for the stop distance (25 m), down to standstill.
-  EXPECT_NEAR(p.path->points.front().p.x(), 29.0, 1e-9);
+  // The plan (x 32 → 40.5), then straight on for the stop distance (25 m), down to standstill.
+  EXPECT_NEAR(p.path->points.front().p.x(), 32.0, 1e-9);
   EXPECT_NEAR(p.path->points.back().p.x(), 40.5 + config.mission.stop_distance, config.planner.ds);
   for (const auto& q : p.path->points) ASSERT_NEAR(q.p.y(), 0.0, 1e-9);
   EXPECT_NEAR(p.path->points.back().v, 0.0, 1e-9);
 
-  // One run, timed from the start line (crossed at x = 2, t = 0.2 s) to the plan's end (11.5 m on the path).
-  for (int k = 30; k <= 41; ++k) {
+  // One run, timed from the start line (crossed at x = 2, t = 0.2 s) to the plan's end (8.5 m on the path).
+  for (int k = 33; k <= 41; ++k) {
     const Stamp t = 0.1 * k;
     world.move(t, {1.0 * k, 0.0}, 0, kV);
     world.plan_ok = false;
     EXPECT_EQ(run.update_path(world.input(t)).source, PathSource::Straight);
-    const FollowResult f = test::followed_at(k - 29.0);
+    const FollowResult f = test::followed_at(k - 32.0);
     const MissionEvents e = run.progress(world.input(t), &f);
     if (k < 41) {
       EXPECT_TRUE(e.laps.empty()) << k;
@@ -293,6 +297,26 @@ TEST_F(OpenLane, WhereThePlanEndsWithNoConeBeyondTheRunEndsAndTheCarStopsStraigh
     }
   }
   EXPECT_TRUE(run.finished());
+}
+
+TEST_F(OpenLane, APlanThatEndsShortForAMomentIsNoEnd) {
+  // The lane goes on to x = 60, but until x = 30 only its cones up to x = 40 are mapped (a turn beyond the walk's
+  // end that the perception has not confirmed yet) and the plan ends at x = 40.5: in sight for 2 m, then the cones
+  // beyond come in and the plan runs on.
+  TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
+  start(run);
+  EXPECT_EQ(drive(run, 1, 30).source, PathSource::Planner);
+  lane_end = 60;
+  for (int k = 31; k <= 45; ++k) {
+    const Stamp t = 0.1 * k;
+    world.move(t, {1.0 * k, 0.0}, 0, kV);
+    world.see(t, lane());
+    world.plan = test::straight_path({1.0 * k, 0.0}, 0, 60.5 - k, 0.25);
+    world.plan_ok = true;
+    EXPECT_EQ(run.update_path(world.input(t)).source, PathSource::Planner) << k;
+    run.progress(world.input(t), nullptr);
+  }
+  EXPECT_FALSE(run.open_end_seen());
 }
 
 TEST_F(OpenLane, ConesBeyondThePlanMeanTheTrackGoesOn) {
