@@ -109,7 +109,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
   if (!expect_at_ || (pose.position() - *expect_at_).norm() >= cfg_.expect_spacing) {
     expect_at_ = pose.position();
     for (std::size_t k = 0; k < entries_.size(); ++k) {
-      const double range = pose.inverse_transform(entries_[k].mean).norm();
+      const double range = (entries_[k].mean - pose.position()).norm();
       if (range < cfg_.expect_min_range || range > cfg_.expect_range) continue;
       ++(taken[k] ? entries_[k].near_seen : entries_[k].near_missed);
     }

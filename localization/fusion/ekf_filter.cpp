@@ -51,17 +51,21 @@ void EkfFilter::predict(Stamp t) {
 
 template <int M>
 double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, int consider) {
+                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, int consider,
+                         double gate) {
   const Eigen::Matrix<double, M, 1> nu = z - h;  // no angles here: heading residuals come in wrapped
   const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + Rm;
-  Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S.inverse();
+  const Eigen::Matrix<double, M, M> S_inv = S.inverse();
+  const double nis = nu.dot(S_inv * nu);
+  if (nis > gate) return nis;
+  Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S_inv;
   if (consider >= 0) K.row(consider).setZero();
   x_ += K * nu;
   x_(Yaw) = wrap_angle(x_(Yaw));
   // Joseph form: stays symmetric positive definite with the many small updates of a 200 Hz gyro.
   const Mat IKH = Mat::Identity() - K * H;
   P_ = IKH * P_ * IKH.transpose() + K * Rm * K.transpose();
-  return nu.dot(S.inverse() * nu);
+  return nis;
 }
 
 void EkfFilter::on_imu(const ImuSample& s) {
@@ -266,11 +270,7 @@ void EkfFilter::on_gnss_velocity(const GnssFix& f) {
   H(1, R) = c * lx;
   const Vec2 h(c * bx - s * by, s * bx + c * by);
   const double sig2 = cfg_.ekf.gnss_velocity_sigma * cfg_.ekf.gnss_velocity_sigma;
-  const Eigen::Matrix2d Rm = Eigen::Matrix2d::Identity() * sig2;
-  const Vec2 nu = f.velocity - h;
-  const Eigen::Matrix2d S = H * P_ * H.transpose() + Rm;
-  if (nu.dot(S.inverse() * nu) > cfg_.ekf.gnss_velocity_gate) return;
-  update<2>(f.velocity, h, H, Rm);
+  update<2>(f.velocity, h, H, Eigen::Matrix2d::Identity() * sig2, -1, cfg_.ekf.gnss_velocity_gate);
 }
 
 LocalizationState EkfFilter::state() const {

@@ -8,6 +8,8 @@
 // standing car is held to r = 0, so the gyro's bias shows at once; GNSS while driving makes the bias
 // and the speed scale observable, which is what keeps dead reckoning through an outage well under the raw
 // sensors' drift.
+#include <limits>
+
 #include <Eigen/Core>
 
 #include "localization/fusion/fusion_filter.hpp"
@@ -30,10 +32,12 @@ class EkfFilter final : public FusionFilter {
  private:
   void advance(Stamp t) override { predict(t); }
   void predict(Stamp t);
+  // The measurement z of prediction h; returns its normalised innovation squared (NIS), and applies it only when
+  // that is at most `gate`. `consider`: a state this update must not move.
   template <int M>
   double update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm,
-                int consider = -1);  // a state this update must not move
+                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, int consider = -1,
+                double gate = std::numeric_limits<double>::infinity());
   void on_imu(const ImuSample& s) override;
   void on_speed(const BodySpeed& s) override;
   void on_gnss(const GnssFix& f) override;
