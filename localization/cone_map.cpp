@@ -32,14 +32,19 @@ const ConfigSection<ConeMapConfig>& cone_map_section() {
                    "Ghost pruning: frames a mapped cone within the expected range went undetected before it is "
                    "withheld, when it was missed there more often than seen (0: never withheld).")
           .number("expect_spacing", &ConeMapConfig::expect_spacing, 0.0, 10.0, "m",
-                  "Ghost pruning: distance driven between the frames that count (a standing car counts once).");
+                  "Ghost pruning: distance driven between the frames that count (a standing car counts once).")
+          .number("expect_memory", &ConeMapConfig::expect_memory, 0.0, 200.0, "m",
+                  "Ghost pruning: a cone first detected now counts as missed by the frames of the last this many "
+                  "metres driven that had it in the expected range (passed unseen, detected from far after).");
   return s;
 }
 
 namespace {
 
-constexpr double kVisitGap = 3.0;      // s unseen before a sighting starts a new visit (a lap takes far longer)
-constexpr std::size_t kMaxVisits = 8;  // per cone: the oldest two merge beyond (they are long corrected alike)
+constexpr double kVisitGap = 3.0;        // s unseen before a sighting starts a new visit (a lap takes far longer)
+constexpr std::size_t kMaxVisits = 8;    // per cone: the oldest two merge beyond (they are long corrected alike)
+constexpr std::size_t kMaxTrail = 1024;  // frames remembered for ghost pruning, whatever expect_memory says
+constexpr double kTrailAge = 10.0;       // s: older frames are of another pass (a lap takes longer), maybe drifted
 
 ConeColour voted_colour(const std::array<int, 6>& votes) {
   const auto top = std::max_element(votes.begin(), votes.end());
@@ -106,19 +111,48 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
   }
 
   // Ghost pruning's evidence: the mapped cones near the car, detected in this frame or not.
+  const auto in_expected_range = [&](const Vec2& cone, const Vec2& car) {
+    const double range = (cone - car).norm();
+    return range >= cfg_.expect_min_range && range <= cfg_.expect_range;
+  };
+  bool counted = false;
   if (!expect_at_ || (pose.position() - *expect_at_).norm() >= cfg_.expect_spacing) {
     expect_at_ = pose.position();
-    for (std::size_t k = 0; k < entries_.size(); ++k) {
-      const double range = (entries_[k].mean - pose.position()).norm();
-      if (range < cfg_.expect_min_range || range > cfg_.expect_range) continue;
-      ++(taken[k] ? entries_[k].near_seen : entries_[k].near_missed);
+    counted = true;
+    for (std::size_t k = 0; k < entries_.size(); ++k)
+      if (in_expected_range(entries_[k].mean, pose.position()))
+        ++(taken[k] ? entries_[k].near_seen : entries_[k].near_missed);
+    trail_.push_back({pose.position(), detections.stamp});
+    double driven = 0;  // from the newest back; what lies beyond expect_memory goes
+    for (std::size_t i = trail_.size() - 1; i > 0; --i) {
+      driven += (trail_[i].position - trail_[i - 1].position).norm();
+      if (driven > cfg_.expect_memory || detections.stamp - trail_[i - 1].stamp > kTrailAge) {
+        trail_.erase(trail_.begin(), trail_.begin() + static_cast<std::ptrdiff_t>(i));
+        break;
+      }
     }
+    while (trail_.size() > kMaxTrail) trail_.pop_front();
   }
+  const std::size_t trail_past = trail_.size() - (counted ? 1 : 0);  // the frames before this one
 
   for (std::size_t i = 0; i < seen.size(); ++i) {
     if (entry_of[i] == kNone) {
+      // Where the car was near and saw nothing, it missed this cone. Near a mapped neighbour, which may have taken
+      // those detections (two cones seen as one from far, split when near; a tyre seen as two), it was missed
+      // where the neighbour was: a doubled cone beside a true one starts clean, a piece of a ghost as a ghost.
+      const Entry* neighbour = nullptr;
+      double nearest = 2.0 * cfg_.association_gate;
+      for (const auto& e : entries_)
+        if (const double d = (e.mean - seen[i].p).norm(); d < nearest) nearest = d, neighbour = &e;
+      int missed = 0;
+      if (neighbour)
+        missed = neighbour->near_missed;
+      else
+        for (std::size_t f = 0; f < trail_past; ++f) missed += in_expected_range(seen[i].p, trail_[f].position);
       entry_of[i] = entries_.size();
-      entries_.emplace_back().id = next_id_++;
+      Entry& fresh = entries_.emplace_back();
+      fresh.id = next_id_++;
+      fresh.near_missed = missed;
     }
     Entry& e = entries_[entry_of[i]];
     const Stamp t = detections.stamp;
@@ -169,6 +203,7 @@ void ConeMap::refresh(Entry& e) {
 }
 
 int ConeMap::correct(const std::function<Pose2(Stamp)>& correction) {
+  trail_.clear();  // taken in the frame the correction leaves
   for (auto& e : entries_) {
     for (auto& v : e.visits) {
       if (v.n == 0) continue;

@@ -13,13 +13,17 @@
 // missed at least `min_misses` times and more often than seen in that range is withheld: what looks like a cone
 // from far away and does not from near (a tyre stack, a post beside a fence, a piece of fence). Real cones are
 // detected near the car in nearly every frame. Frames count only once the car has moved `expect_spacing` since the
-// last one counted: a car standing with a cone hidden behind another would otherwise count it out.
+// last one counted: a car standing with a cone hidden behind another would otherwise count it out. A cone first
+// detected now counts as missed by the frames of the last `expect_memory` metres (and 10 s: not those of another
+// lap) that had it in the expected range: a post the car passed unseen and then detected from far behind is the
+// same ghost as one it came near after.
 //
 // Loop closure moves the poses a map was built from (localization/loop_closure): each cone keeps its sightings per
 // visit (seen without a gap of more than a few seconds), so that correct() moves each visit with the correction of
 // its instant, a cone seen at the start and again on the next lap with the correction of each. Two cones that then
 // coincide are one (a cone mapped at the start and again, drifted, at the lap's end).
 #include <array>
+#include <deque>
 #include <functional>
 #include <optional>
 #include <span>
@@ -42,6 +46,7 @@ struct ConeMapConfig {
   double expect_range = 10.0;     // m: a cone this near is detected in nearly every frame
   int min_misses = 3;             // frames a cone near the car was not detected before it may be withheld; 0: never
   double expect_spacing = 0.5;    // m driven between the frames that count
+  double expect_memory = 30.0;    // m driven: a cone first detected now was missed by the frames of this stretch
 };
 const ConfigSection<ConeMapConfig>& cone_map_section();
 
@@ -57,6 +62,7 @@ class ConeMap {
   void clear() {
     entries_.clear();
     expect_at_.reset();
+    trail_.clear();
   }
   // Moves every cone with the poses it was seen from: `correction(t)` takes a position placed by the pose of
   // instant t into the corrected map frame (LoopClosure::correction_at). Then merges the cones that coincide
@@ -77,7 +83,7 @@ class ConeMap {
     Vec2 info_vec = Vec2::Zero();                    // Σ⁻¹ μ
     Vec2 mean = Vec2::Zero();
     int observations = 0;
-    int verified = 0, rejected = 0;  // camera verdicts on it
+    int verified = 0, rejected = 0;      // camera verdicts on it
     int near_seen = 0, near_missed = 0;  // frames with it within the expected range: detected, not detected
     std::array<int, 6> colour_votes{};
     std::uint32_t id = 0;
@@ -89,6 +95,11 @@ class ConeMap {
   static void refresh(Entry& e);
   ConeMapConfig cfg_;
   std::optional<Vec2> expect_at_;  // where the last frame that counted for ghost pruning was taken
+  struct TrailFrame {
+    Vec2 position;
+    Stamp stamp;
+  };
+  std::deque<TrailFrame> trail_;  // the frames that counted over the last expect_memory metres (and seconds)
   std::vector<Entry> entries_;
   std::uint32_t next_id_ = 1;
 };
