@@ -59,17 +59,27 @@ Pose2 fit(const std::vector<std::pair<int, int>>& pairs, const std::vector<Cone>
   return {t.x(), t.y(), yaw};
 }
 
-// Current cones that land within `radius` of a reference cone (any colour) under `t`, paired or not.
-int landed(const Pose2& t, const std::vector<Cone>& cur, const std::vector<Cone>& ref,
-           const std::vector<std::vector<int>>& near_any, double radius) {
+// Current cones that land within `radius` of a reference cone (any colour) under `t` without pairing, but for
+// copies: a cone mapped twice in the lap (its sightings split by a jump of the pose) lands by the reference its
+// other copy paired with, and says nothing against `t`. A copy is within `copy_radius` of a paired current cone of
+// a compatible colour; a start line's big orange cone landing by a blue one is no copy of it.
+int landed_unpaired(const Pose2& t, const std::vector<Cone>& cur, const std::vector<Cone>& ref,
+                    const std::vector<std::vector<int>>& near_any, const std::vector<std::pair<int, int>>& pairs,
+                    double radius, double copy_radius) {
+  std::vector<char> paired(cur.size(), 0);
+  for (const auto& [i, j] : pairs) paired[std::size_t(i)] = 1;
   int n = 0;
   for (std::size_t i = 0; i < cur.size(); ++i) {
+    if (paired[i]) continue;
     const Vec2 p = t.transform(xy(cur[i]));
-    for (int j : near_any[i])
-      if ((p - xy(ref[std::size_t(j)])).norm() <= radius) {
-        ++n;
-        break;
-      }
+    const bool lands = std::any_of(near_any[i].begin(), near_any[i].end(),
+                                   [&](int j) { return (p - xy(ref[std::size_t(j)])).norm() <= radius; });
+    if (!lands) continue;
+    const bool copy = std::any_of(pairs.begin(), pairs.end(), [&](const std::pair<int, int>& pr) {
+      const Cone& k = cur[std::size_t(pr.first)];
+      return compatible(k.colour, cur[i].colour) && (xy(k) - xy(cur[i])).norm() <= copy_radius;
+    });
+    n += !copy;
   }
   return n;
 }
@@ -112,7 +122,9 @@ std::optional<ConeAlignment> align_cones(const std::vector<Cone>& current, const
   }
   if (hyps.empty()) return std::nullopt;
   auto consistent = [&](const Hypothesis& h) {
-    return landed(h.t, current, reference, near_any, cfg.landing_radius) - h.pairs <= cfg.max_unpaired;
+    const auto pairs = pairs_under(h.t, current, reference, candidates, tol);
+    return landed_unpaired(h.t, current, reference, near_any, pairs, cfg.landing_radius, cfg.copy_radius) <=
+           cfg.max_unpaired;
   };
   // Most pairs first: the first consistent one is the answer.
   std::stable_sort(hyps.begin(), hyps.end(),

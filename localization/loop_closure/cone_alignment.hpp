@@ -7,8 +7,9 @@
 // Every hypothesis from two current cones and two reference cones of the same colours, as far apart as each
 // other and within the drift bound of where they are, is tried (no random sampling: the same input gives the same
 // loop); the best is refined by least squares over its pairs. A hypothesis is consistent when at most
-// `max_unpaired` current cones land near a reference cone (within `landing_radius`) without pairing: the right
-// one leaves none but noise, one slid by a cone spacing leaves the cones that make the scene unlike itself (a start
+// `max_unpaired` current cones land near a reference cone (within `landing_radius`) without pairing (a copy of a
+// paired cone, within `copy_radius` of it, does not count: the lap's landmarks hold a cone twice where the pose
+// jumped between its sightings): the right one leaves none but noise, one slid by a cone spacing leaves the cones that make the scene unlike itself (a start
 // line's big orange cones landing by blue ones) unpaired. The answer is the consistent hypothesis with the most
 // pairs; it is accepted only when no consistent hypothesis elsewhere (shifted by more than twice the tolerance)
 // pairs `rival_min_pairs`. A symmetric scene (a straight lane, an arc of one radius) slid along itself by a spacing
@@ -29,6 +30,7 @@ struct ConeAlignmentConfig {
   int min_pairs = 4;            // fewer: no loop
   double landing_radius = 2.0;  // m: a current cone this close to a reference cone after the transform should pair
   int max_unpaired = 2;         // consistent: at most this many cones landed near a reference cone unpaired
+  double copy_radius = 1.0;     // m: an unpaired cone this near a paired one of its colour is its copy
   int rival_min_pairs = 3;      // a consistent hypothesis elsewhere with this many pairs makes the scene ambiguous
 };
 

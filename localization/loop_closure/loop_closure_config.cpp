@@ -47,6 +47,9 @@ const ConfigSection<ConeAlignmentConfig>& alignment_section() {
                    "An alignment is consistent when at most this many cones landed near a start cone unpaired. "
                    "The consistent one with most pairs is the loop, unless another consistent one elsewhere pairs "
                    "rival_min_pairs (ambiguous: no loop).")
+          .number("copy_radius", &C::copy_radius, 0.0, 5.0, "m",
+                  "A cone seen now that landed unpaired this close to a paired one of a compatible colour is a copy "
+                  "of it (the lap mapped it twice) and does not make an alignment inconsistent.")
           .integer("rival_min_pairs", &C::rival_min_pairs, 2, 1000, "",
                    "A consistent alignment elsewhere with this many pairs makes the scene ambiguous.");
   return s;

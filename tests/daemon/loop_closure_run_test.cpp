@@ -45,7 +45,9 @@ TEST(LoopClosureRun, TheLapsLoopClosesOnceNearTheStartAndTheMapIsOneMapAgain) {
     EXPECT_LT(c["error_after_m"].get<double>(), 0.5 * c["error_before_m"].get<double>()) << c.dump();
   }
   const json& first = closures[0];
-  EXPECT_GT(first["error_before_m"].get<double>(), 0.5) << first.dump();  // worth closing
+  // Worth closing: the odometry drifted 0.39 m by the start (1.07 m before its deskew stopped taking the previous
+  // pose's correction for motion).
+  EXPECT_GT(first["error_before_m"].get<double>(), 0.3) << first.dump();
   EXPECT_GT(first["cones_merged"].get<int>(), 0) << first.dump();
   // Never early: lap 1 takes 45.8 s from the start at 6 s (the car stands, then drives off); the loop closes as
   // the start's cones come back into view, before lap 1's line.
@@ -54,8 +56,10 @@ TEST(LoopClosureRun, TheLapsLoopClosesOnceNearTheStartAndTheMapIsOneMapAgain) {
   EXPECT_GT(first["time_s"].get<double>(), lap1_end - 10.0) << first.dump();
   EXPECT_LT(first["time_s"].get<double>(), lap1_end + 2.0) << first.dump();
 
-  // One map again: measured RMSE 0.321 -> 0.198 m, ghosts 478 -> 104, missed 159 -> 0.
-  const json &m_off = off["map"], &m_on = on["map"];
+  // One map again, the map lap 2 drives on (when lap 1 is timed, the loop closed just before): measured RMSE
+  // 0.346 -> 0.151 m, ghosts 180 -> 2, missed 175 -> 2. The map at the end is lap 2's on the odometry alone, which
+  // loses track above 12 m/s (docs/localization.md): not compared.
+  const json &m_off = off["map_lap1"], &m_on = on["map_lap1"];
   EXPECT_LT(m_on["rmse_m"].get<double>(), 0.75 * m_off["rmse_m"].get<double>()) << m_on.dump() << m_off.dump();
   EXPECT_LT(m_on["ghosts"].get<int>(), m_off["ghosts"].get<int>() / 2) << m_on.dump() << m_off.dump();
   EXPECT_LT(m_on["missed"].get<int>(), m_off["missed"].get<int>()) << m_on.dump() << m_off.dump();
