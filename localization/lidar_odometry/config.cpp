@@ -47,7 +47,8 @@ const ConfigSection<OdometryConfig>& odometry_section() {
           .boolean("hold_degenerate", &C::hold_degenerate,
                    "A scan whose matches leave a direction free keeps the constant-velocity prediction as its pose.")
           .integer("deskew_passes", &C::deskew_passes, 1, 5, "",
-                   "Registrations per scan; each after the first deskews with the motion the previous one found.")
+                   "Registrations per scan; each after the first deskews with the motion the previous one found. "
+                   "With the car's measured motion (vehicle_motion) one: that motion is the scan's own.")
           .number("velocity_gain", &C::velocity_gain, 0.05, 1.0, "",
                   "Share of the newest increment in the twist that deskews and predicts the next scan (a low-pass: "
                   "a wrong increment is not fed back whole into the next scan's deskew).")

@@ -32,6 +32,7 @@ struct OdometryConfig {
   bool vehicle_motion = true;       // the daemon hands the odometry the wheel speed and yaw rate (deskew, prediction)
   bool hold_degenerate = true;      // a degenerate scan keeps the constant-velocity prediction as its pose
   int deskew_passes = 2;            // registrations per scan, each deskewed with the motion the previous one found
+                                    // (one with a measured twist: that is the scan's motion)
   double velocity_gain = 0.2;    // share of the newest increment in the twist that deskews and predicts the next scan
   bool decouple = true;          // ground planes constrain only z, roll, pitch; edges and other planes x, y, yaw
   double ground_normal_z = 0.9;  // a plane match whose normal is this close to the body's z is ground
