@@ -1,6 +1,7 @@
 #include "localization/cone_map.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <tuple>
 
@@ -18,6 +19,9 @@ const ConfigSection<ConeMapConfig>& cone_map_section() {
           .integer("min_rejections", &ConeMapConfig::min_rejections, 1, 1000, "",
                    "Camera rejections before a mapped cone the camera rejected more often than it "
                    "verified is withheld (a distractor the LiDAR took for a cone).")
+          .number("min_support", &ConeMapConfig::min_support, 0.0, 100.0, "",
+                  "A cone is reported once its detections' confidences (1 near or verified by the camera, less far: "
+                  "perception.lidar.quality) sum to this: what only the LiDAR saw a few times from far waits.")
           .number("max_range", &ConeMapConfig::max_range, 1.0, 100.0, "m",
                   "Detections beyond this range are not mapped.")
           .number("merge_gate", &ConeMapConfig::merge_gate, 0.01, 5.0, "m",
@@ -74,6 +78,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     Eigen::Matrix2d info;
     ConeColour colour;
     bool verified;
+    double confidence;
   };
   std::vector<Seen> seen;
   seen.reserve(detections.cones.size());
@@ -83,7 +88,8 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     // Covariance rotated into the map frame; floor it so a zero covariance cannot make the information infinite.
     Eigen::Matrix2d cov = R * d.covariance * R.transpose();
     cov += Eigen::Matrix2d::Identity() * 1e-4;
-    seen.push_back({pose.transform(local), cov.inverse(), d.colour, d.stage == DetectionStage::Camera});
+    const double confidence = std::isfinite(d.confidence) ? std::clamp(d.confidence, 0.0, 1.0) : 0.0;
+    seen.push_back({pose.transform(local), cov.inverse(), d.colour, d.stage == DetectionStage::Camera, confidence});
   }
 
   // One frame's detections are distinct cones: each joins at most one mapped cone and each mapped cone takes at
@@ -172,6 +178,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     e.info_vec += seen[i].info * seen[i].p;
     e.mean = e.info.ldlt().solve(e.info_vec);
     ++e.observations;
+    e.support += seen[i].verified ? 1.0 : seen[i].confidence;  // the camera's verdict confirms a far one
     e.verified += seen[i].verified;
     const auto c = static_cast<std::size_t>(seen[i].colour);
     if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size()) ++e.colour_votes[c];
@@ -239,6 +246,7 @@ int ConeMap::correct(const std::function<Pose2(Stamp)>& correction) {
     std::sort(keep.visits.begin(), keep.visits.end(), [](const Visit& x, const Visit& y) { return x.first < y.first; });
     cap_visits(keep);
     keep.observations += from.observations;
+    keep.support += from.support;
     keep.verified += from.verified;
     keep.rejected += from.rejected;
     keep.near_seen += from.near_seen;
@@ -258,7 +266,7 @@ int ConeMap::correct(const std::function<Pose2(Stamp)>& correction) {
 std::vector<Cone> ConeMap::cones() const {
   std::vector<Cone> out;
   for (const auto& e : entries_) {
-    if (e.observations < cfg_.min_observations) continue;
+    if (e.observations < cfg_.min_observations || e.support < cfg_.min_support - 1e-9) continue;
     if (e.rejected >= cfg_.min_rejections && e.rejected > e.verified) continue;  // the camera says: not a cone
     if (cfg_.min_misses > 0 && e.near_missed >= cfg_.min_misses && e.near_missed > e.near_seen)
       continue;  // not seen where a cone would have been: not a cone

@@ -39,7 +39,9 @@ struct ConeMapConfig {
   double colour_conflict_gate =
       0.4;                   // m: a detection of another colour than the mapped cone's is that cone only this close
   int min_observations = 2;  // a cone is reported once seen this often
-  int min_rejections = 2;    // camera rejections before a mapped cone may be withheld
+  double min_support = 2.0;  // ... and once its detections' confidences sum to this (a far one counts less, one
+                             // the camera verified counts 1)
+  int min_rejections = 5;    // camera rejections before a mapped cone may be withheld (2 withheld true cones)
   double max_range = 20.0;   // detections farther than this are ignored (m)
   double merge_gate = 0.45;  // m: corrected cones this close, first mapped at different times, are one cone
   double expect_min_range = 2.0;  // m: nearer, a cone may be hidden by the car's own body cut-out
@@ -83,6 +85,7 @@ class ConeMap {
     Vec2 info_vec = Vec2::Zero();                    // Σ⁻¹ μ
     Vec2 mean = Vec2::Zero();
     int observations = 0;
+    double support = 0;                  // the detections' confidences summed
     int verified = 0, rejected = 0;      // camera verdicts on it
     int near_seen = 0, near_missed = 0;  // frames with it within the expected range: detected, not detected
     std::array<int, 6> colour_votes{};

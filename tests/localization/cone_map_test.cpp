@@ -132,7 +132,9 @@ TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
 // (rejected) and beside the car (LiDAR only again); a real cone next to it that the camera verifies once and doubts
 // once; a cone the camera never sees.
 TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
-  ConeMap map;
+  ConeMapConfig cfg;
+  cfg.min_rejections = 2;  // the rule on two verdicts (the default asks for 5: below)
+  ConeMap map(cfg);
   const Pose2 pose{};
   auto seen = [](double x, double y, DetectionStage stage) {
     Cone c;
@@ -176,6 +178,64 @@ TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
   EXPECT_TRUE(mapped(cone));    // rejected 1 (< min_rejections), verified 1
   EXPECT_TRUE(mapped(unseen));  // the camera never judged it
   EXPECT_EQ(cones.size(), 2u);
+}
+
+TEST(ConeMap, TwoCameraRejectionsDoNotWithholdAConeTheLidarSawNearOften) {
+  // A blue cone the LiDAR sees in every frame while the car drives past, which the camera judges twice (a cone
+  // half behind another in the image, at the image's edge) and rejects both times: by default (min_rejections 5)
+  // it stays; a tyre rejected in five frames does not.
+  ConeMap map;
+  const Vec2 cone(12, 2), tyre(14, 4);
+  for (int k = 0; k < 12; ++k) {
+    const Pose2 pose{0.5 * k, 0, 0};
+    ConeDetections d;
+    for (const Vec2& p : {cone, tyre}) {
+      Cone c;
+      c.position = Vec3(pose.inverse_transform(p).x(), pose.inverse_transform(p).y(), 0);
+      c.stage = DetectionStage::Lidar;
+      d.cones.push_back(c);
+    }
+    std::vector<Cone> rejected = {d.cones[1]};  // the tyre: rejected whenever seen (from k = 4: in view)
+    if (k < 4) rejected.clear();
+    if (k == 6 || k == 7) rejected.push_back(d.cones[0]);
+    map.update(d, pose, rejected);
+  }
+  const auto cones = map.cones();
+  auto mapped = [&](const Vec2& p) {
+    return std::any_of(cones.begin(), cones.end(),
+                       [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
+  };
+  EXPECT_TRUE(mapped(cone));
+  EXPECT_FALSE(mapped(tyre));  // rejected 8 times, never verified
+}
+
+TEST(ConeMap, WhatWasSeenOnlyAFewTimesFromFarWaitsForMoreSightings) {
+  // Detections carry the perception's confidence, which falls with range (perception.lidar.quality): 0.4 at 19 m.
+  // A cone is reported once the confidences of its detections sum to min_support (2): five far sightings, two near.
+  ConeMap map;
+  auto frame = [](const Vec2& p, double confidence) {
+    ConeDetections d;
+    Cone c;
+    c.position = Vec3(p.x(), p.y(), 0);
+    c.confidence = confidence;
+    d.cones.push_back(c);
+    return d;
+  };
+  const Vec2 far(19, 3), near(6, -2);
+  for (int k = 0; k < 4; ++k) map.update(frame(far, 0.4), Pose2{});
+  EXPECT_TRUE(map.cones().empty());  // 1.6: a lying tyre seen three or four times across the infield waits
+  map.update(frame(far, 0.4), Pose2{});
+  EXPECT_EQ(map.cones().size(), 1u);  // 2.0
+  for (int k = 0; k < 2; ++k) map.update(frame(near, 1.0), Pose2{});
+  EXPECT_EQ(map.cones().size(), 2u);
+  // Verified by the camera, a far detection counts whole: two verified sightings at 19 m are a cone.
+  const Vec2 verified_far(18, -5);
+  for (int k = 0; k < 2; ++k) {
+    ConeDetections d = frame(verified_far, 0.4);
+    d.cones[0].stage = DetectionStage::Camera;
+    map.update(d, Pose2{});
+  }
+  EXPECT_EQ(map.cones().size(), 3u);
 }
 
 // Ghost pruning: a tyre stack beside the track passes the LiDAR's size filter from far away (a few points) and not
