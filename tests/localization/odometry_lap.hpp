@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,9 +45,11 @@ inline double thread_cpu_ms() {
 // Drives one lap of `track` at `speed` and integrates the odometry from the true starting pose. `trace`: one line per
 // scan on stdout (true and estimated increment, their difference, the diagnostics). The car already drives at the
 // first scan; `known_start_speed` hands the odometry that speed (else it starts from a standing prediction).
+// `measured_motion`: each scan comes with the car's true mean body twist over it (forward speed and yaw rate), as
+// the daemon hands it the wheel speed and the GNSS-INS yaw rate.
 inline OdometryLapResult drive_odometry_lap(const std::string& track, double speed,
                                             const lidar_odometry::LidarOdometryConfig& cfg = {}, bool trace = false,
-                                            bool known_start_speed = false) {
+                                            bool known_start_speed = false, bool measured_motion = false) {
   SimLidarSetup setup;
   setup.track = track;
   setup.speed = speed;
@@ -63,8 +66,17 @@ inline OdometryLapResult drive_odometry_lap(const std::string& track, double spe
       if (known_start_speed) twist[0] = speed;  // the wheel speed a car would know at a flying start
       odo.start_at(drive.body_pose(t), twist);
     }
+    std::optional<lidar_odometry::Vec6> twist;
+    if (measured_motion) {
+      const FiringSpan span = firing_span(scan);
+      const double dt = std::max(span.last - span.first, 1e-3);
+      const Pose2 d = to_pose2(drive.body_pose(span.first).inverse() * drive.body_pose(span.last));
+      twist = lidar_odometry::Vec6::Zero();
+      (*twist)[0] = std::hypot(d.x, d.y) / dt;
+      (*twist)[5] = d.yaw / dt;
+    }
     const double c0 = thread_cpu_ms();
-    const auto out = odo.process(scan);
+    const auto out = odo.process(scan, twist);
     r.cpu_ms.push_back(thread_cpu_ms() - c0);
     r.degenerate += out.diagnostics.degenerate;
     ++r.scans;
