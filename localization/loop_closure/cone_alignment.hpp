@@ -9,12 +9,13 @@
 // loop); the best is refined by least squares over its pairs. A hypothesis is consistent when at most
 // `max_unpaired` current cones land near a reference cone (within `landing_radius`) without pairing (a copy of a
 // paired cone, within `copy_radius` of it, does not count: the lap's landmarks hold a cone twice where the pose
-// jumped between its sightings): the right one leaves none but noise, one slid by a cone spacing leaves the cones that make the scene unlike itself (a start
-// line's big orange cones landing by blue ones) unpaired. The answer is the consistent hypothesis with the most
-// pairs; it is accepted only when no consistent hypothesis elsewhere (shifted by more than twice the tolerance)
-// pairs `rival_min_pairs`. A symmetric scene (a straight lane, an arc of one radius) slid along itself by a spacing
-// is consistent, so it is ambiguous; counting pairs alone is not enough: a scene cut off at its ends (the start seen
-// driving out, the same lane seen coming back) slid by a spacing can pair more cones than the right answer.
+// jumped between its sightings): the right one leaves none but noise, one slid by a cone spacing leaves the cones
+// that make the scene unlike itself (a start line's big orange cones landing by blue ones) unpaired. The answer is
+// the consistent hypothesis with the most pairs; it is accepted only when no consistent hypothesis elsewhere
+// (shifted by more than twice the tolerance) pairs `rival_min_pairs`. A symmetric scene (a straight lane, an arc of
+// one radius) slid along itself by a spacing is consistent, so it is ambiguous; counting pairs alone is not enough:
+// a scene cut off at its ends (the start seen driving out, the same lane seen coming back) slid by a spacing can
+// pair more cones than the right answer.
 #include <optional>
 #include <utility>
 #include <vector>

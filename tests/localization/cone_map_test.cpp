@@ -25,6 +25,28 @@ ConeDetections detect(const std::vector<std::pair<Vec2, ConeColour>>& world, con
 
 using World = std::vector<std::pair<Vec2, ConeColour>>;
 
+// One detection at p (vehicle frame).
+Cone detection(const Vec2& p, ConeColour colour = ConeColour::Unknown, DetectionStage stage = DetectionStage::Truth,
+               double confidence = 1.0) {
+  Cone c;
+  c.position = Vec3(p.x(), p.y(), 0);
+  c.colour = colour;
+  c.stage = stage;
+  c.confidence = confidence;
+  return c;
+}
+
+ConeDetections frame_of(std::vector<Cone> cones) {
+  ConeDetections d;
+  d.cones = std::move(cones);
+  return d;
+}
+
+// Whether a mapped cone stands within 0.3 m of p.
+bool mapped(const std::vector<Cone>& map, const Vec2& p) {
+  return std::any_of(map.begin(), map.end(), [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
+}
+
 // The map after driving along +x past `world`, `frames` detections (σ 5 cm) `step` m apart.
 std::vector<Cone> drive_past(const World& world, int frames, double step, unsigned seed) {
   ConeMap map;
@@ -73,14 +95,7 @@ TEST(ConeMap, ColourByMajorityAndGhostsNeedConfirmation) {
   ConeMapConfig cfg;
   cfg.min_observations = 3;
   ConeMap map(cfg);
-  auto one = [](Vec2 p, ConeColour c) {
-    ConeDetections d;
-    Cone cone;
-    cone.position = Vec3(p.x(), p.y(), 0);
-    cone.colour = c;
-    d.cones.push_back(cone);
-    return d;
-  };
+  auto one = [](Vec2 p, ConeColour c) { return frame_of({detection(p, c)}); };
   map.update(one({4, 1}, ConeColour::Blue), {});
   map.update(one({4, 1}, ConeColour::Yellow), {});
   EXPECT_TRUE(map.cones().empty());  // two observations, not yet confirmed
@@ -136,13 +151,7 @@ TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
   cfg.min_rejections = 2;  // the rule on two verdicts (the default asks for 5: below)
   ConeMap map(cfg);
   const Pose2 pose{};
-  auto seen = [](double x, double y, DetectionStage stage) {
-    Cone c;
-    c.position = Vec3(x, y, 0);
-    c.colour = ConeColour::Blue;
-    c.stage = stage;
-    return c;
-  };
+  auto seen = [](double x, double y, DetectionStage stage) { return detection({x, y}, ConeColour::Blue, stage); };
   const Vec2 tyre(10, 3), cone(14, -2), unseen(6, 5);
   // Far: LiDAR only, all three.
   for (int k = 0; k < 3; ++k) {
@@ -170,13 +179,9 @@ TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
   map.update(d, pose);
 
   const auto cones = map.cones();
-  auto mapped = [&](const Vec2& p) {
-    return std::any_of(cones.begin(), cones.end(),
-                       [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
-  };
-  EXPECT_FALSE(mapped(tyre));   // rejected 2, verified 0
-  EXPECT_TRUE(mapped(cone));    // rejected 1 (< min_rejections), verified 1
-  EXPECT_TRUE(mapped(unseen));  // the camera never judged it
+  EXPECT_FALSE(mapped(cones, tyre));   // rejected 2, verified 0
+  EXPECT_TRUE(mapped(cones, cone));    // rejected 1 (< min_rejections), verified 1
+  EXPECT_TRUE(mapped(cones, unseen));  // the camera never judged it
   EXPECT_EQ(cones.size(), 2u);
 }
 
@@ -188,25 +193,17 @@ TEST(ConeMap, TwoCameraRejectionsDoNotWithholdAConeTheLidarSawNearOften) {
   const Vec2 cone(12, 2), tyre(14, 4);
   for (int k = 0; k < 12; ++k) {
     const Pose2 pose{0.5 * k, 0, 0};
-    ConeDetections d;
-    for (const Vec2& p : {cone, tyre}) {
-      Cone c;
-      c.position = Vec3(pose.inverse_transform(p).x(), pose.inverse_transform(p).y(), 0);
-      c.stage = DetectionStage::Lidar;
-      d.cones.push_back(c);
-    }
+    const ConeDetections d =
+        frame_of({detection(pose.inverse_transform(cone), ConeColour::Unknown, DetectionStage::Lidar),
+                  detection(pose.inverse_transform(tyre), ConeColour::Unknown, DetectionStage::Lidar)});
     std::vector<Cone> rejected = {d.cones[1]};  // the tyre: rejected whenever seen (from k = 4: in view)
     if (k < 4) rejected.clear();
     if (k == 6 || k == 7) rejected.push_back(d.cones[0]);
     map.update(d, pose, rejected);
   }
   const auto cones = map.cones();
-  auto mapped = [&](const Vec2& p) {
-    return std::any_of(cones.begin(), cones.end(),
-                       [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
-  };
-  EXPECT_TRUE(mapped(cone));
-  EXPECT_FALSE(mapped(tyre));  // rejected 8 times, never verified
+  EXPECT_TRUE(mapped(cones, cone));
+  EXPECT_FALSE(mapped(cones, tyre));  // rejected 8 times, never verified
 }
 
 TEST(ConeMap, WhatWasSeenOnlyAFewTimesFromFarWaitsForMoreSightings) {
@@ -214,12 +211,7 @@ TEST(ConeMap, WhatWasSeenOnlyAFewTimesFromFarWaitsForMoreSightings) {
   // A cone is reported once the confidences of its detections sum to min_support (2): five far sightings, two near.
   ConeMap map;
   auto frame = [](const Vec2& p, double confidence) {
-    ConeDetections d;
-    Cone c;
-    c.position = Vec3(p.x(), p.y(), 0);
-    c.confidence = confidence;
-    d.cones.push_back(c);
-    return d;
+    return frame_of({detection(p, ConeColour::Unknown, DetectionStage::Truth, confidence)});
   };
   const Vec2 far(19, 3), near(6, -2);
   for (int k = 0; k < 4; ++k) map.update(frame(far, 0.4), Pose2{});
@@ -231,9 +223,7 @@ TEST(ConeMap, WhatWasSeenOnlyAFewTimesFromFarWaitsForMoreSightings) {
   // Verified by the camera, a far detection counts whole: two verified sightings at 19 m are a cone.
   const Vec2 verified_far(18, -5);
   for (int k = 0; k < 2; ++k) {
-    ConeDetections d = frame(verified_far, 0.4);
-    d.cones[0].stage = DetectionStage::Camera;
-    map.update(d, Pose2{});
+    map.update(frame_of({detection(verified_far, ConeColour::Unknown, DetectionStage::Camera, 0.4)}), Pose2{});
   }
   EXPECT_EQ(map.cones().size(), 3u);
 }
@@ -259,9 +249,6 @@ struct PastAStack {
     if ((stack - pose.position()).norm() > 12.0) seen.push_back({stack, ConeColour::Unknown});
     return detect(seen, pose, 0.03, rng);
   }
-  bool mapped(const std::vector<Cone>& map, const Vec2& p) const {
-    return std::any_of(map.begin(), map.end(), [&](const Cone& c) { return (c.position.head<2>() - p).norm() < 0.3; });
-  }
 };
 
 TEST(ConeMap, WhatTheCarCameNearAndDidNotSeeIsWithheld) {
@@ -270,11 +257,11 @@ TEST(ConeMap, WhatTheCarCameNearAndDidNotSeeIsWithheld) {
   std::mt19937 rng(7);
   double x = -20;
   for (; x < -2; x += 0.8) map.update(world.frame(x, rng), Pose2{x, 0, 0});
-  EXPECT_TRUE(world.mapped(map.cones(), world.stack));  // seen from 12+ m, not yet come near
+  EXPECT_TRUE(mapped(map.cones(), world.stack));  // seen from 12+ m, not yet come near
   for (; x < 40; x += 0.8) map.update(world.frame(x, rng), Pose2{x, 0, 0});
   const auto cones = map.cones();
-  EXPECT_FALSE(world.mapped(cones, world.stack));
-  for (const auto& [p, colour] : world.cones) EXPECT_TRUE(world.mapped(cones, p)) << p.transpose();
+  EXPECT_FALSE(mapped(cones, world.stack));
+  for (const auto& [p, colour] : world.cones) EXPECT_TRUE(mapped(cones, p)) << p.transpose();
   EXPECT_EQ(cones.size(), world.cones.size());
 }
 
@@ -285,7 +272,7 @@ TEST(ConeMap, GhostPruningOffKeepsWhatWasSeen) {
   ConeMap map(cfg);
   std::mt19937 rng(7);
   for (double x = -20; x < 40; x += 0.8) map.update(world.frame(x, rng), Pose2{x, 0, 0});
-  EXPECT_TRUE(world.mapped(map.cones(), world.stack));
+  EXPECT_TRUE(mapped(map.cones(), world.stack));
 }
 
 TEST(ConeMap, ACarStandingWithAConeHiddenDoesNotCountItOut) {
@@ -314,8 +301,7 @@ ConeMap drive_away_from_a_post(const ConeMapConfig& cfg, const PastAStack& world
     });
     if (x > world.stack.x() + 12.0)
       for (int k = 0; k < pieces; ++k) {
-        Cone c;
-        c.position = Vec3(world.stack.x() + 0.3 * k - x, world.stack.y(), 0.0);
+        Cone c = detection({world.stack.x() + 0.3 * k - x, world.stack.y()});
         c.covariance = Eigen::Matrix2d::Identity() * 0.03 * 0.03;
         d.cones.push_back(c);
       }
@@ -329,7 +315,7 @@ TEST(ConeMap, WhatTheCarPassedUnseenAndDetectedFromBehindIsWithheld) {
   for (int pieces : {1, 2}) {
     const auto cones = drive_away_from_a_post({}, world, pieces).cones();
     EXPECT_EQ(cones.size(), world.cones.size()) << pieces << " pieces";
-    for (const auto& [p, colour] : world.cones) EXPECT_TRUE(world.mapped(cones, p)) << p.transpose();
+    for (const auto& [p, colour] : world.cones) EXPECT_TRUE(mapped(cones, p)) << p.transpose();
   }
   ConeMapConfig forgetful;  // without the memory of where the car was, the post is mapped
   forgetful.expect_memory = 0.0;
