@@ -5,6 +5,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "perception/camera/occlusion.hpp"
+
 namespace fsd {
 
 void describe_camera_stage(ConfigSchema& schema) {
@@ -42,6 +44,27 @@ CropVerdict classify_crop(const ConeClassifier& classifier, const ConeColourClas
   return v;
 }
 
+namespace {
+
+// Share of candidate i's body behind the candidates nearer to the car, each as large as the LiDAR measured it (a
+// small cone's size when unknown).
+double hidden_share_of(std::size_t i, const std::vector<Cone>& candidates, const std::vector<CandidateRoi>& rois,
+                       std::span<const CandidateSize> sizes) {
+  constexpr double kSmallHalfWidth = 0.114, kSmallHeight = 0.325;
+  const double range = candidates[i].position.head<2>().norm();
+  std::vector<ImageSilhouette> nearer;
+  for (std::size_t j = 0; j < candidates.size(); ++j) {
+    if (j == i || rois[j].status == RoiStatus::Outside || !(rois[j].px_per_m > 0)) continue;
+    if (!(candidates[j].position.head<2>().norm() < range)) continue;
+    const double h = !sizes.empty() && sizes[j].height > 0 ? sizes[j].height : kSmallHeight;
+    const double hw = !sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : kSmallHalfWidth;
+    nearer.push_back({rois[j].base, rois[j].px_per_m, hw, h});
+  }
+  return hidden_share(rois[i].base, rois[i].px_per_m, nearer);
+}
+
+}  // namespace
+
 CameraStage::CameraStage(const CameraCalibration& calibration, ConeClassifierModel model, const CameraStageConfig& cfg)
     : projector_(calibration, cfg.projection), classifier_(std::move(model), cfg.classifier), colour_(cfg.colour) {}
 
@@ -59,6 +82,11 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
   }
   result.frame_ok = true;
 
+  // Every candidate's place in the image first: a nearer one may hide part of a farther one.
+  std::vector<CandidateRoi> rois(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (candidates[i].stage == DetectionStage::Lidar) rois[i] = projector_.project(candidates[i].position, bgr.size());
+
   std::vector<Cone> kept;
   kept.reserve(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -68,7 +96,7 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
       continue;
     }
     ++stats_.candidates;
-    const CandidateRoi roi = projector_.project(c.position, bgr.size());
+    const CandidateRoi& roi = rois[i];
     if (roi.status != RoiStatus::Inside) {
       ++(roi.status == RoiStatus::TooSmall ? stats_.too_small : stats_.outside);
       ++result.unverified;
@@ -81,7 +109,10 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
       ++result.rejected;
       continue;
     }
-    const ColourResult colour = colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height);
+    const bool hidden = hidden_share_of(i, candidates, rois, sizes) > colour_.config().max_hidden;
+    const ColourResult colour =
+        hidden ? ColourResult{} : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height);
+    stats_.colour_hidden += hidden;
     c.stage = DetectionStage::Camera;
     c.colour = colour.colour;
     c.colour_confidence = colour.confidence;

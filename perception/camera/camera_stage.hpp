@@ -7,7 +7,7 @@
 // on the ground, `points`, stage = DetectionStage::Lidar), optionally with the cluster's size. verify() then
 //   - removes rejected candidates (not cones: tyres, stacks, posts, fences, ground), counted;
 //   - marks accepted ones stage = Camera with colour, colour_confidence and colour_source = Camera (colour Unknown
-//     when unsure);
+//     when unsure, or when the candidate is mostly hidden behind a nearer one: occlusion.hpp);
 //   - leaves candidates it cannot see (behind the camera, outside the image, too far to judge) untouched: still
 //     stage = Lidar, unverified;
 //   - leaves every candidate untouched when the frame is unusable (empty, not 8-bit BGR), counted as a bad frame.
@@ -51,6 +51,7 @@ struct CameraStageStats {
   std::uint64_t rejected = 0;        // removed: not a cone
   std::uint64_t verified = 0;        // accepted as cones
   std::uint64_t colour_unknown = 0;  // accepted, colour Unknown
+  std::uint64_t colour_hidden = 0;   // of those: mostly hidden behind a nearer candidate, colour not judged
 };
 
 struct CameraFrameResult {

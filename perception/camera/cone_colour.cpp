@@ -46,7 +46,10 @@ const ConfigSection<ConeColourConfig>& cone_colour_section() {
           .number("max_white_gain", &ConeColourConfig::max_white_gain, 1.0, 2.0, "",
                   "Largest per-channel gain of that white balance correction.")
           .integer("working_pixels", &ConeColourConfig::working_pixels, 100, 100000, "px",
-                   "Larger ROIs are shrunk to about this many pixels before clustering.");
+                   "Larger ROIs are shrunk to about this many pixels before clustering.")
+          .number("max_hidden", &ConeColourConfig::max_hidden, 0.0, 1.0, "",
+                  "A candidate whose body is hidden behind nearer candidates in the image by more than this share "
+                  "gets no colour from the camera (it is still verified): its ROI shows the one in front.");
   return s;
 }
 

@@ -115,5 +115,32 @@ TEST(CameraStage, BigOrangeFromTheLidarHeightOrTheImage) {
   EXPECT_EQ(told[1].colour, ConeColour::Orange);
 }
 
+// A timing line seen from behind: a yellow boundary cone 0.5 m behind a big orange one, nearly in line with the
+// camera. Its ROI shows mostly the big cone; the stage leaves its colour unknown (it is still verified) instead of
+// naming it after the cone in front (orange, without the stage's occlusion check). Alone, at the same place, it is yellow; a cone beside the big one, not behind it, keeps its
+// colour.
+TEST(CameraStage, ACandidateMostlyHiddenBehindANearerOneGetsNoColour) {
+  cv::Mat frame = asphalt();
+  paint(frame, 9.5, 1.5, ConeColour::Yellow);  // farther first: the nearer one is painted over it
+  paint(frame, 9.0, 1.45, ConeColour::Orange, true);
+  paint(frame, 9.5, -1.5, ConeColour::Blue);
+  CameraStage stage(calibration(), constant_model(1.0));
+  std::vector<Cone> seen{lidar_candidate(9.5, 1.5), lidar_candidate(9.0, 1.45), lidar_candidate(9.5, -1.5)};
+  const std::vector<CandidateSize> sizes{{0.30, 0.22}, {0.49, 0.28}, {0.30, 0.22}};
+  stage.verify(seen, frame, sizes);
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0].stage, DetectionStage::Camera);
+  EXPECT_EQ(seen[0].colour, ConeColour::Unknown) << to_string(seen[0].colour);
+  EXPECT_EQ(seen[1].colour, ConeColour::BigOrange);
+  EXPECT_EQ(seen[2].colour, ConeColour::Blue);
+  EXPECT_EQ(stage.stats().colour_hidden, 1u);
+
+  cv::Mat alone = asphalt();
+  paint(alone, 9.5, 1.5, ConeColour::Yellow);
+  std::vector<Cone> one{lidar_candidate(9.5, 1.5)};
+  stage.verify(one, alone);
+  EXPECT_EQ(one[0].colour, ConeColour::Yellow);
+}
+
 }  // namespace
 }  // namespace fsd
