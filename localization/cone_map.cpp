@@ -36,7 +36,8 @@ const ConfigSection<ConeMapConfig>& cone_map_section() {
                    "Ghost pruning: frames a mapped cone within the expected range went undetected before it is "
                    "withheld, when it was missed there more often than seen (0: never withheld).")
           .number("expect_spacing", &ConeMapConfig::expect_spacing, 0.0, 10.0, "m",
-                  "Ghost pruning: distance driven between the frames that count (a standing car counts once).")
+                  "Distance driven between the frames whose misses (ghost pruning) and camera verdicts count (a "
+                  "standing car counts once).")
           .number("expect_memory", &ConeMapConfig::expect_memory, 0.0, 200.0, "m",
                   "Ghost pruning: a cone first detected now counts as missed by the frames of the last this many "
                   "metres driven that had it in the expected range (passed unseen, detected from far after).");
@@ -58,8 +59,13 @@ ConeColour voted_colour(const std::array<int, 6>& votes) {
 }  // namespace
 
 void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::span<const Cone> rejected) {
+  // Evidence that a repeated view would inflate (misses, the camera's verdicts) counts in frames expect_spacing
+  // apart: a car standing at the start sees the same thing sixty times, and once is what it tells.
+  const bool counted = !expect_at_ || (pose.position() - *expect_at_).norm() >= cfg_.expect_spacing;
+
   // Camera rejections: against the nearest mapped cone within the gate.
   for (const auto& r : rejected) {
+    if (!counted) break;
     const Vec2 local = r.position.head<2>();
     if (!local.allFinite() || local.norm() > cfg_.max_range) continue;
     const Vec2 p = pose.transform(local);
@@ -121,10 +127,8 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     const double range = (cone - car).norm();
     return range >= cfg_.expect_min_range && range <= cfg_.expect_range;
   };
-  bool counted = false;
-  if (!expect_at_ || (pose.position() - *expect_at_).norm() >= cfg_.expect_spacing) {
+  if (counted) {
     expect_at_ = pose.position();
-    counted = true;
     for (std::size_t k = 0; k < entries_.size(); ++k)
       if (in_expected_range(entries_[k].mean, pose.position()))
         ++(taken[k] ? entries_[k].near_seen : entries_[k].near_missed);
@@ -179,7 +183,7 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     e.mean = e.info.ldlt().solve(e.info_vec);
     ++e.observations;
     e.support += seen[i].verified ? 1.0 : seen[i].confidence;  // the camera's verdict confirms a far one
-    e.verified += seen[i].verified;
+    e.verified += seen[i].verified && counted;
     const auto c = static_cast<std::size_t>(seen[i].colour);
     if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size()) ++e.colour_votes[c];
   }

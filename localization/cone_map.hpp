@@ -5,8 +5,9 @@
 // cone's has a tighter gate: a start line's doubled orange cones stand 0.5 m from the boundary cone between them.
 // What the camera rejected (a tyre, a post the LiDAR took for a cone) counts against the mapped cone there: one the
 // camera rejected more often than it verified, at least `min_rejections` times, is not reported (it stays mapped,
-// so a real cone the camera doubted once comes back with its next verifications). Without a camera nothing is
-// rejected and every LiDAR-only cone is reported.
+// so a real cone the camera doubted once comes back with its next verifications). The verdicts count in frames
+// `expect_spacing` apart, as the misses below do: a car standing at the start repeats one view sixty times. Without
+// a camera nothing is rejected and every LiDAR-only cone is reported.
 //
 // Ghost pruning: a mapped cone the car came near and did not see is not reported. Each frame, a mapped cone between
 // `expect_min_range` and `expect_range` of the car with no detection of the frame paired to it counts a miss; one
@@ -47,7 +48,7 @@ struct ConeMapConfig {
   double expect_min_range = 2.0;  // m: nearer, a cone may be hidden by the car's own body cut-out
   double expect_range = 10.0;     // m: a cone this near is detected in nearly every frame
   int min_misses = 3;             // frames a cone near the car was not detected before it may be withheld; 0: never
-  double expect_spacing = 0.5;    // m driven between the frames that count
+  double expect_spacing = 0.5;    // m driven between the frames whose misses and camera verdicts count
   double expect_memory = 30.0;    // m driven: a cone first detected now was missed by the frames of this stretch
 };
 const ConfigSection<ConeMapConfig>& cone_map_section();
@@ -86,7 +87,7 @@ class ConeMap {
     Vec2 mean = Vec2::Zero();
     int observations = 0;
     double support = 0;                  // the detections' confidences summed
-    int verified = 0, rejected = 0;      // camera verdicts on it
+    int verified = 0, rejected = 0;      // camera verdicts on it, in frames expect_spacing apart
     int near_seen = 0, near_missed = 0;  // frames with it within the expected range: detected, not detected
     std::array<int, 6> colour_votes{};
     std::uint32_t id = 0;

@@ -145,44 +145,65 @@ TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
 
 // A tyre beside the track that the LiDAR takes for a cone, seen from afar (LiDAR only), then in the camera's view
 // (rejected) and beside the car (LiDAR only again); a real cone next to it that the camera verifies once and doubts
-// once; a cone the camera never sees.
+// once; a cone the camera never sees. The car drives 1 m between frames: each verdict is from a new place.
 TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
   ConeMapConfig cfg;
   cfg.min_rejections = 2;  // the rule on two verdicts (the default asks for 5: below)
   ConeMap map(cfg);
-  const Pose2 pose{};
-  auto seen = [](double x, double y, DetectionStage stage) { return detection({x, y}, ConeColour::Blue, stage); };
-  const Vec2 tyre(10, 3), cone(14, -2), unseen(6, 5);
-  // Far: LiDAR only, all three.
-  for (int k = 0; k < 3; ++k) {
+  int frame = 0;
+  const Vec2 tyre(16, 3), cone(20, -2), unseen(12, 5);
+  // One frame from 1 m further on: `lidar` detected by the LiDAR alone, `verified` by the camera, `rejected` by it.
+  auto update = [&](std::vector<Vec2> lidar, std::vector<Vec2> verified, std::vector<Vec2> rejected) {
+    const Pose2 pose{1.0 * frame++, 0, 0};
     ConeDetections d;
-    for (const Vec2& p : {tyre, cone, unseen}) d.cones.push_back(seen(p.x(), p.y(), DetectionStage::Lidar));
-    map.update(d, pose);
-  }
+    for (const Vec2& p : lidar) d.cones.push_back(detection(pose.inverse_transform(p), ConeColour::Blue,
+                                                            DetectionStage::Lidar));
+    for (const Vec2& p : verified) d.cones.push_back(detection(pose.inverse_transform(p), ConeColour::Blue,
+                                                               DetectionStage::Camera));
+    std::vector<Cone> r;
+    for (const Vec2& p : rejected) r.push_back(detection(pose.inverse_transform(p), ConeColour::Blue,
+                                                         DetectionStage::Lidar));
+    map.update(d, pose, r);
+  };
+  for (int k = 0; k < 3; ++k) update({tyre, cone, unseen}, {}, {});  // far: LiDAR only, all three
   EXPECT_EQ(map.cones().size(), 3u);
-  // In view: the tyre rejected twice; the cone verified once, rejected once.
-  {
-    ConeDetections d;
-    d.cones = {seen(cone.x(), cone.y(), DetectionStage::Camera)};
-    const std::vector<Cone> rejected = {seen(tyre.x() + 0.1, tyre.y(), DetectionStage::Lidar)};
-    map.update(d, pose, rejected);
-  }
-  {
-    ConeDetections d;
-    const std::vector<Cone> rejected = {seen(tyre.x(), tyre.y() - 0.1, DetectionStage::Lidar),
-                                        seen(cone.x(), cone.y(), DetectionStage::Lidar)};
-    map.update(d, pose, rejected);
-  }
-  // Beside: LiDAR only again.
-  ConeDetections d;
-  for (const Vec2& p : {tyre, cone}) d.cones.push_back(seen(p.x(), p.y(), DetectionStage::Lidar));
-  map.update(d, pose);
+  update({}, {cone}, {tyre + Vec2(0.1, 0)});           // in view: the tyre rejected twice,
+  update({}, {}, {tyre + Vec2(0, -0.1), cone});        // the cone verified once and rejected once
+  update({tyre, cone}, {}, {});                        // beside: LiDAR only again
 
   const auto cones = map.cones();
   EXPECT_FALSE(mapped(cones, tyre));   // rejected 2, verified 0
   EXPECT_TRUE(mapped(cones, cone));    // rejected 1 (< min_rejections), verified 1
   EXPECT_TRUE(mapped(cones, unseen));  // the camera never judged it
   EXPECT_EQ(cones.size(), 2u);
+}
+
+TEST(ConeMap, AStandingCarsRepeatedVerdictsCountOnce) {
+  // A cone 12 m ahead, first detected by the LiDAR alone (no camera frame yet), that the camera then rejects in
+  // every frame of a 6 s standing start (the same view sixty times: it stands behind another in the image) and
+  // verifies in the eight frames it judges while the car drives off. The standing car's verdicts count once; it is
+  // mapped. A tyre the camera rejects from nine places is not.
+  ConeMap map;
+  const Vec2 cone(12, 2), tyre(14, -4);
+  enum class Verdict { None, Verified, Rejected };
+  auto update = [&](const Pose2& pose, Verdict verdict) {
+    const Vec2 c = pose.inverse_transform(cone), t = pose.inverse_transform(tyre);
+    ConeDetections d = frame_of({detection(t, ConeColour::Unknown, DetectionStage::Lidar)});
+    std::vector<Cone> rejected;
+    if (verdict != Verdict::None) rejected.push_back(d.cones[0]);
+    if (verdict == Verdict::Rejected)
+      rejected.push_back(detection(c, ConeColour::Unknown, DetectionStage::Lidar));
+    else
+      d.cones.push_back(detection(c, ConeColour::Blue,
+                                  verdict == Verdict::Verified ? DetectionStage::Camera : DetectionStage::Lidar));
+    map.update(d, pose, rejected);
+  };
+  update(Pose2{}, Verdict::None);
+  for (int k = 0; k < 60; ++k) update(Pose2{}, Verdict::Rejected);
+  for (int k = 1; k <= 8; ++k) update(Pose2{0.8 * k, 0, 0}, Verdict::Verified);
+  const auto cones = map.cones();
+  EXPECT_TRUE(mapped(cones, cone));
+  EXPECT_FALSE(mapped(cones, tyre));  // rejected from nine places, never verified
 }
 
 TEST(ConeMap, TwoCameraRejectionsDoNotWithholdAConeTheLidarSawNearOften) {
