@@ -11,6 +11,7 @@
 #include "drivers/vcu/vcu_config.hpp"
 #include "drivers/vlp16/config.hpp"
 #include "localization/cone_map.hpp"
+#include "localization/map_match.hpp"
 #include "localization/fusion/fusion_config.hpp"
 #include "localization/loop_closure/loop_closure_config.hpp"
 #include "perception/camera/camera_stage.hpp"
@@ -66,6 +67,7 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   record_section().describe(*schema);
   truth_perception_section().describe(*schema);
   cone_map_section().describe(*schema);
+  map_match_section().describe(*schema);
   fusion::describe_fusion_config(*schema);
   start_pose_section().describe(*schema);
   lidar_odometry::describe_lidar_odometry_config(*schema);

@@ -29,6 +29,7 @@
 #include "drivers/vlp16/scan_builder.hpp"
 #include "localization/cone_map.hpp"
 #include "localization/loop_closure/loop_closure_config.hpp"
+#include "localization/map_match.hpp"
 #include "localization/pose_history.hpp"
 #include "perception/lidar_camera_detector.hpp"
 #include "perception/truth_perception.hpp"
@@ -103,6 +104,7 @@ struct Stack::Impl {
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
+  MapMatchConfig map_match;  // the LiDAR alone: the pose drawn towards the cone map
   std::unique_ptr<loop_closure::LoopCloser> loop_closer;  // lidar_odometry: each lap's loop on the start's cones
   std::unique_ptr<LoopSolveThread> loop_worker;           // real time: the loop's solve off the control thread
   double loop_step_s = 0;  // the control thread's time of the closing frame whose solve is out
@@ -151,6 +153,7 @@ struct Stack::Impl {
         vlp_cfg(read_vlp16_config(cfg)),
         truth_perception(truth_perception_section().read(cfg), static_cast<std::uint64_t>(run.seed) * 31 + 5),
         cone_map(cone_map_section().read(cfg)),
+        map_match(map_match_section().read(cfg)),
         view(opt.mission, opt.laps) {
     // The car has no ground truth: the truth sources stand for what the car has (its perception stages, with the
     // camera when it is calibrated; the GNSS-INS pose), and the log says so.
@@ -321,8 +324,16 @@ struct Stack::Impl {
 
   // One perception frame's detections, taken at `pose`, into the map and the map to control; the stage's time
   // from `w0` (wall clock) to here.
-  void map_detections(Stamp now, ConeDetections det, const Pose2& pose, std::span<const Cone> camera_rejected,
+  void map_detections(Stamp now, ConeDetections det, Pose2 pose, std::span<const Cone> camera_rejected,
                       double w0) {
+    // The LiDAR alone: the pose drawn towards the cone map (map_match.hpp), the map lap 1 built and closed from lap
+    // 2 on, and before that the cones mapped so far (the scan-to-scan wobble of the odometry's heading).
+    if (odometry && localization_source == "lidar_odometry") {
+      if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), map_match)) {
+        odometry->correct(m->correction);
+        pose = m->correction * pose;
+      }
+    }
     cone_map.update(det, pose, camera_rejected);
     double closing = 0;  // the loop closer's time is not perception's
     if (loop_closer) {

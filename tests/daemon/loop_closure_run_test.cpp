@@ -6,6 +6,8 @@
 // and with the solve on the Stack's worker (--workers) as on the car.
 // The runs are not clean: lap 2 follows the recorded lap on the odometry alone, which drifts again over the lap
 // and lags above 8 m/s (docs/localization.md has the figures); the cones hit are measured there, not asserted.
+// The pose's matching to the cone map (localization.map_match) is off here: it takes most of the drift before the
+// lap ends, and the closure is tested on the odometry's own (map_match_run_test.cpp tests the two together).
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -22,7 +24,7 @@ json lidar_odometry_run(const std::string& name, const std::string& track, bool 
   return test::sim_report(name,
                           {{"sim", {{"enable_camera", false}}},
                            {"run", {{"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
-                           {"localization", {{"loop_closure", {{"enabled", loop_closure}}}}}},
+                           {"localization", {{"loop_closure", {{"enabled", loop_closure}}}, {"map_match", {{"enabled", false}}}}}},
                           "--laps 2 --track ../shared/tracks/" + track + ".csv " + args, /*must_pass=*/false);
 }
 

@@ -1,0 +1,83 @@
+#include "localization/map_match.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace fsd {
+
+const ConfigSection<MapMatchConfig>& map_match_section() {
+  static const auto s =
+      ConfigSection<MapMatchConfig>("localization.map_match")
+          .boolean("enabled", &MapMatchConfig::enabled,
+                   "run.localization_source = lidar_odometry: each frame's cones are matched to the cone map and the "
+                   "pose corrected towards it (the map lap 1 built and closed, from lap 2 on).")
+          .number("gate", &MapMatchConfig::gate, 0.05, 5.0, "m",
+                  "A detection pairs with the nearest mapped cone this close to where the pose puts it.")
+          .number("max_range", &MapMatchConfig::max_range, 1.0, 100.0, "m", "Detections farther away are not used.")
+          .integer("min_pairs", &MapMatchConfig::min_pairs, 2, 1000, "", "Fewer pairs: no correction.")
+          .number("gain", &MapMatchConfig::gain, 0.0, 1.0, "", "Share of each frame's alignment applied to the pose.")
+          .number("max_step", &MapMatchConfig::max_step, 0.01, 10.0, "m",
+                  "An alignment moving the pose more than this is taken for a wrong pairing and not applied.");
+  return s;
+}
+
+std::optional<MapMatch> match_to_map(const std::vector<Cone>& detections, const Pose2& pose,
+                                     const std::vector<Cone>& map, const MapMatchConfig& cfg) {
+  if (!cfg.enabled || map.empty()) return std::nullopt;
+  // Pairs, nearest first, each detection and each mapped cone at most once (two cones 0.5 m apart stay two).
+  std::vector<Vec2> seen;
+  for (const auto& d : detections) {
+    const Vec2 v = d.position.head<2>();
+    if (v.allFinite() && v.norm() <= cfg.max_range) seen.push_back(pose.transform(v));
+  }
+  std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    for (std::size_t k = 0; k < map.size(); ++k) {
+      const double d = (map[k].position.head<2>() - seen[i]).norm();
+      if (d < cfg.gate) candidates.emplace_back(d, i, k);
+    }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<char> used_seen(seen.size(), 0), used_map(map.size(), 0);
+  std::vector<std::pair<Vec2, Vec2>> pairs;  // (seen, mapped), map frame
+  for (const auto& [d, i, k] : candidates) {
+    if (used_seen[i] || used_map[k]) continue;
+    used_seen[i] = used_map[k] = 1;
+    pairs.emplace_back(seen[i], map[k].position.head<2>());
+  }
+  if (static_cast<int>(pairs.size()) < cfg.min_pairs) return std::nullopt;
+
+  // The rigid motion laying the seen points onto the mapped ones (2D Kabsch), about the car's position.
+  const Vec2 car = pose.position();
+  Vec2 ms = Vec2::Zero(), mm = Vec2::Zero();
+  for (const auto& [s, m] : pairs) ms += s - car, mm += m - car;
+  ms /= static_cast<double>(pairs.size()), mm /= static_cast<double>(pairs.size());
+  double sxx = 0, sxy = 0;  // Σ cross and dot terms of the centred sets
+  for (const auto& [s, m] : pairs) {
+    const Vec2 a = s - car - ms, b = m - car - mm;
+    sxx += a.dot(b);
+    sxy += a.x() * b.y() - a.y() * b.x();
+  }
+  const double yaw = std::atan2(sxy, sxx);
+  const Eigen::Rotation2Dd R(yaw);
+  const Vec2 t = mm - R * ms;  // about the car: p' = car + R (p - car) + t
+  MapMatch out;
+  out.pairs = static_cast<int>(pairs.size());
+  double before = 0, after = 0;
+  for (const auto& [s, m] : pairs) {
+    before += (s - m).squaredNorm();
+    after += (car + R * (s - car) + t - m).squaredNorm();
+  }
+  out.rms_before = std::sqrt(before / static_cast<double>(pairs.size()));
+  out.rms_after = std::sqrt(after / static_cast<double>(pairs.size()));
+  if (t.norm() > cfg.max_step || !(out.rms_after <= out.rms_before)) return std::nullopt;
+  // A share of it, as a map ← estimated correction: rotate about the car, then shift.
+  const double g = cfg.gain;
+  const Eigen::Rotation2Dd Rg(g * yaw);
+  const Vec2 shift = car + g * t - Rg * car;  // p' = Rg p + shift  ⇔  car + Rg (p - car) + g t
+  out.correction = Pose2{shift.x(), shift.y(), g * yaw};
+  return out;
+}
+
+}  // namespace fsd
