@@ -28,6 +28,7 @@
 #include "daemon/truth_frames.hpp"
 #include "drivers/vlp16/scan_builder.hpp"
 #include "localization/cone_map.hpp"
+#include "localization/lidar_odometry/config.hpp"
 #include "localization/loop_closure/loop_closure_config.hpp"
 #include "localization/map_match.hpp"
 #include "localization/pose_history.hpp"
@@ -105,6 +106,7 @@ struct Stack::Impl {
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
   MapMatchConfig map_match;  // the LiDAR alone: the pose drawn towards the cone map
+  std::optional<double> lidar_odometry_max_speed;  // the LiDAR alone: control.speed.v_max capped to it
   std::unique_ptr<loop_closure::LoopCloser> loop_closer;  // lidar_odometry: each lap's loop on the start's cones
   std::unique_ptr<LoopSolveThread> loop_worker;           // real time: the loop's solve off the control thread
   double loop_step_s = 0;  // the control thread's time of the closing frame whose solve is out
@@ -200,6 +202,9 @@ struct Stack::Impl {
     vcu->set_mission(opt.mission);
 
     control = opt.control ? *opt.control : read_control(cfg);
+    if (localization_source == "lidar_odometry")
+      lidar_odometry_max_speed = lidar_odometry::odometry_section().read(cfg).max_speed;
+    within_localization(control);
     control.mission.laps = opt.laps;
     plan_budget = control.planner.time_budget;
     autopilot = std::make_unique<Autopilot>(control, opt.mission, convention);
@@ -302,9 +307,15 @@ struct Stack::Impl {
       for (auto* tap : taps) tap->on_param(now, *change);
     }
     if (!any) return;
+    within_localization(control);
     control.mission.laps = opt.laps;
     plan_budget = control.planner.time_budget;
     autopilot->set_config(control);
+  }
+
+  // The LiDAR alone keeps track only so fast (localization.lidar_odometry.max_speed): the car drives no faster.
+  void within_localization(AutopilotConfig& c) const {
+    if (lidar_odometry_max_speed) c.speed.v_max = std::min(c.speed.v_max, *lidar_odometry_max_speed);
   }
 
   // The perception source's frame, when one is due: detections (vehicle frame) into the map, the map to control.

@@ -5,7 +5,7 @@
 // the virtual car's truth (docs/scorecard.md): the pose's error where the loop closed, the map's RMSE and ghosts;
 // and with the solve on the Stack's worker (--workers) as on the car.
 // The runs are not clean: lap 2 follows the recorded lap on the odometry alone, which drifts again over the lap
-// and lags above 8 m/s (docs/localization.md has the figures); the cones hit are measured there, not asserted.
+// (docs/localization.md has the figures); the cones hit are measured there, not asserted.
 // The pose's matching to the cone map (localization.map_match) is off here: it takes most of the drift before the
 // lap ends, and the closure is tested on the odometry's own (map_match_run_test.cpp tests the two together).
 #include <gtest/gtest.h>
@@ -80,8 +80,12 @@ TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
   const json worker = lidar_odometry_run("loop_closure_worker", "epfl_track_1", true, "--workers");
   ASSERT_TRUE(step.is_object() && worker.is_object());
   const json &a = step["odometry"]["loop_closures"], &b = worker["odometry"]["loop_closures"];
-  ASSERT_EQ(a.size(), 1u) << a.dump();
-  ASSERT_EQ(b.size(), 1u) << b.dump();
+  // Lap 1's closure; lap 2's too since the car drives this source at most 10 m/s, where the odometry keeps track
+  // (localization.lidar_odometry.max_speed; before, lap 2 lost track and never closed). Lap 1's is compared.
+  ASSERT_GE(a.size(), 1u) << a.dump();
+  ASSERT_GE(b.size(), 1u) << b.dump();
+  ASSERT_LE(a.size(), 2u) << a.dump();
+  ASSERT_LE(b.size(), 2u) << b.dump();
   for (const char* key : {"time_s", "lap", "pairs", "keyframes", "correction", "error_before_m", "error_after_m"})
     EXPECT_EQ(b[0][key], a[0][key]) << key;
   EXPECT_LT(b[0]["error_after_m"].get<double>(), 0.1) << b.dump();  // measured 0.013 m from 0.486
