@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/cone_pairing.hpp"
+#include "common/cone_pairing.hpp"
 
 namespace fsd {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The scorecard's "perception" section (DESIGN.md §8): every perception frame's cone detections against the
 // simulated world's standing cones at that instant, placed by the car's true pose. Detections and true cones are
-// paired one to one within a gate (daemon/cone_pairing). Precision over all detections; recall over the true
+// paired one to one within a gate (common/cone_pairing). Precision over all detections; recall over the true
 // cones within 15 m and 20 m of the car; position RMSE over the pairs; colour accuracy over the pairs within
 // 12 m (where the camera is expected to tell the colour), and of those the camera verified or that name a colour;
 // colour accuracy within 6 m (where the LiDAR's reflectivity tells it without the camera).

@@ -1,9 +1,8 @@
 #include "localization/map_match.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <tuple>
+
+#include "common/cone_pairing.hpp"
 
 namespace fsd {
 
@@ -26,26 +25,18 @@ const ConfigSection<MapMatchConfig>& map_match_section() {
 std::optional<MapMatch> match_to_map(const std::vector<Cone>& detections, const Pose2& pose,
                                      const std::vector<Cone>& map, const MapMatchConfig& cfg) {
   if (!cfg.enabled || map.empty()) return std::nullopt;
-  // Pairs, nearest first, each detection and each mapped cone at most once (two cones 0.5 m apart stay two).
-  std::vector<Vec2> seen;
+  // Pairs, nearest first, each detection and each mapped cone at most once (two cones 0.5 m apart stay two), closer
+  // than the gate (pair_cones takes it inclusive).
+  std::vector<Vec2> seen, mapped;
   for (const auto& d : detections) {
     const Vec2 v = d.position.head<2>();
     if (v.allFinite() && v.norm() <= cfg.max_range) seen.push_back(pose.transform(v));
   }
-  std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;
-  for (std::size_t i = 0; i < seen.size(); ++i)
-    for (std::size_t k = 0; k < map.size(); ++k) {
-      const double d = (map[k].position.head<2>() - seen[i]).norm();
-      if (d < cfg.gate) candidates.emplace_back(d, i, k);
-    }
-  std::sort(candidates.begin(), candidates.end());
-  std::vector<char> used_seen(seen.size(), 0), used_map(map.size(), 0);
+  mapped.reserve(map.size());
+  for (const auto& c : map) mapped.push_back(c.position.head<2>());
   std::vector<std::pair<Vec2, Vec2>> pairs;  // (seen, mapped), map frame
-  for (const auto& [d, i, k] : candidates) {
-    if (used_seen[i] || used_map[k]) continue;
-    used_seen[i] = used_map[k] = 1;
-    pairs.emplace_back(seen[i], map[k].position.head<2>());
-  }
+  for (const auto& p : pair_cones(seen, mapped, std::nextafter(cfg.gate, 0.0)))
+    pairs.emplace_back(seen[p.estimate], mapped[p.truth]);
   if (static_cast<int>(pairs.size()) < cfg.min_pairs) return std::nullopt;
 
   // The rigid motion laying the seen points onto the mapped ones (2D Kabsch), about the car's position.

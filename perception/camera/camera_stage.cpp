@@ -50,14 +50,13 @@ namespace {
 // small cone's size when unknown).
 double hidden_share_of(std::size_t i, const std::vector<Cone>& candidates, const std::vector<CandidateRoi>& rois,
                        std::span<const CandidateSize> sizes) {
-  constexpr double kSmallHalfWidth = 0.114, kSmallHeight = 0.325;
   const double range = candidates[i].position.head<2>().norm();
   std::vector<ImageSilhouette> nearer;
   for (std::size_t j = 0; j < candidates.size(); ++j) {
     if (j == i || rois[j].status == RoiStatus::Outside || !(rois[j].px_per_m > 0)) continue;
     if (!(candidates[j].position.head<2>().norm() < range)) continue;
-    const double h = !sizes.empty() && sizes[j].height > 0 ? sizes[j].height : kSmallHeight;
-    const double hw = !sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : kSmallHalfWidth;
+    const double h = !sizes.empty() && sizes[j].height > 0 ? sizes[j].height : kSmallConeHeight;
+    const double hw = !sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : kSmallConeHalfWidth;
     nearer.push_back({rois[j].base, rois[j].px_per_m, hw, h});
   }
   return hidden_share(rois[i].base, rois[i].px_per_m, nearer);

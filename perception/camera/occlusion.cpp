@@ -6,7 +6,7 @@ namespace fsd {
 
 double hidden_share(cv::Point2d base, double px_per_m, std::span<const ImageSilhouette> nearer) {
   if (!(px_per_m > 0) || nearer.empty()) return 0.0;
-  constexpr double kHeight = 0.325, kBaseHalf = 0.114, kTopHalf = 0.025;  // the small cone of the rules
+  constexpr double kHeight = kSmallConeHeight, kBaseHalf = kSmallConeHalfWidth, kTopHalf = kSmallConeTopHalfWidth;
   constexpr int kRows = 10, kCols = 10;
   int hidden = 0;
   for (int r = 0; r < kRows; ++r) {

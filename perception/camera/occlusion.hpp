@@ -9,12 +9,16 @@
 
 namespace fsd {
 
+// The rules' small cone: the body whose hidden share is measured, and the size of a candidate in front whose size
+// the LiDAR did not measure.
+inline constexpr double kSmallConeHalfWidth = 0.114, kSmallConeTopHalfWidth = 0.025, kSmallConeHeight = 0.325;  // m
+
 // A candidate standing in front, as the image shows it: a box of its measured (or a small cone's) size on its base.
 struct ImageSilhouette {
-  cv::Point2d base;      // pixel of the base point
-  double px_per_m = 0;   // image scale there
-  double half_width = 0; // m
-  double height = 0;     // m
+  cv::Point2d base;       // pixel of the base point
+  double px_per_m = 0;    // image scale there
+  double half_width = 0;  // m
+  double height = 0;      // m
 };
 
 // Share (0..1) of a small cone's body (0.228 m base, 0.325 m tall, standing on `base` at `px_per_m`) that lies

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/types.hpp"
-#include "daemon/cone_pairing.hpp"
+#include "common/cone_pairing.hpp"
 #include "daemon/perception_score.hpp"
 
 namespace fsd::test {

@@ -1,4 +1,4 @@
-#include "daemon/cone_pairing.hpp"
+#include "common/cone_pairing.hpp"
 
 #include <algorithm>
 
