@@ -65,7 +65,7 @@ IntensityColour IntensityColourClassifier::classify(const ConeCandidate& cone, c
   std::vector<double> stripe, body;
   const auto need = static_cast<std::size_t>(cfg_.min_band_points);
   if (cone.big) {
-    // Only timing cones are big; still, their stripes must show.
+    // Only timing cones are big; still, their stripes must show when a laser crossed them.
     const auto in = [](double f, double lo, double hi) { return f >= lo && f <= hi; };
     for (const auto& q : cone.cloud) {
       const double f = ground.height_of(q.x, q.y, q.z) / big_height_;
@@ -75,7 +75,14 @@ IntensityColour IntensityColourClassifier::classify(const ConeCandidate& cone, c
                f > cfg_.big_stripe2_high + 0.06)
         body.push_back(q.intensity);
     }
-    if (stripe.size() < need || body.size() < need) return out;
+    if (stripe.size() < need) {
+      // No laser crossed a stripe (two lasers at ~7 m can both miss them). Big cones are orange in every rule set,
+      // so a body between dark blue and bright yellow plastic names it; tyres, dark stacks and bright posts do not.
+      if (body.size() < 2 * need) return out;
+      const double b = upper_quartile(body);
+      return b > cfg_.blue_body_max && b < cfg_.yellow_body_min ? IntensityColour{ConeColour::BigOrange, 0.6} : out;
+    }
+    if (body.size() < need) return out;
     const double contrast = upper_quartile(stripe) / std::max(1.0, upper_quartile(body));
     return contrast >= cfg_.big_bright_contrast ? IntensityColour{ConeColour::BigOrange, 0.9} : out;
   }

@@ -4,8 +4,9 @@
 // cones (brighter than the dark blue body), black on yellow ones (darker than the yellow body); orange cones white
 // stripes on a body brighter than blue. The stripe/body contrast is independent of the sensor's gain and of the
 // incidence angle; the body level alone (calibrated reflectivity) separates dark blue from bright yellow when no
-// laser crossed the stripe. A big cone (by its height) is big orange only when its white stripes show brighter than
-// its body. Anything ambiguous is Unknown: a wrong colour costs more than none.
+// laser crossed the stripe. A big cone (by its height) is big orange when its white stripes show brighter than its
+// body, or, when no laser crossed a stripe, when its body lies between dark blue and bright yellow plastic (every
+// rule set's big cones are orange). Anything ambiguous is Unknown: a wrong colour costs more than none.
 #include <vector>
 
 #include "common/config.hpp"

@@ -53,5 +53,36 @@ TEST(IntensityColour, ABodyAloneIsBlueWhenDarkButNotWhenBlack) {
   EXPECT_EQ(classify.classify(cluster(rings, [](double) { return 6.0; }), ground).colour, ConeColour::Unknown);
 }
 
+// FSG big cone (0.505 m): white stripes from 28 to 40 % and from 58 to 70 % of its height.
+bool in_big_stripe(double h) {
+  const double f = h / 0.505;
+  return (f >= 0.28 && f <= 0.40) || (f >= 0.58 && f <= 0.70);
+}
+
+ConeCandidate big(ConeCandidate c) {
+  c.big = true;
+  return c;
+}
+
+TEST(IntensityColour, ABigConeIsBigOrangeByItsStripesOrItsOrangeBody) {
+  const GroundSurface ground(GroundPlane{});
+  const IntensityColourClassifier classify;
+  const auto orange = [](double h) { return in_big_stripe(h) ? 95.0 : 55.0; };
+  // Three lasers, the middle one through the lower stripe.
+  EXPECT_EQ(classify.classify(big(cluster({0.06, 0.17, 0.45}, orange)), ground).colour, ConeColour::BigOrange);
+  // Two lasers ~7 m away, both between the stripes' bands (0.23 and 0.47 m): the orange body alone names it.
+  const std::vector<double> between{0.23, 0.47};
+  EXPECT_FALSE(in_big_stripe(0.23) || in_big_stripe(0.47));
+  EXPECT_EQ(classify.classify(big(cluster(between, orange)), ground).colour, ConeColour::BigOrange);
+  // Not orange plastic: black rubber (a tyre stack), dark blue, bright paint (a post): no colour.
+  for (double body : {6.0, 22.0, 80.0})
+    EXPECT_EQ(classify.classify(big(cluster(between, [&](double) { return body; })), ground).colour,
+              ConeColour::Unknown)
+        << body;
+  // A laser through a stripe that is not brighter than the body: not a striped cone.
+  EXPECT_EQ(classify.classify(big(cluster({0.06, 0.17, 0.45}, [](double) { return 55.0; })), ground).colour,
+            ConeColour::Unknown);
+}
+
 }  // namespace
 }  // namespace fsd
