@@ -405,8 +405,10 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
 
   Walk walk = Walker(config_, local, tri).walk();
   // A wrong colour can lead the walk astray where geometry alone would not: walk again without colours and
-  // take that walk when its geometry is clearly better, as long as it passes no more than a cone or two
-  // against their colour (more would be a wrong branch, not a wrong cone).
+  // take that walk when its geometry is clearly better, or when the coloured walk ends too near to drive on
+  // (a wrong colour can fold it back on itself) and the blind one does not, as long as it passes no more than a
+  // cone or two against their colour (more would be a wrong branch, not a wrong cone). Either beats falling back
+  // to one boundary.
   if (config_.use_colours && config_.colour_check_margin >= 0) {
     std::vector<LocalCone> blind = local;
     for (auto& c : blind) c.side = 0;
@@ -415,9 +417,13 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
     std::set<int> against;
     for (const auto& [cone, side] : geometric.passed)
       if (local[static_cast<std::size_t>(cone)].side * side == -1) against.insert(cone);
+    const auto reach_of = [](const Walk& w) { return w.mids.empty() ? 0.0 : w.mids.back().norm(); };
     const bool better =
         !walk.mids.empty() && geometric.geometric_score + config_.colour_check_margin < walk.geometric_score;
-    if (!geometric.mids.empty() && static_cast<int>(against.size()) <= config_.max_wrong_colours && better) {
+    const bool only_blind_reaches =
+        reach_of(walk) < config_.fallback_below && reach_of(geometric) >= config_.fallback_below;
+    if (!geometric.mids.empty() && static_cast<int>(against.size()) <= config_.max_wrong_colours &&
+        (better || only_blind_reaches)) {
       walk = std::move(geometric);
       result.ignored_colours = true;
     }

@@ -31,7 +31,8 @@ LoadedCloud load_cloud(const std::filesystem::path& file) {
   return out;
 }
 
-LidarDetectorConfig detect_frame_config(LidarDetectorConfig cfg) {
+LidarDetectorConfig detect_frame_config(LidarDetectorConfig cfg, const LoadedCloud& cloud) {
+  if (cloud.kind != "pcap") cfg.colour.reject_black = false;
   cfg.ground.height_min = -3.0;
   cfg.ground.height_max = -0.1;
   cfg.roi.body_x_min = cfg.roi.body_y_min = -1.0;
@@ -75,11 +76,12 @@ std::string detection_table(const std::string& file, const LoadedCloud& cloud, c
       static_cast<unsigned long long>(n.above_roi), static_cast<unsigned long long>(n.obstacles),
       static_cast<unsigned long long>(n.grazing), static_cast<unsigned long long>(n.clusters));
   add("rejected: %llu too sparse, %llu too wide, %llu too tall, %llu not cone-shaped, %llu too flat, %llu floating, "
-      "%llu beside something taller, %llu too large to cluster\n",
+      "%llu beside something taller, %llu black (rubber), %llu too large to cluster\n",
       static_cast<unsigned long long>(n.too_sparse), static_cast<unsigned long long>(n.too_wide),
       static_cast<unsigned long long>(n.too_tall), static_cast<unsigned long long>(n.not_cone_shaped),
       static_cast<unsigned long long>(n.too_flat), static_cast<unsigned long long>(n.floating),
-      static_cast<unsigned long long>(n.beside_taller), static_cast<unsigned long long>(n.clusters_too_large));
+      static_cast<unsigned long long>(n.beside_taller), static_cast<unsigned long long>(n.black),
+      static_cast<unsigned long long>(n.clusters_too_large));
   add("%zu cone(s)\n", d.detections.cones.size());
   if (d.detections.cones.empty()) return o;
   add("  %3s %8s %8s %8s %7s %7s %-10s %5s %6s\n", "#", "x [m]", "y [m]", "z [m]", "range", "height", "colour", "conf",

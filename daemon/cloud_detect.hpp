@@ -26,7 +26,9 @@ struct LoadedCloud {
 LoadedCloud load_cloud(const std::filesystem::path& file);
 
 // The configured LiDAR stages adapted to a cloud in its sensor's own frame (see above).
-LidarDetectorConfig detect_frame_config(LidarDetectorConfig cfg);
+// A CSV's intensity column has no known scale (another sensor's, normalised, or absent): the rejection of black
+// rubber by its VLP-16 reflectivity is off for it, on for a pcap's.
+LidarDetectorConfig detect_frame_config(LidarDetectorConfig cfg, const LoadedCloud& cloud);
 
 // {"cones": [{"x","y","z","colour","confidence","points"}...], "ground": {"a","b","h"}}, keys in that order.
 nlohmann::ordered_json detection_json(const LidarDetection& d);

@@ -37,7 +37,7 @@ int detect(const DetectArgs& a) {
   }
   // A bad configuration throws ConfigError, reported by run_cli with exit 2.
   const Config cfg = a.config.empty() ? Config(config_schema()) : Config::load(config_schema(), a.config);
-  LidarConeDetector detector(detect_frame_config(read_lidar_detector_config(cfg)), Pose3::Identity());
+  LidarConeDetector detector(detect_frame_config(read_lidar_detector_config(cfg), cloud), Pose3::Identity());
   const LidarDetection d = detector.detect(cloud.scan);
   if (a.json) {
     std::cout << detection_json(d).dump() << "\n";

@@ -62,6 +62,8 @@ const char* to_string(ConeRejection r) {
       return "floating";
     case ConeRejection::BesideTaller:
       return "beside_taller";
+    case ConeRejection::Black:
+      return "black";
   }
   return "?";
 }

@@ -59,7 +59,8 @@ enum class ConeRejection : std::uint8_t {
   NotConeShaped,
   TooFlat,
   Floating,
-  BesideTaller
+  BesideTaller,
+  Black  // by its reflectivity (IntensityColourClassifier::black), not its size
 };
 const char* to_string(ConeRejection r);
 

@@ -51,7 +51,11 @@ const ConfigSection<GroundConfig>& ground_section() {
           .integer("local_min_points", &GroundConfig::local_min_points, 3, 100000, "",
                    "Local ground: points a cell's flat layer needs to correct it.")
           .number("local_min_extent", &GroundConfig::local_min_extent, 0.1, 50.0, "m",
-                  "Local ground: horizontal spread a cell's flat layer needs (more than an object's foot).");
+                  "Local ground: horizontal spread a cell's flat layer needs (more than an object's foot).")
+          .number("local_min_fill", &GroundConfig::local_min_fill, 0.0, 10.0, "",
+                  "Local ground: a cell's flat layer needs at least this share of the returns one laser's ring of "
+                  "ground gives over its spread (a row of cones one laser crosses is short runs metres apart); "
+                  "0 = no density test.");
   return s;
 }
 

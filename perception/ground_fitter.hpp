@@ -44,6 +44,7 @@ struct GroundConfig {
   double local_band = 0.25;  // m
   int local_min_points = 10;
   double local_min_extent = 1.0;  // m
+  double local_min_fill = 0.5;    // share of one ring's returns over the layer's spread (LocalGroundConfig)
 };
 const ConfigSection<GroundConfig>& ground_section();  // "perception.lidar.ground"
 

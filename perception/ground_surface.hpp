@@ -2,9 +2,11 @@
 // The ground the stages measure heights from: the fitted plane, plus local height corrections on a coarse grid
 // where the real ground bends away from one plane (a crowned road, a slope change, an airfield's undulations:
 // centimetres over tens of metres, as much as a cone's foot). A cell is corrected only where its returns show a
-// flat layer of ground (enough points near one height, spread over a metre or more); a cone, a tyre or a kerb's
-// handful of points never moves the ground. Cells without such a layer take their neighbours' mean correction,
-// else none (the plane); heights between cell centres are interpolated bilinearly.
+// flat layer of ground (enough points near one height, spread over a metre or more, and as dense along that spread
+// as a laser's ring of ground returns is); a cone, a tyre or a kerb's handful of points never moves the ground, nor
+// does a row of cones one laser crosses at the same height where no laser reaches the ground (8–19 m from a 0.35 m
+// mount): their returns are short runs metres apart. Cells without such a layer take their neighbours' mean
+// correction, else none (the plane); heights between cell centres are interpolated bilinearly.
 #include <vector>
 
 #include "common/types.hpp"
@@ -18,6 +20,11 @@ struct LocalGroundConfig {
   double flat = 0.05;       // m: half-width of the flat layer (the ground threshold τ)
   int min_points = 10;      // points in the layer
   double min_extent = 1.0;  // m: the layer's horizontal spread (a cone's ring of points is 0.2 m)
+  // The layer's points at least this share of what one ring of ground over its spread returns at its range, one
+  // return per `azimuth_step` (rad; 0: no density test).
+  double min_fill = 0.5;
+  double azimuth_step = 0.0;
+  Vec2 sensor = Vec2::Zero();  // where the ranges are measured from (the points' frame)
 };
 
 class GroundSurface {

@@ -43,7 +43,10 @@ const ConfigSection<IntensityColourConfig>& intensity_colour_section() {
                    "Points needed in the stripe or body band to use it (twice that to name a colour from the body "
                    "alone).")
           .integer("min_points", &IntensityColourConfig::min_points, 1, 10000, "",
-                   "Clusters with fewer points get no colour.");
+                   "Clusters with fewer points get no colour.")
+          .boolean("reject_black", &IntensityColourConfig::reject_black,
+                   "Reject a cluster whose body-band returns are all darker than blue_body_min (black rubber: tyres, "
+                   "tyre stacks) as no cone, at any range. Calibrated VLP-16 reflectivity only.");
   return s;
 }
 
@@ -112,6 +115,17 @@ IntensityColour IntensityColourClassifier::classify(const ConeCandidate& cone, c
   }
   if (have_stripe && upper_quartile(stripe) <= cfg_.dark_stripe_max) return {ConeColour::Yellow, 0.6};
   return out;
+}
+
+bool IntensityColourClassifier::black(const ConeCandidate& cone, const GroundSurface& ground) const {
+  std::size_t body = 0;
+  for (const auto& q : cone.cloud) {
+    const double f = ground.height_of(q.x, q.y, q.z) / small_height_;
+    if (f >= cfg_.body_low && f <= cfg_.body_high) continue;  // a yellow cone's stripe is black paint
+    if (q.intensity >= cfg_.blue_body_min) return false;
+    ++body;
+  }
+  return body >= 2 * static_cast<std::size_t>(cfg_.min_band_points);
 }
 
 }  // namespace fsd

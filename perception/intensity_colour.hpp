@@ -33,6 +33,10 @@ struct IntensityColourConfig {
   double dark_stripe_max = 20.0;      // a stripe this dark with no body seen: black (yellow cone)
   int min_band_points = 2;            // points needed in a band to use it (twice that for the body alone)
   int min_points = 6;                 // a smaller cluster is too little to read a colour from
+  // Every cone's body paint (blue, yellow, orange, red) reflects more than black rubber: a cluster whose body-band
+  // returns are all darker than `blue_body_min` is a tyre or a tyre stack, not a cone, at any range. The levels are
+  // the VLP-16's calibrated reflectivity: off for clouds whose intensity has another scale (`fsd detect` on CSV).
+  bool reject_black = true;
 };
 const ConfigSection<IntensityColourConfig>& intensity_colour_section();  // "perception.lidar.colour"
 
@@ -47,6 +51,9 @@ class IntensityColourClassifier {
                             double big_height = 0.505)
       : cfg_(cfg), small_height_(small_height), big_height_(big_height) {}
   IntensityColour classify(const ConeCandidate& cone, const GroundSurface& ground) const;
+  // Black rubber: at least 2 × min_band_points returns in the body bands (the small cone's; a yellow cone's black
+  // stripe is not judged) and none of them as bright as `blue_body_min`. Independent of `enabled` and `max_range`.
+  bool black(const ConeCandidate& cone, const GroundSurface& ground) const;
   const IntensityColourConfig& config() const { return cfg_; }
 
  private:

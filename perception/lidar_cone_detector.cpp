@@ -125,6 +125,9 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   local.flat = cfg_.ground.distance_threshold;
   local.min_points = cfg_.ground.local_min_points;
   local.min_extent = cfg_.ground.local_min_extent;
+  local.min_fill = cfg_.ground.local_min_fill;
+  local.azimuth_step = deg2rad(cfg_.size.azimuth_step_deg);
+  local.sensor = body_from_sensor_.translation().head<2>();
   surface.fit_local(cropped_, local);
   n.local_ground_cells = surface.corrected_cells();
   obstacles_.clear();
@@ -164,6 +167,8 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
     ConeMeasurement m = size_.measure(out.obstacle_points, cl, surface, body_from_sensor_, tau, out.frames);
     if (m.rejection == ConeRejection::None && size_.beside_taller(m.candidate.position, tall))
       m.rejection = ConeRejection::BesideTaller;
+    if (m.rejection == ConeRejection::None && cfg_.colour.reject_black && colour_.black(m.candidate, surface))
+      m.rejection = ConeRejection::Black;
     if (m.rejection != ConeRejection::None) {
       const auto& c = m.candidate;
       out.rejected.push_back({c.position, c.width, c.height, c.bottom, c.points, m.rejection});
@@ -191,6 +196,9 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
         continue;
       case ConeRejection::BesideTaller:
         ++n.beside_taller;
+        continue;
+      case ConeRejection::Black:
+        ++n.black;
         continue;
     }
     const ConeCandidate& c = m.candidate;

@@ -57,6 +57,7 @@ struct LidarStageCounters {
   std::uint64_t clusters_too_large = 0;
   std::uint64_t too_sparse = 0, too_wide = 0, too_tall = 0, not_cone_shaped = 0, too_flat = 0, floating = 0;
   std::uint64_t beside_taller = 0;
+  std::uint64_t black = 0;  // black rubber by its reflectivity (tyres, tyre stacks)
   std::uint64_t cones = 0;
   std::uint64_t coloured = 0;            // cones with a colour from the reflectivity
   std::uint64_t local_ground_cells = 0;  // grid cells whose ground was corrected from the plane

@@ -84,5 +84,28 @@ TEST(IntensityColour, ABigConeIsBigOrangeByItsStripesOrItsOrangeBody) {
             ConeColour::Unknown);
 }
 
+TEST(IntensityColour, BlackRubberIsNoConeButAYellowConesBlackStripeIs) {
+  // The virtual car's paints (drivers/sim: tyre 6, yellow body 70 and stripe 8, blue body 22): what a cone's body
+  // returns is never as dark as rubber; a yellow cone's stripe is.
+  const GroundSurface ground(GroundPlane{});
+  const IntensityColourClassifier classify;
+  const auto flat = [](double level) { return [level](double) { return level; }; };
+  // A tyre stack's foot, one laser at 0.09 m (below the stripe band): black.
+  EXPECT_TRUE(classify.black(cluster({0.09}, flat(6.0)), ground));
+  // Far from the colour's range, it still is (the rejection does not depend on max_range or enabled).
+  ConeCandidate far = cluster({0.05}, flat(5.0));
+  far.range = 17.0;
+  EXPECT_TRUE(classify.black(far, ground));
+  // A yellow cone one laser crosses through its black stripe: not judged, so not black.
+  EXPECT_FALSE(classify.black(cluster({0.16}, flat(8.0)), ground));
+  // Cone bodies: yellow, dark blue.
+  EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, flat(70.0)), ground));
+  EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, flat(22.0)), ground));
+  // Dark below, bright above: not rubber.
+  EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, [](double h) { return h < 0.1 ? 6.0 : 70.0; }), ground));
+  // Too few returns in the body bands to judge.
+  EXPECT_FALSE(classify.black(cluster({0.05}, flat(6.0), 3), ground));
+}
+
 }  // namespace
 }  // namespace fsd
