@@ -55,7 +55,7 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
                   "A push off a cone fades out over this either side of it.", true)
           .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")
           .number("fallback_below", &C::fallback_below, 0, 50, "m",
-                  "Walks ending nearer try the single-boundary fallback.")
+                  "Walks shorter than this, along them from the car, try the single-boundary fallback.")
           .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)
           .number("time_budget", &C::time_budget, 0.001, 1, "s",
                   "A plan whose CPU time exceeds this is counted late (a warning in the log and /metrics); time "

@@ -404,11 +404,18 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
   result.triangles = static_cast<int>(tri.triangles.size());
 
   Walk walk = Walker(config_, local, tri).walk();
+  // How far a walk leads, along it from the car: a walk round a hairpin ahead ends beside the car, near in a
+  // straight line, and is not a short walk.
+  const auto length_of = [](const std::vector<Vec2>& pts) {
+    double len = 0;
+    Vec2 at = Vec2::Zero();
+    for (const Vec2& p : pts) len += (p - at).norm(), at = p;
+    return len;
+  };
   // A wrong colour can lead the walk astray where geometry alone would not: walk again without colours and
-  // take that walk when its geometry is clearly better, or when the coloured walk ends too near to drive on
-  // (a wrong colour can fold it back on itself) and the blind one does not, as long as it passes no more than a
-  // cone or two against their colour (more would be a wrong branch, not a wrong cone). Either beats falling back
-  // to one boundary.
+  // take that walk when its geometry is clearly better, or when a wrong colour stopped the coloured walk short
+  // of where it could drive and the blind one goes on, as long as it passes no more than a cone or two against
+  // their colour (more would be a wrong branch, not a wrong cone). Either beats falling back to one boundary.
   if (config_.use_colours && config_.colour_check_margin >= 0) {
     std::vector<LocalCone> blind = local;
     for (auto& c : blind) c.side = 0;
@@ -417,22 +424,21 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
     std::set<int> against;
     for (const auto& [cone, side] : geometric.passed)
       if (local[static_cast<std::size_t>(cone)].side * side == -1) against.insert(cone);
-    const auto reach_of = [](const Walk& w) { return w.mids.empty() ? 0.0 : w.mids.back().norm(); };
     const bool better =
         !walk.mids.empty() && geometric.geometric_score + config_.colour_check_margin < walk.geometric_score;
-    const bool only_blind_reaches =
-        reach_of(walk) < config_.fallback_below && reach_of(geometric) >= config_.fallback_below;
+    const bool only_blind_leads =
+        length_of(walk.mids) < config_.fallback_below && length_of(geometric.mids) >= config_.fallback_below;
     if (!geometric.mids.empty() && static_cast<int>(against.size()) <= config_.max_wrong_colours &&
-        (better || only_blind_reaches)) {
+        (better || only_blind_leads)) {
       walk = std::move(geometric);
       result.ignored_colours = true;
     }
   }
   std::vector<Vec2> mids = std::move(walk.mids);
-  const double reach = mids.empty() ? 0.0 : mids.back().norm();
-  if (reach < config_.fallback_below) {
+  const double length = length_of(mids);
+  if (length < config_.fallback_below) {
     std::vector<Vec2> side = boundary_offset_walk(local, config_);
-    if (!side.empty() && side.back().norm() > reach + 1.0) {
+    if (!side.empty() && length_of(side) > length + 1.0) {
       mids = std::move(side);
       result.single_boundary = true;
     }

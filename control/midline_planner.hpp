@@ -53,7 +53,7 @@ struct MidlinePlannerConfig {
   double ds = 0.25;                      // m: spacing of the output path
   double smoothing_wavelength = 5.0;     // m: ripples shorter than this are smoothed out
   double min_length = 3.0;               // m: shorter walks are a failed plan
-  double fallback_below = 8.0;           // m: a walk ending nearer than this tries the single-boundary fallback
+  double fallback_below = 8.0;           // m: a walk shorter than this (along it) tries the single-boundary fallback
   double end_speed = 0.0;                // m/s: speed allowed at the end of the planned horizon
   double time_budget = 0.025;            // s: the caller counts a plan slower than this as late (a warning)
   TightTurnConfig tight_turn;            // the line through hairpins and other turns at the steering lock

@@ -64,19 +64,21 @@ void GroundSurface::fit_local(const std::vector<Point>& points, const LocalGroun
     std::nth_element(r.begin(), q, r.end());
     const float level = *q;
     float xa2 = std::numeric_limits<float>::max(), ya2 = xa2, xb2 = -xa2, yb2 = -xa2;
-    double sum = 0, range = 0;
+    double sum = 0, cx = 0, cy = 0;
     int n = 0;
     for (auto k = b; k < e; ++k) {
       const Sample& s = samples[k];
       if (std::abs(s.r - level) > cfg.flat) continue;
       xa2 = std::min(xa2, s.x), xb2 = std::max(xb2, s.x), ya2 = std::min(ya2, s.y), yb2 = std::max(yb2, s.y);
       sum += s.r;
-      range += std::hypot(s.x - cfg.sensor.x(), s.y - cfg.sensor.y());
+      cx += s.x, cy += s.y;
       ++n;
     }
     const double extent = std::hypot(xb2 - xa2, yb2 - ya2);
     if (n < cfg.min_points || extent < cfg.min_extent) continue;
-    if (cfg.azimuth_step > 0 && n < cfg.min_fill * extent / std::max(1e-3, range / n * cfg.azimuth_step)) continue;
+    // The returns one ring of ground gives over that spread at the layer's range (its centroid's: one root a cell).
+    const double range = std::hypot(cx / n - cfg.sensor.x(), cy / n - cfg.sensor.y());
+    if (cfg.azimuth_step > 0 && n < cfg.min_fill * extent / std::max(1e-3, range * cfg.azimuth_step)) continue;
     offset_[c] = static_cast<float>(sum / n);
     known[c] = 1;
     ++corrected_;

@@ -9,11 +9,36 @@
 
 #include "control/smoothing.hpp"
 #include "tests/control/mission_harness.hpp"
+#include "tests/daemon/friction_limited_lap.hpp"
 
 namespace fsd {
 namespace {
 
 const auto test_config = test::bicycle_autopilot_config;
+
+// A layout's centre line: its left cones joined to their nearest right cones, smoothed like the lap-2 line.
+Path centre_line(const Track& track) {
+  Path centre;
+  centre.closed = true;
+  for (const auto& l : track.cones) {
+    if (l.role != ConeRole::Left) continue;
+    const TrackCone* best = nullptr;
+    for (const auto& r : track.cones)
+      if (r.role == ConeRole::Right &&
+          (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
+        best = &r;
+    centre.points.push_back({0.5 * (l.position + best->position), 0, 0, 0, 0});
+  }
+  return smooth_path(centre, 0.25, 12.0);
+}
+
+// Its travel time under a speed profile with `limits`.
+double centre_line_time(const Track& track, const SpeedLimits& limits) {
+  Path centre = centre_line(track);
+  SpeedProfile(limits).apply(centre, 0, 0);
+  return travel_time(centre);
+}
+
 
 void print_laps(const char* what, const test::MissionHarness& h) {
   std::printf("  %s:", what);
@@ -50,22 +75,9 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   // profile is checked against hand-computed values in speed_profile_test.cpp); the centre line is the file's
   // ordered left cones joined to their nearest right cones, smoothed like the lap-2 line. Lap 2 uses 92 % of
   // μ (≈ 4 % slower in corners) and starts at the lap-1 speed on the start straight, so it is allowed 10 %.
-  Path centre;
-  centre.closed = true;
-  for (const auto& l : track.cones) {
-    if (l.role != ConeRole::Left) continue;
-    const TrackCone* best = nullptr;
-    for (const auto& r : track.cones)
-      if (r.role == ConeRole::Right &&
-          (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
-        best = &r;
-    centre.points.push_back({0.5 * (l.position + best->position), 0, 0, 0, 0});
-  }
-  centre = smooth_path(centre, 0.25, 12.0);
   SpeedLimits full = test_config().speed.known();
   full.mu = test_config().speed.mu;
-  SpeedProfile(full).apply(centre, 0, 0);
-  const double t_ref = travel_time(centre);
+  const double t_ref = centre_line_time(track, full);
   std::printf("  lap 2 %.2f s, friction-limited centre line %.2f s (+%.1f %%)\n", h.laps()[1].time_s, t_ref,
               100 * (h.laps()[1].time_s / t_ref - 1));
   EXPECT_LT(h.laps()[1].time_s, 1.10 * t_ref);
@@ -76,7 +88,8 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   ASSERT_EQ(lap_lines.size(), 1u);
   EXPECT_LT(lap_lines[0].first, h.laps()[0].t);
   EXPECT_GT(lap_lines[0].first, h.laps()[0].t - 5.0);
-  EXPECT_NEAR(lap_lines[0].second.length, centre.length(), 0.03 * centre.length());
+  const double centre_length = centre_line(track).length();
+  EXPECT_NEAR(lap_lines[0].second.length, centre_length, 0.03 * centre_length);
   EXPECT_LT(lap_lines[0].second.closure_gap, 1.0);
   EXPECT_GT(lap_lines[0].second.recentre_rms, 0.0);
   EXPECT_EQ(lap_lines[0].second.tight_turns, 0);  // epfl_track_1 has no hairpin
@@ -113,8 +126,19 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
   EXPECT_EQ(h.as_state(), AsState::Finished);
   for (const auto& [t, c] : h.hits()) std::printf("    hit cone (%.2f, %.2f) at t %.2f\n", c.x(), c.y(), t);
   EXPECT_EQ(h.cones_hit(), 0);
-  // epfl_autoX_Vaudoise_Sponso is an autocross layout, all corners: lap 2 gains ~15 %, not 20.
-  const bool autox = GetParam() == "epfl_autoX_Vaudoise_Sponso";
+  // Lap 2 at least 20 % faster than lap 1, or, where the layout allows less, within 5 % of the gain the two laps'
+  // speed limits give on its true centre line (friction_limited_lap.hpp, from the file alone: lap 1 at
+  // mu_margin_realtime and v_max_realtime, lap 2 at lap2.mu_margin and v_max). The layouts here allow 32–46 %,
+  // but epfl_autoX_Vaudoise_Sponso, all corners, 22 % (the car gains 19 %).
+  const auto& sp = test_config().speed;
+  const auto file_cones = test::read_cones("../shared/tracks/" + GetParam() + ".csv");
+  const double layout_ratio =
+      test::friction_limited_lap_time(file_cones,
+                                      {sp.mu * test_config().lap2.mu_margin, sp.a_accel_max, sp.a_brake_max, sp.v_max}) /
+      test::friction_limited_lap_time(
+          file_cones, {sp.mu * sp.mu_margin_realtime, sp.a_accel_max, sp.a_brake_max, sp.v_max_realtime});
+  const double ratio_max = std::max(0.8, layout_ratio + 0.05);
+  std::printf("    lap 2 / lap 1 allowed %.3f (centre line at the two laps' limits %.3f)\n", ratio_max, layout_ratio);
   // The lap-2 figures: 20 % faster than lap 1, CTE RMS < 0.15 m, max < 0.5 m. The centre line here is
   // this harness's own (track_truth.hpp: rungs between facing cones), not the scorecard's (each left-boundary
   // point's midpoint with its closest right-boundary point), which the lap-2 line follows and the daemon's sweep
@@ -122,7 +146,7 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
   // a wide stretch: at amz_fssim_thin's (29.5, 11.6) the middle of that corner is 1 m apart in the two.
   const double cte_max = GetParam() == "amz_fssim_thin" ? 1.0 : 0.5;
   if (h.laps().size() == 2) {
-    EXPECT_LT(h.laps()[1].time_s, (autox ? 0.9 : 0.8) * h.laps()[0].time_s);
+    EXPECT_LT(h.laps()[1].time_s, ratio_max * h.laps()[0].time_s);
     const auto [rms2, max2] = h.lap_cte(2);
     std::printf("    lap 2 cte rms %.3f max %.3f\n", rms2, max2);
     EXPECT_LT(rms2, 0.15);

@@ -187,6 +187,35 @@ TEST(MidlinePlanner, StraightCorridorGivesTheCentreLineAndACurvatureSpeed) {
   EXPECT_NEAR(plan.path.points.back().v, config.end_speed, 1e-9);
 }
 
+TEST(MidlinePlanner, AWrongColourBesideAHairpinDoesNotTurnTheCarOffTheLane) {
+  // epfl_autoX_Vaudoise_Sponso 1.3 m past its timing line, the car heading into the chicane before the pointed
+  // hairpin at the top; one blue cone 6.6 m to the left taken for yellow (what the map held in a fused run). The
+  // walk goes round the hairpin and ends beside the car: a long walk, to be driven, not replaced by one
+  // boundary's offset (which swung the car 1.2 m right there and into the chicane's cones).
+  Track track = test::shared_track("epfl_autoX_Vaudoise_Sponso");
+  std::vector<Cone> cones;
+  for (const auto& c : track.cones) {
+    Cone k;
+    k.position = Vec3(c.position.x(), c.position.y(), 0);
+    k.colour = (c.position - Vec2(-4.5, 12.8038)).norm() < 0.01 ? ConeColour::Yellow : c.colour;
+    cones.push_back(k);
+  }
+  const TrackTruth truth(track);
+  const MidlinePlanner planner({}, track.convention, SpeedLimits{});
+  VehicleState state;
+  state.pose = {0.40, 8.63, 1.29};
+  state.vx = 5.8;
+  const PlanResult plan = planner.plan(cones, state);
+  ASSERT_TRUE(plan.ok) << plan.reason;
+  EXPECT_FALSE(plan.single_boundary);
+  double worst = 0;
+  for (const auto& p : plan.path.points) {
+    if ((p.p - state.pose.position()).norm() > 8.0) break;
+    worst = std::max(worst, truth.centre_distance(p.p));
+  }
+  EXPECT_LT(worst, 0.4);  // m from the centre over the first 8 m
+}
+
 TEST(MidlinePlanner, BadInputIsReportedNotThrown) {
   const MidlinePlanner planner({}, ColourConvention{}, SpeedLimits{});
   VehicleState state;
