@@ -42,11 +42,15 @@ TEST(LoopClosureRun, TheLapsLoopClosesOnceNearTheStartAndTheMapIsOneMapAgain) {
     const json& c = closures[i];
     EXPECT_EQ(c["lap"], int(i) + 1);
     EXPECT_GE(c["pairs"].get<int>(), 6) << c.dump();
-    // Most of the lap's drift taken away (measured 1.07 m -> 0.14 m).
+    // The error left small, and smaller than before.
     EXPECT_LT(c["error_after_m"].get<double>(), 0.3) << c.dump();
-    EXPECT_LT(c["error_after_m"].get<double>(), 0.5 * c["error_before_m"].get<double>()) << c.dump();
+    EXPECT_LT(c["error_after_m"].get<double>(), c["error_before_m"].get<double>()) << c.dump();
   }
   const json& first = closures[0];
+  // Most of lap 1's drift taken away (measured 1.07 m -> 0.14 m, 0.37 -> 0.15 m since). Lap 2's closure, when the
+  // lap is driven on a closed loop's map, starts near the pairs' own residual (0.21 m before, 0.11 m RMS of its
+  // pairs) and is not held to halve it.
+  EXPECT_LT(first["error_after_m"].get<double>(), 0.5 * first["error_before_m"].get<double>()) << first.dump();
   // Worth closing: the odometry drifted 0.39 m by the start (1.07 m before its deskew stopped taking the previous
   // pose's correction for motion).
   EXPECT_GT(first["error_before_m"].get<double>(), 0.3) << first.dump();
