@@ -7,7 +7,10 @@
 // Frames: the virtual car's VLP-16 (drivers/sim) driving epfl_track_1 at 8 m/s, decoded by the real VLP-16
 // decoder, 100 consecutive frames, true poses for deskew and accumulation. Arg 0: the track as it is (default
 // distractors; the sky returns nothing, ~15 k points a frame); arg 1: a venue lined with 3 m fences 5-8 m from the
-// track (50 segments), whose upper lasers return too (~25 k points, nearer a VLP-16's full 28.8 k).
+// track (50 segments), whose upper lasers return too (~25 k points, nearer a VLP-16's full 28.8 k); arg 2: the
+// shared real VLP-16 capture (../shared/data/vlp16, a street, ~18 k points, 1.8 m up), its one revolution read
+// as `fsd detect` reads it and repeated as a standing sensor's frames 0.1 s apart, in the stages as `fsd detect`
+// configures them (its own frame, the ground searched 0.1–3 m below).
 // p50/p99 of the thread CPU time per frame as counters (ms); after the run, the naive/default ratio of p50.
 //   Run from the project root:  taskset -c 1 build/bench/perception_bench
 #include <benchmark/benchmark.h>
@@ -27,6 +30,7 @@
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
+#include "daemon/cloud_detect.hpp"
 #include "perception/lidar_cone_detector.hpp"
 #include "tests/perception/sim_lidar_drive.hpp"
 
@@ -39,17 +43,37 @@ double cpu_ms() {
   return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
+enum FrameSet { kOpen = 0, kFenced = 1, kReal = 2 };
+const char* name_of(int set) { return set == kOpen ? "open" : set == kFenced ? "fenced" : "real"; }
+
 struct Frames {
   std::vector<Scan> scans;
-  std::unique_ptr<test::SimLidarDrive> drive;
+  std::unique_ptr<test::SimLidarDrive> drive;  // null: the real capture, a standing sensor in its own frame
+  LoadedCloud real;
   double mean_points = 0;
+  Pose3 body_pose(Stamp t) const { return drive ? drive->body_pose(t) : Pose3::Identity(); }
+  Pose3 mount() const { return drive ? drive->mount() : Pose3::Identity(); }
+  LidarDetectorConfig adapt(LidarDetectorConfig cfg) const { return drive ? cfg : detect_frame_config(cfg, real); }
 };
 
-const Frames& frames(bool fenced) {
-  static std::map<bool, Frames> cache;
-  auto it = cache.find(fenced);
+const Frames& frames(int set) {
+  static std::map<int, Frames> cache;
+  auto it = cache.find(set);
   if (it != cache.end()) return it->second;
-  Frames& f = cache[fenced];
+  Frames& f = cache[set];
+  if (set == kReal) {
+    f.real = load_cloud("../shared/data/vlp16/velodyne_vlp16.pcap");
+    for (int i = 0; i < 100; ++i) {
+      Scan s = f.real.scan;
+      s.seq = static_cast<std::uint32_t>(i);
+      s.stamp += 0.1 * i;
+      for (auto& p : s.points) p.t += 0.1 * i;
+      f.scans.push_back(std::move(s));
+    }
+    f.mean_points = static_cast<double>(f.real.scan.points.size());
+    return f;
+  }
+  const bool fenced = set == kFenced;
   test::SimLidarSetup s;
   s.track = "../shared/tracks/epfl_track_1.csv";
   if (fenced) {
@@ -77,9 +101,9 @@ void report(benchmark::State& state, std::vector<double>& ms, const Frames& f, c
 
 // The detector over the frames in order (accumulation needs consecutive frames); restarted at the end of the set.
 void run_detector(benchmark::State& state, const LidarDetectorConfig& cfg, const std::string& name) {
-  const Frames& f = frames(state.range(0) != 0);
-  const BodyPoseAt pose_at = [&](Stamp t) { return f.drive->body_pose(t); };
-  LidarConeDetector det(cfg, f.drive->mount());
+  const Frames& f = frames(static_cast<int>(state.range(0)));
+  const BodyPoseAt pose_at = [&](Stamp t) { return f.body_pose(t); };
+  LidarConeDetector det(f.adapt(cfg), f.mount());
   std::vector<double> ms;
   std::size_t k = 0, cones = 0;
   for (auto _ : state) {
@@ -92,11 +116,11 @@ void run_detector(benchmark::State& state, const LidarDetectorConfig& cfg, const
     benchmark::DoNotOptimize(d);
   }
   state.counters["cones"] = static_cast<double>(cones) / static_cast<double>(k);
-  report(state, ms, f, name + (state.range(0) ? "/fenced" : "/open"));
+  report(state, ms, f, name + "/" + name_of(static_cast<int>(state.range(0))));
 }
 
 void BM_LidarStages(benchmark::State& state) { run_detector(state, {}, "default"); }
-BENCHMARK(BM_LidarStages)->Arg(0)->Arg(1)->Iterations(300)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LidarStages)->Arg(kOpen)->Arg(kFenced)->Arg(kReal)->Iterations(300)->Unit(benchmark::kMillisecond);
 
 void BM_LidarStagesPclReference(benchmark::State& state) {
   LidarDetectorConfig cfg;
@@ -104,13 +128,13 @@ void BM_LidarStagesPclReference(benchmark::State& state) {
   cfg.cluster.method = "pcl_euclidean";
   run_detector(state, cfg, "pcl_reference");
 }
-BENCHMARK(BM_LidarStagesPclReference)->Arg(0)->Arg(1)->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LidarStagesPclReference)->Arg(kOpen)->Arg(kFenced)->Arg(kReal)->Iterations(100)->Unit(benchmark::kMillisecond);
 
 // The naive pipeline: whole frames, no region of interest.
 void BM_NaivePclPipeline(benchmark::State& state) {
-  const Frames& f = frames(state.range(0) != 0);
-  const BodyPoseAt pose_at = [&](Stamp t) { return f.drive->body_pose(t); };
-  const Pose3 mount = f.drive->mount();
+  const Frames& f = frames(static_cast<int>(state.range(0)));
+  const BodyPoseAt pose_at = [&](Stamp t) { return f.body_pose(t); };
+  const Pose3 mount = f.mount();
   const ConeSizeFilter size;
   std::vector<double> ms;
   std::size_t k = 0, cones = 0;
@@ -196,9 +220,9 @@ void BM_NaivePclPipeline(benchmark::State& state) {
     ms.push_back(cpu_ms() - t0);
   }
   state.counters["cones"] = static_cast<double>(cones) / static_cast<double>(k);
-  report(state, ms, f, std::string("naive") + (state.range(0) ? "/fenced" : "/open"));
+  report(state, ms, f, std::string("naive/") + name_of(static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_NaivePclPipeline)->Arg(0)->Arg(1)->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NaivePclPipeline)->Arg(kOpen)->Arg(kFenced)->Arg(kReal)->Iterations(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace fsd
@@ -208,7 +232,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  for (const char* frames : {"open", "fenced"}) {
+  for (const char* frames : {"open", "fenced", "real"}) {
     const auto ours = fsd::p50_of.find(std::string("default/") + frames);
     const auto naive = fsd::p50_of.find(std::string("naive/") + frames);
     if (ours != fsd::p50_of.end() && naive != fsd::p50_of.end())
