@@ -45,8 +45,11 @@ const ConfigSection<IntensityColourConfig>& intensity_colour_section() {
           .integer("min_points", &IntensityColourConfig::min_points, 1, 10000, "",
                    "Clusters with fewer points get no colour.")
           .boolean("reject_black", &IntensityColourConfig::reject_black,
-                   "Reject a cluster whose body-band returns are all darker than blue_body_min (black rubber: tyres, "
-                   "tyre stacks) as no cone, at any range. Calibrated VLP-16 reflectivity only.");
+                   "Reject a cluster whose body-band returns are all darker than black_max (black rubber: tyres, "
+                   "tyre stacks) as no cone, at any range. Calibrated VLP-16 reflectivity only.")
+          .number("black_max", &IntensityColourConfig::black_max, 0.0, 255.0, "",
+                  "Body reflectivity below this is black rubber (reject_black); below blue_body_min, so that a dark "
+                  "blue body is not rejected.");
   return s;
 }
 
@@ -122,7 +125,7 @@ bool IntensityColourClassifier::black(const ConeCandidate& cone, const GroundSur
   for (const auto& q : cone.cloud) {
     const double f = ground.height_of(q.x, q.y, q.z) / small_height_;
     if (f >= cfg_.body_low && f <= cfg_.body_high) continue;  // a yellow cone's stripe is black paint
-    if (q.intensity >= cfg_.blue_body_min) return false;
+    if (q.intensity >= cfg_.black_max) return false;
     ++body;
   }
   return body >= 2 * static_cast<std::size_t>(cfg_.min_band_points);

@@ -34,9 +34,11 @@ struct IntensityColourConfig {
   int min_band_points = 2;            // points needed in a band to use it (twice that for the body alone)
   int min_points = 6;                 // a smaller cluster is too little to read a colour from
   // Every cone's body paint (blue, yellow, orange, red) reflects more than black rubber: a cluster whose body-band
-  // returns are all darker than `blue_body_min` is a tyre or a tyre stack, not a cone, at any range. The levels are
-  // the VLP-16's calibrated reflectivity: off for clouds whose intensity has another scale (`fsd detect` on CSV).
+  // returns are all darker than `black_max` is a tyre or a tyre stack, not a cone, at any range. Set below
+  // `blue_body_min` (a dark, dirty or grazed blue body that the colour leaves Unknown is still a cone). The levels
+  // are the VLP-16's calibrated reflectivity: off for clouds whose intensity has another scale (`fsd detect` on CSV).
   bool reject_black = true;
+  double black_max = 8.0;
 };
 const ConfigSection<IntensityColourConfig>& intensity_colour_section();  // "perception.lidar.colour"
 
@@ -52,7 +54,7 @@ class IntensityColourClassifier {
       : cfg_(cfg), small_height_(small_height), big_height_(big_height) {}
   IntensityColour classify(const ConeCandidate& cone, const GroundSurface& ground) const;
   // Black rubber: at least 2 × min_band_points returns in the body bands (the small cone's; a yellow cone's black
-  // stripe is not judged) and none of them as bright as `blue_body_min`. Independent of `enabled` and `max_range`.
+  // stripe is not judged) and none of them as bright as `black_max`. Independent of `enabled` and `max_range`.
   bool black(const ConeCandidate& cone, const GroundSurface& ground) const;
   const IntensityColourConfig& config() const { return cfg_; }
 

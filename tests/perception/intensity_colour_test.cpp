@@ -98,9 +98,11 @@ TEST(IntensityColour, BlackRubberIsNoConeButAYellowConesBlackStripeIs) {
   EXPECT_TRUE(classify.black(far, ground));
   // A yellow cone one laser crosses through its black stripe: not judged, so not black.
   EXPECT_FALSE(classify.black(cluster({0.16}, flat(8.0)), ground));
-  // Cone bodies: yellow, dark blue.
+  // Cone bodies: yellow, dark blue, and a blue body darker than the colour names (10: Unknown, still no rubber).
   EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, flat(70.0)), ground));
   EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, flat(22.0)), ground));
+  EXPECT_EQ(classify.classify(cluster({0.05, 0.25}, flat(10.0)), ground).colour, ConeColour::Unknown);
+  EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, flat(10.0)), ground));
   // Dark below, bright above: not rubber.
   EXPECT_FALSE(classify.black(cluster({0.05, 0.25}, [](double h) { return h < 0.1 ? 6.0 : 70.0; }), ground));
   // Too few returns in the body bands to judge.
