@@ -102,6 +102,7 @@ struct Stack::Impl {
   std::unique_ptr<LidarLocalization> odometry;    // the lidar_odometry source, and the fused one's increments
   bool odometry_scan = false;                     // a scan the odometry has not taken yet
   Stamp odometry_vcu_stamp = -1e300;              // the newest VCU status the odometry has taken
+  std::optional<Stamp> odometry_scan_end;         // the last firing of the scan the odometry took last
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
@@ -486,6 +487,7 @@ struct Stack::Impl {
       latency["odometry"].add(wall() - w0);
       if (odometry_hook) odometry_hook(out);
       increment = odometry->increment();
+      if (localization_source == "lidar_odometry") settle_carried_poses(out.stamp, steering);
     }
     for (const auto& s : gnss_pending) {
       autopilot->on_gnss(s.stamp, s.good);
@@ -516,6 +518,17 @@ struct Stack::Impl {
       autopilot->on_state(*state);
       poses.add(state->stamp, state->pose);
     }
+  }
+
+  // The LiDAR alone: the poses held since the previous scan were carried forward from it (state() between scans);
+  // the scan just matched says where the car was at its last firing. Move them onto it, the correction growing
+  // from nothing at the previous scan to all of it at this one (the carry's error grows with time), so that the
+  // scan is deskewed and stacked on the odometry's own scan-to-scan motion, not on carries that jump at each scan.
+  void settle_carried_poses(Stamp scan_end, double steering) {
+    const std::optional<Stamp> from = odometry_scan_end;
+    odometry_scan_end = scan_end;
+    const auto at_scan = odometry->state(scan_end, steering);
+    if (from && at_scan && poses.reaches_back_to(*from)) poses.settle(*from, scan_end, at_scan->pose);
   }
 
   double vcu_steering() const {
