@@ -128,7 +128,12 @@ void BM_LidarStagesPclReference(benchmark::State& state) {
   cfg.cluster.method = "pcl_euclidean";
   run_detector(state, cfg, "pcl_reference");
 }
-BENCHMARK(BM_LidarStagesPclReference)->Arg(kOpen)->Arg(kFenced)->Arg(kReal)->Iterations(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LidarStagesPclReference)
+    ->Arg(kOpen)
+    ->Arg(kFenced)
+    ->Arg(kReal)
+    ->Iterations(100)
+    ->Unit(benchmark::kMillisecond);
 
 // The naive pipeline: whole frames, no region of interest.
 void BM_NaivePclPipeline(benchmark::State& state) {

@@ -106,8 +106,8 @@ struct Stack::Impl {
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   ConeMap cone_map;
-  MapMatchConfig map_match;  // the LiDAR alone: the pose drawn towards the cone map
-  std::optional<double> lidar_odometry_max_speed;  // the LiDAR alone: control.speed.v_max capped to it
+  MapMatchConfig map_match;                               // the LiDAR alone: the pose drawn towards the cone map
+  std::optional<double> lidar_odometry_max_speed;         // the LiDAR alone: control.speed.v_max capped to it
   std::unique_ptr<loop_closure::LoopCloser> loop_closer;  // lidar_odometry: each lap's loop on the start's cones
   std::unique_ptr<LoopSolveThread> loop_worker;           // real time: the loop's solve off the control thread
   double loop_step_s = 0;  // the control thread's time of the closing frame whose solve is out
@@ -336,8 +336,7 @@ struct Stack::Impl {
 
   // One perception frame's detections, taken at `pose`, into the map and the map to control; the stage's time
   // from `w0` (wall clock) to here.
-  void map_detections(Stamp now, ConeDetections det, Pose2 pose, std::span<const Cone> camera_rejected,
-                      double w0) {
+  void map_detections(Stamp now, ConeDetections det, Pose2 pose, std::span<const Cone> camera_rejected, double w0) {
     // The LiDAR alone: the pose drawn towards the cone map (map_match.hpp), the map lap 1 built and closed from lap
     // 2 on, and before that the cones mapped so far (the scan-to-scan wobble of the odometry's heading).
     if (odometry && localization_source == "lidar_odometry") {

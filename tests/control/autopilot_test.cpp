@@ -16,30 +16,6 @@ namespace {
 
 const auto test_config = test::bicycle_autopilot_config;
 
-// A layout's centre line: its left cones joined to their nearest right cones, smoothed like the lap-2 line.
-Path centre_line(const Track& track) {
-  Path centre;
-  centre.closed = true;
-  for (const auto& l : track.cones) {
-    if (l.role != ConeRole::Left) continue;
-    const TrackCone* best = nullptr;
-    for (const auto& r : track.cones)
-      if (r.role == ConeRole::Right &&
-          (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
-        best = &r;
-    centre.points.push_back({0.5 * (l.position + best->position), 0, 0, 0, 0});
-  }
-  return smooth_path(centre, 0.25, 12.0);
-}
-
-// Its travel time under a speed profile with `limits`.
-double centre_line_time(const Track& track, const SpeedLimits& limits) {
-  Path centre = centre_line(track);
-  SpeedProfile(limits).apply(centre, 0, 0);
-  return travel_time(centre);
-}
-
-
 void print_laps(const char* what, const test::MissionHarness& h) {
   std::printf("  %s:", what);
   for (const auto& l : h.laps()) std::printf(" lap %d %.2f s", l.lap, l.time_s);
@@ -75,9 +51,22 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   // profile is checked against hand-computed values in speed_profile_test.cpp); the centre line is the file's
   // ordered left cones joined to their nearest right cones, smoothed like the lap-2 line. Lap 2 uses 92 % of
   // μ (≈ 4 % slower in corners) and starts at the lap-1 speed on the start straight, so it is allowed 10 %.
+  Path centre;
+  centre.closed = true;
+  for (const auto& l : track.cones) {
+    if (l.role != ConeRole::Left) continue;
+    const TrackCone* best = nullptr;
+    for (const auto& r : track.cones)
+      if (r.role == ConeRole::Right &&
+          (!best || (r.position - l.position).norm() < (best->position - l.position).norm()))
+        best = &r;
+    centre.points.push_back({0.5 * (l.position + best->position), 0, 0, 0, 0});
+  }
+  centre = smooth_path(centre, 0.25, 12.0);
   SpeedLimits full = test_config().speed.known();
   full.mu = test_config().speed.mu;
-  const double t_ref = centre_line_time(track, full);
+  SpeedProfile(full).apply(centre, 0, 0);
+  const double t_ref = travel_time(centre);
   std::printf("  lap 2 %.2f s, friction-limited centre line %.2f s (+%.1f %%)\n", h.laps()[1].time_s, t_ref,
               100 * (h.laps()[1].time_s / t_ref - 1));
   EXPECT_LT(h.laps()[1].time_s, 1.10 * t_ref);
@@ -88,8 +77,7 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   ASSERT_EQ(lap_lines.size(), 1u);
   EXPECT_LT(lap_lines[0].first, h.laps()[0].t);
   EXPECT_GT(lap_lines[0].first, h.laps()[0].t - 5.0);
-  const double centre_length = centre_line(track).length();
-  EXPECT_NEAR(lap_lines[0].second.length, centre_length, 0.03 * centre_length);
+  EXPECT_NEAR(lap_lines[0].second.length, centre.length(), 0.03 * centre.length());
   EXPECT_LT(lap_lines[0].second.closure_gap, 1.0);
   EXPECT_GT(lap_lines[0].second.recentre_rms, 0.0);
   EXPECT_EQ(lap_lines[0].second.tight_turns, 0);  // epfl_track_1 has no hairpin
@@ -133,8 +121,8 @@ TEST_P(TrackdriveOnEveryLoop, TwoLapsNoConesHitFinished) {
   const auto& sp = test_config().speed;
   const auto file_cones = test::read_cones("../shared/tracks/" + GetParam() + ".csv");
   const double layout_ratio =
-      test::friction_limited_lap_time(file_cones,
-                                      {sp.mu * test_config().lap2.mu_margin, sp.a_accel_max, sp.a_brake_max, sp.v_max}) /
+      test::friction_limited_lap_time(
+          file_cones, {sp.mu * test_config().lap2.mu_margin, sp.a_accel_max, sp.a_brake_max, sp.v_max}) /
       test::friction_limited_lap_time(
           file_cones, {sp.mu * sp.mu_margin_realtime, sp.a_accel_max, sp.a_brake_max, sp.v_max_realtime});
   const double ratio_max = std::max(0.8, layout_ratio + 0.05);

@@ -21,11 +21,12 @@ using nlohmann::json;
 
 json lidar_odometry_run(const std::string& name, const std::string& track, bool loop_closure,
                         const std::string& args = "") {
-  return test::sim_report(name,
-                          {{"sim", {{"enable_camera", false}}},
-                           {"run", {{"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
-                           {"localization", {{"loop_closure", {{"enabled", loop_closure}}}, {"map_match", {{"enabled", false}}}}}},
-                          "--laps 2 --track ../shared/tracks/" + track + ".csv " + args, /*must_pass=*/false);
+  return test::sim_report(
+      name,
+      {{"sim", {{"enable_camera", false}}},
+       {"run", {{"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
+       {"localization", {{"loop_closure", {{"enabled", loop_closure}}}, {"map_match", {{"enabled", false}}}}}},
+      "--laps 2 --track ../shared/tracks/" + track + ".csv " + args, /*must_pass=*/false);
 }
 
 TEST(LoopClosureRun, TheLapsLoopClosesOnceNearTheStartAndTheMapIsOneMapAgain) {

@@ -12,8 +12,8 @@
 namespace fsd {
 namespace {
 
-constexpr double kMount = 0.35;                              // m above the ground
-constexpr double kStep = 0.2 * std::numbers::pi / 180.0;     // azimuth step, rad
+constexpr double kMount = 0.35;                                   // m above the ground
+constexpr double kStep = 0.2 * std::numbers::pi / 180.0;          // azimuth step, rad
 constexpr double kLaser[] = {-15, -13, -11, -9, -7, -5, -3, -1};  // the VLP-16's downward lasers, degrees
 
 Point at(double x, double y, double z) {
