@@ -53,6 +53,14 @@ struct Pose2 {
   }
 };
 
+// A share of a rigid correction given about a pivot (turn by `yaw` about `pivot`, then shift by `shift`), as a
+// transform to apply on the left (p' = pivot + R(share · yaw)(p − pivot) + share · shift): 0 is the identity, 1 the
+// whole correction. For corrections applied a part at a time, or spread over an interval.
+inline Pose2 share_of_correction(const Vec2& pivot, double yaw, const Vec2& shift, double share) {
+  const Vec2 t = pivot + share * shift - Eigen::Rotation2Dd(share * yaw) * pivot;
+  return {t.x(), t.y(), share * yaw};
+}
+
 // Heading of a 3D pose projected onto the ground plane.
 inline Pose2 to_pose2(const Pose3& T) {
   const Vec3 fwd = T.linear() * Vec3::UnitX();

@@ -64,10 +64,7 @@ std::optional<MapMatch> match_to_map(const std::vector<Cone>& detections, const 
   out.rms_after = std::sqrt(after / static_cast<double>(pairs.size()));
   if (t.norm() > cfg.max_step || !(out.rms_after <= out.rms_before)) return std::nullopt;
   // A share of it, as a map ← estimated correction: rotate about the car, then shift.
-  const double g = cfg.gain;
-  const Eigen::Rotation2Dd Rg(g * yaw);
-  const Vec2 shift = car + g * t - Rg * car;  // p' = Rg p + shift  ⇔  car + Rg (p - car) + g t
-  out.correction = Pose2{shift.x(), shift.y(), g * yaw};
+  out.correction = share_of_correction(car, yaw, t, cfg.gain);
   return out;
 }
 

@@ -48,11 +48,10 @@ class PoseHistory {
     if (poses_.empty() || !(to > from) || poses_.back().t < to) return false;
     const Pose2 held = *at(to);
     const double dyaw = wrap_angle(at_to.yaw - held.yaw);
-    const Vec2 pivot = held.position(), shift = at_to.position() - held.position();
+    const Vec2 shift = at_to.position() - held.position();
     correct([&](Stamp t) {
       const double u = std::clamp((t - from) / (to - from), 0.0, 1.0);
-      const Vec2 r = Eigen::Rotation2Dd(u * dyaw) * pivot;
-      return Pose2{pivot.x() + u * shift.x() - r.x(), pivot.y() + u * shift.y() - r.y(), u * dyaw};
+      return share_of_correction(held.position(), dyaw, shift, u);
     });
     return true;
   }
