@@ -75,7 +75,7 @@ struct Stats {
   long samples = 0;
 };
 
-void run_track(const std::string& name, Variant variant, const Tolerance& tol) {
+Stats run_track(const std::string& name, Variant variant, const Tolerance& tol) {
   const Track full = test::shared_track(name);
   const TrackTruth truth(full);
   const Track track = variant_of(full, variant);
@@ -116,45 +116,48 @@ void run_track(const std::string& name, Variant variant, const Tolerance& tol) {
   EXPECT_LE(rms, tol.centre_rms) << name;
   EXPECT_LE(st.failed, std::lround(tol.failed_fraction * st.placements)) << name;
   EXPECT_LE(st.bad, std::lround(tol.bad_fraction * st.placements)) << name;
+  return st;
 }
 
-// The two layouts where the degraded variants are hardest: amz_fssim_thin packs its stretches of track within
-// 3–4 m of each other, and the autocross has a pointed 180° hairpin and a chicane that widens to 6 m. Without
-// colours or with cones missing, the planner there picks a wrong branch near the edge of what it sees at a
-// few placements; the fraction is bounded, and every other layout is held to nearly none.
-bool hardest(const std::string& name) { return name == "amz_fssim_thin" || name == "epfl_autoX_Vaudoise_Sponso"; }
-Tolerance degraded(const std::string& name, double failed_fraction) {
-  return hardest(name) ? Tolerance{8.0, 0.7, 0.5, 0.45, failed_fraction, 0.2}
-                       : Tolerance{8.0, 0.7, 0.5, 0.3, failed_fraction, 0.03};
+// A degraded variant on every loop: each layout within loose bounds, the set of them within tight ones. Without
+// colours or with cones missing the planner picks a wrong branch near the edge of what it sees at a few
+// placements where the layout itself is ambiguous (amz_fssim_thin packs its stretches of track within 3–4 m of
+// each other; the autocross has a pointed 180° hairpin and a chicane that widens to 6 m): any one layout may have
+// up to a fifth of its placements bad, all of them together at most `bad_fraction`. The same rule for every
+// layout, none named.
+void run_loops(Variant variant, Tolerance set) {
+  Tolerance each = set;
+  each.bad_fraction = std::max(set.bad_fraction, 0.2);
+  each.centre_rms = std::max(set.centre_rms, 0.45);
+  Stats all;
+  for (const auto& name : test::loop_tracks()) {
+    const Stats st = run_track(name, variant, each);
+    all.placements += st.placements;
+    all.bad += st.bad;
+    all.sum_sq += st.sum_sq;
+    all.samples += st.samples;
+  }
+  const double rms = all.samples ? std::sqrt(all.sum_sq / static_cast<double>(all.samples)) : 0.0;
+  std::printf("  all layouts: placements %d bad %d  centre rms %.3f\n", all.placements, all.bad, rms);
+  EXPECT_LE(all.bad, std::lround(set.bad_fraction * all.placements));
+  EXPECT_LE(rms, set.centre_rms);
 }
 
 TEST(MidlinePlanner, FollowsTheTrueCentreOnEverySharedTrack) {
   for (const auto& name : test::loop_tracks()) run_track(name, Variant::AllCones, {15.0, 0.6, 0.6, 0.07, 0.0, 0.0});
 }
 
-TEST(MidlinePlanner, FifthOfConesMissing) {
-  for (const auto& name : test::loop_tracks()) run_track(name, Variant::FifthRemoved, degraded(name, 0.06));
-}
+TEST(MidlinePlanner, FifthOfConesMissing) { run_loops(Variant::FifthRemoved, {8.0, 0.7, 0.5, 0.3, 0.06, 0.03}); }
 
-TEST(MidlinePlanner, ColourBlind) {
-  for (const auto& name : test::loop_tracks()) run_track(name, Variant::ColourBlind, degraded(name, 0.03));
-}
+TEST(MidlinePlanner, ColourBlind) { run_loops(Variant::ColourBlind, {8.0, 0.7, 0.5, 0.3, 0.03, 0.03}); }
 
 // A tenth of the colours swapped is the hardest variant: a wrong-coloured cone at the edge of what is seen can
 // bend the path's far end towards it until more cones come into view, and where a wrong colour hides one
 // boundary the path runs the nominal half width (1.75 m) inside the other (0.75 m off centre on the 5 m wide
 // epfl_VSV_XL). The planner always plans (a second, colour-blind walk wins when its geometry is clearly
 // better, or when a wrong colour folds the coloured walk back short of where it could drive); the near field
-// stays within 1 m of the centre and clear of the cones at nine placements in ten.
-TEST(MidlinePlanner, TenthOfColoursWrong) {
-  for (const auto& name : test::loop_tracks()) {
-    Tolerance t = degraded(name, 0.03);
-    t.centre_max = 1.0;
-    t.centre_rms = 0.7;
-    t.bad_fraction = std::max(t.bad_fraction, 0.1);
-    run_track(name, Variant::WrongColours, t);
-  }
-}
+// stays within 1 m of the centre and clear of the cones at 95 % of all placements (any one layout: four in five).
+TEST(MidlinePlanner, TenthOfColoursWrong) { run_loops(Variant::WrongColours, {8.0, 1.0, 0.5, 0.7, 0.03, 0.05}); }
 
 TEST(MidlinePlanner, StraightCorridorGivesTheCentreLineAndACurvatureSpeed) {
   // Hand-made straight: left cones at y = +1.5, right at y = −1.5 every 3 m; the car on the centre at x = 0.

@@ -20,6 +20,7 @@
 #include "daemon/settings.hpp"
 #include "daemon/stack.hpp"
 #include "daemon/truth_frames.hpp"
+#include "drivers/sim/reference_line.hpp"
 #include "tests/control/bicycle_sim.hpp"
 #include "tests/control/track_truth.hpp"
 
@@ -148,16 +149,20 @@ class MissionHarness {
   std::optional<double> finished_at() const { return finished_at_; }
   std::optional<double> emergency_at() const { return emergency_at_; }
 
-  // Cross-track error to the true centre line over the cycles of lap `lap` (1-based, crossing to crossing).
-  std::pair<double, double> lap_cte(int lap) const {
+  // Cross-track error (RMS, max) over the cycles of lap `lap` (1-based, crossing to crossing) to this harness's
+  // centre line (track_truth.hpp); with `reference` (the scorecard's, sim::ReferenceLine), to the nearer of the
+  // two at each cycle: two independent definitions from the same cones, which differ only where the centre of a
+  // corner is itself ambiguous.
+  std::pair<double, double> lap_cte(int lap, const sim::ReferenceLine* reference = nullptr) const {
     double sum = 0, mx = 0;
     long n = 0;
     const double t0 = lap >= 2 ? laps_[static_cast<std::size_t>(lap - 2)].t : 0.0;
     const double t1 = laps_[static_cast<std::size_t>(lap - 1)].t;
     for (const auto& r : records_)
       if (r.t > t0 && r.t <= t1) {
-        sum += r.centre_distance * r.centre_distance;
-        mx = std::max(mx, r.centre_distance);
+        const double d = reference ? std::min(r.centre_distance, reference->distance(r.position)) : r.centre_distance;
+        sum += d * d;
+        mx = std::max(mx, d);
         ++n;
       }
     return {n ? std::sqrt(sum / static_cast<double>(n)) : 0.0, mx};
