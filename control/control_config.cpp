@@ -89,7 +89,14 @@ const ConfigSection<TightTurnConfig>& tight_turn_section() {
                   "The joins with the path are rounded over about this.", true)
           .number("v_max", &C::v_max, 0.5, 60, "m/s",
                   "A shaped turn, entry to rejoin, is driven at most this fast (no steering left to correct with).",
-                  true);
+                  true)
+          .number("understeer", &C::understeer, 0, 0.1, "rad/(m/s²)",
+                  "The car's understeer gradient K (δ = L/R + K·v²/R); 0: a turn's room does not cap lap 1's speed.",
+                  true)
+          .number("room_share", &C::room_share, 0.05, 1, "",
+                  "Lap 1 drives a shaped turn no faster than running wide by this share of the room its cones leave.",
+                  true)
+          .number("v_min", &C::v_min, 0.5, 60, "m/s", "Lap 1's speed through a shaped turn that leaves no room.", true);
   return s;
 }
 

@@ -473,7 +473,7 @@ PlanResult MidlinePlanner::plan(const std::vector<Cone>& cones, const VehicleSta
   std::optional<TightTurn> held;
   if (held_turn) held = transformed(*held_turn, pose.inverse());
   for (const TightTurn& turn : shape_tight_turns(smooth, positions, config_.tight_turn, held ? &*held : nullptr)) {
-    zones.push_back({turn.s_begin, turn.s_end, config_.tight_turn.v_max});
+    zones.push_back({turn.s_begin, turn.s_end, room_speed(turn, config_.tight_turn)});
     if (!result.tight_turn) result.tight_turn = transformed(turn, pose);
   }
   transform_path(smooth, pose);

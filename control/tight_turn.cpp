@@ -217,6 +217,17 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   if (fitted) {
     turn.outer_nearest = turn.outer_radius;
     for (const auto& p : outer) turn.outer_nearest = std::min(turn.outer_nearest, (p - turn.centre).norm());
+    // The inner side's limit is the farthest inner cone round the stretch's arc (a ring of cones is no perfect
+    // circle; its mean radius would let the body brush the cones that stand out), not one beside the straights.
+    turn.inner_farthest = turn.inner_radius;
+    const Vec2 from = pts[seg->first].p - turn.centre;
+    const double span = std::abs(seg->turn);
+    for (const auto& p : inner) {
+      const Vec2 d = p - turn.centre;
+      double round = dir * std::atan2(from.x() * d.y() - from.y() * d.x(), from.dot(d));
+      if (round < 0) round += 2 * kPi;
+      if (round <= span) turn.inner_farthest = std::max(turn.inner_farthest, d.norm());
+    }
   } else if (seg->held) {
     // Past the middle of the turn the cones still ahead are too few to fit, or lie on the exit straight: the
     // rings fitted on the way in hold (they are fixed in the map; the pose carries them into this frame).
@@ -231,7 +242,7 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   const double keep = cfg.cone_radius + cfg.clearance;
   const double r_kinematic = cfg.wheelbase / std::tan(cfg.max_steer);  // the rear axle's at the lock
   const double r_lock = r_kinematic * (1.0 + cfg.lock_margin);
-  const double r_in = turn.inner_radius + keep + cfg.body_half_width;
+  const double r_in = turn.inner_farthest + keep + cfg.body_half_width;
   const double out = turn.outer_nearest - keep;
   const double r_out =
       out > cfg.body_front ? std::sqrt(out * out - cfg.body_front * cfg.body_front) - cfg.body_half_width : 0.0;
@@ -242,6 +253,7 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
   const double r_authority = r_kinematic * (1.0 + cfg.lock_authority);
   const double wanted = std::max(0.5 * (r_in + r_out), std::min(r_authority, 0.5 * (r_lock + r_out)));
   turn.radius = std::max(r_lock, std::min(wanted, r_out));
+  turn.room = std::max(0.0, std::min(r_out - turn.radius, turn.radius - r_in));
 
   // The car cannot step its steering onto the arc: it turns in along a clothoid (curvature rising linearly over
   // transition_length), and a clothoid–arc–clothoid keeps its arc concentric with the turn only if its straights
@@ -393,6 +405,12 @@ std::optional<TightTurn> shape_segment_within_lock(Path& path, const std::option
 }
 
 }  // namespace
+
+double room_speed(const TightTurn& turn, const TightTurnConfig& cfg) {
+  if (cfg.understeer <= 0 || turn.radius <= 0) return cfg.v_max;
+  const double v = std::sqrt(cfg.room_share * turn.room * cfg.wheelbase / (turn.radius * cfg.understeer));
+  return std::clamp(v, std::min(cfg.v_min, cfg.v_max), cfg.v_max);
+}
 
 TightTurn transformed(TightTurn turn, const Pose2& by) {
   turn.centre = by.transform(turn.centre);

@@ -33,6 +33,12 @@ struct TightTurnConfig {
   // At the lock the follower has no steering left to correct with (a car carried wide stays wide), and the rejoin
   // can bend harder than the arc: the shaped stretch is driven at most this fast.
   double v_max = 5.0;  // m/s
+  // On real-time plans (lap 1), no faster than the room the cones leave the rear axle's arc either side allows:
+  // at a steering angle held for the arc a car that understeers runs wide by r·K·v²/L, kept within room_share of
+  // that room; a turn that leaves none is driven at v_min. (Lap 2's line is planned once over the whole lap.)
+  double understeer = 0.0036;  // rad per m/s² (K: δ = L/R + K·v²/R; the virtual car's, measured at the lock)
+  double room_share = 0.5;
+  double v_min = 1.5;  // m/s
   // Not in the configuration section: the steering's limits, from control.follower.
   double wheelbase = 1.53;  // m
   double max_steer = 0.5;   // rad
@@ -42,13 +48,18 @@ struct TightTurn {
   Vec2 centre = Vec2::Zero();
   double inner_radius = 0, outer_radius = 0;  // of the cone rings
   double outer_nearest = 0;                   // the nearest outer cone's distance from the centre (the nose's limit)
+  double inner_farthest = 0;                  // the farthest inner cone's (the inner side's limit)
   double radius = 0;                          // of the rear axle's arc
+  double room = 0;                            // m the arc may move either way before the body meets the cones
   double sweep = 0;                           // rad, the arc's angle (positive)
   int direction = 0;                          // +1 round to the left (counter-clockwise), −1 to the right
   Vec2 exit = Vec2::Zero();                   // where the turn-out ends (back on a straight) ...
   Vec2 exit_direction = Vec2::UnitX();        // ... heading this way (unit)
   double s_begin = 0, s_end = 0;              // m: the rebuilt stretch of the path, from leaving it to rejoining
 };
+
+// The speed a real-time plan drives `turn` at most: v_max, or less where its room is small (config above).
+double room_speed(const TightTurn& turn, const TightTurnConfig& config);
 
 // The turn in another frame: `by` (frame ← the turn's frame) applied to its centre and exit.
 TightTurn transformed(TightTurn turn, const Pose2& by);

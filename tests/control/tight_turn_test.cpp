@@ -22,7 +22,7 @@ struct Hairpin {
   std::vector<Vec2> cones;
   Path midline;  // the lane's centre line, smoothed like the planner's (5 m)
 
-  explicit Hairpin(double start_y = 9.0) {
+  explicit Hairpin(double start_y = 9.0, double outer = 4.5, double inner = 1.5) : r_in(inner), r_out(outer) {
     const double rm = 0.5 * (r_in + r_out);
     for (double y = c.y() - 12; y < c.y(); y += 3)
       for (double x : {r_in, r_out, -r_in, -r_out}) cones.push_back(c + Vec2(x, y - c.y()));
@@ -98,6 +98,51 @@ TEST(TightTurn, TheRulesTightestHairpinGetsAnArcTheCarCanDriveInsideTheCones) {
   EXPECT_LT((line.points.front().p - h.midline.points.front().p).norm(), 0.05);
   EXPECT_LT(std::abs(line.points.back().p.x() - (h.c.x() - 3.0)), 0.05);
   EXPECT_NEAR(line.points.back().yaw, -kPi / 2, 0.05);
+}
+
+// Lap 1's speed through a shaped turn follows from the room the cones leave the rear axle's arc, hand-computed for
+// three outer rings round the same 1.5 m inner ring (TightTurnConfig's defaults: K 0.0036 rad per m/s², half the
+// room, 1.5–5 m/s). The inner limit is 1.5 + 0.17 + 0.7 = 2.37 m; the nose's, √((r_out − 0.17)² − 2.4²) − 0.7.
+TEST(TightTurn, ATurnIsDrivenNoFasterThanItsRoomAllows) {
+  const TightTurnConfig cfg;
+  const auto shaped = [&](double r_out) {
+    const Hairpin h(9.0, r_out);
+    Path line = h.midline;
+    const auto turns = shape_tight_turns(line, h.cones, cfg);
+    EXPECT_EQ(turns.size(), 1u) << r_out;
+    return turns.empty() ? TightTurn{} : turns.front();
+  };
+  // The rules' tightest: the arc at 2.8805 m (half-way from the lock's 2.857 m to the nose's 2.904 m) leaves
+  // 0.0235 m: √(0.5 · 0.0235 · 1.53 / (2.8805 · 0.0036)) = 1.32 m/s, below the floor.
+  const TightTurn tightest = shaped(4.5);
+  EXPECT_NEAR(tightest.room, 0.0235, 0.005);
+  EXPECT_NEAR(room_speed(tightest, cfg), cfg.v_min, 1e-9);
+  // 4.65 m: the arc at the lock's authority, 2.912 m; the nose's limit 3.083 m leaves 0.171 m: 3.53 m/s.
+  const TightTurn wider = shaped(4.65);
+  EXPECT_NEAR(wider.room, 0.171, 0.005);
+  EXPECT_NEAR(room_speed(wider, cfg), 3.53, 0.05);
+  // A 4 m lane (5.5 m): the arc in the middle, 0.84 m either side: 7.5 m/s, capped at v_max.
+  EXPECT_NEAR(room_speed(shaped(5.5), cfg), cfg.v_max, 1e-9);
+  // Without an understeer gradient the room does not cap the speed.
+  TightTurnConfig no_k = cfg;
+  no_k.understeer = 0;
+  EXPECT_NEAR(room_speed(tightest, no_k), cfg.v_max, 1e-9);
+}
+
+// A ring of cones is no perfect circle: an inner cone standing 0.6 m out of a 2.5 m ring into a 4 m lane. The
+// line keeps to the middle of what the farthest inner cone and the nearest outer one leave (the body 0.64 m off
+// that cone, 0.59 m off any); on the ring's mean radius it passed that cone at 0.45 m.
+TEST(TightTurn, AnInnerConeStandingOutOfItsRingIsKeptClearOfAsTheOthers) {
+  Hairpin h(9.0, 6.5, 2.5);
+  for (auto& c : h.cones)
+    if ((c - (h.c + Vec2(0.0, 2.5))).norm() < 1e-6) c = h.c + Vec2(0.0, 3.1);
+  const TightTurnConfig cfg;
+  Path line = h.midline;
+  ASSERT_EQ(shape_tight_turns(line, h.cones, cfg).size(), 1u);
+  const Sweep all = sweep_body(line, h.cones);
+  EXPECT_GT(all.clearance, 0.5);
+  const Sweep outlier = sweep_body(line, {h.c + Vec2(0.0, 3.1)});
+  EXPECT_GT(outlier.clearance, 0.55);
 }
 
 TEST(TightTurn, ACarAlreadyInTheTurnGetsTheArcFromWhereItIs) {

@@ -168,8 +168,8 @@ std::vector<Case> ci_cases() {
 }
 
 // The subset as one test, two layouts at a time: every failure is listed with its seed and how to reproduce it.
-// The target is >= 99 % clean over the whole sweep; this guards what control reaches today against
-// regressions (docs/control.md "Generated layouts" has the sweep's figures).
+// Held to the target over the whole sweep, >= 99 % clean (of 40: every one; the runs are deterministic);
+// docs/control.md "Generated layouts" has the whole sweep's figures.
 TEST(GeneratedTracks, CiSubset) {
   const std::vector<Case> cases = ci_cases();
   const std::vector<Outcome> out = drive_all(cases, 2);
@@ -186,8 +186,8 @@ TEST(GeneratedTracks, CiSubset) {
     }
   }
   std::printf("clean %d of %zu\n", clean, out.size());
-  EXPECT_GE(clean, static_cast<int>(std::ceil(0.95 * static_cast<double>(out.size()))))
-      << "more than 5 % of the CI subset is not clean (listed above)";
+  EXPECT_GE(clean, static_cast<int>(std::ceil(0.99 * static_cast<double>(out.size()))))
+      << "more than 1 % of the CI subset is not clean (listed above)";
 }
 
 // ---------------------------------------------------------------------------------------------------------------
