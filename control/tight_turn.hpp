@@ -38,7 +38,7 @@ struct TightTurnConfig {
   // that room; a turn that leaves none is driven at v_min. (Lap 2's line is planned once over the whole lap.)
   double understeer = 0.0036;  // rad per m/s² (K: δ = L/R + K·v²/R; the virtual car's, measured at the lock)
   double room_share = 0.5;
-  double v_min = 1.5;  // m/s
+  double v_min = 2.0;  // m/s
   // Not in the configuration section: the steering's limits, from control.follower.
   double wheelbase = 1.53;  // m
   double max_steer = 0.5;   // rad
