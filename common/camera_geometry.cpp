@@ -15,8 +15,6 @@ namespace {
 constexpr double kCollinearity = 1e-3;
 constexpr double kMinW = 1e-12;
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 double w_of(const Eigen::Matrix3d& H, const Vec2& p) { return H(2, 0) * p.x() + H(2, 1) * p.y() + H(2, 2); }
 
 std::optional<Vec2> apply(const Eigen::Matrix3d& H, const Vec2& p) {
@@ -33,7 +31,7 @@ void check_quad(const PointQuad& q, const std::string& what) {
       for (std::size_t c = b + 1; c < 4; ++c) {
         const Vec2 ab = q[b] - q[a], ac = q[c] - q[a], bc = q[c] - q[b];
         const double longest = std::max({ab.norm(), ac.norm(), bc.norm()});
-        const double height = std::abs(cross(ab, ac)) / std::max(longest, 1e-300);
+        const double height = std::abs(cross2(ab, ac)) / std::max(longest, 1e-300);
         if (longest == 0.0 || height < kCollinearity * longest)
           throw HomographyError(what + ": points " + std::to_string(a + 1) + ", " + std::to_string(b + 1) + " and " +
                                 std::to_string(c + 1) +

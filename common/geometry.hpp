@@ -16,6 +16,11 @@ inline double wrap_angle(double a) {
   return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
 }
 
+// The z of the cross product of two plane vectors: > 0 when b lies to the left of a.
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+// The angle turning `from` onto `to`, in (-pi, pi], counter-clockwise positive.
+inline double signed_angle(const Vec2& from, const Vec2& to) { return std::atan2(cross2(from, to), from.dot(to)); }
+
 inline constexpr double deg2rad(double d) { return d * std::numbers::pi / 180.0; }
 inline constexpr double rad2deg(double r) { return r * 180.0 / std::numbers::pi; }
 

@@ -13,8 +13,6 @@ namespace fsd {
 
 namespace {
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Which side of the track a cone marks: +1 left, −1 right, 0 unknown.
 int side_of_role(ConeRole r) {
   if (r == ConeRole::Left) return 1;
@@ -203,7 +201,7 @@ class Walker {
       if (nn.last[k] >= 0 && nn.prev[k] >= 0) {
         const Vec2 a = cone(nn.last[k]) - cone(nn.prev[k]), b = cone(v) - cone(nn.last[k]);
         if (a.norm() > 1e-6 && b.norm() > 1e-6) {
-          const double bend = std::abs(std::atan2(cross2(a, b), a.dot(b)));
+          const double bend = std::abs(signed_angle(a, b));
           const double excess = std::max(0.0, bend - deg2rad(c_.boundary_free_bend_deg));
           cost += c_.w_boundary_bend * excess * excess;
         }

@@ -7,8 +7,6 @@ namespace fsd {
 
 namespace {
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 std::size_t segment_count(const Path& path) {
   const std::size_t n = path.points.size();
   if (n < 2) return 0;

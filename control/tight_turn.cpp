@@ -33,7 +33,7 @@ std::optional<Segment> held_segment(const Path& path, const TightTurn& held, con
   // exit's direction and, round the turn's centre, just beyond the exit (within a quarter turn): a hairpin's exit
   // straight runs back beside its entry, where a car still coming in stands "past" the exit along that direction.
   const Vec2 a = pts.front().p - held.centre, b = held.exit - held.centre;
-  const double to_exit = held.direction * std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));  // still to turn
+  const double to_exit = held.direction * signed_angle(a, b);  // still to turn
   const bool beyond_exit_line = (held.exit - pts.front().p).dot(held.exit_direction) <= 0;
   if (beyond_exit_line && to_exit <= 0 && to_exit > -kPi / 2) return std::nullopt;
   Segment seg;
@@ -224,7 +224,7 @@ std::optional<TightTurn> shape_segment(Path& path, const std::optional<Segment>&
     const double span = std::abs(seg->turn);
     for (const auto& p : inner) {
       const Vec2 d = p - turn.centre;
-      double round = dir * std::atan2(from.x() * d.y() - from.y() * d.x(), from.dot(d));
+      double round = dir * signed_angle(from, d);
       if (round < 0) round += 2 * kPi;
       if (round <= span) turn.inner_farthest = std::max(turn.inner_farthest, d.norm());
     }
