@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <numbers>
 #include <set>
@@ -340,6 +341,57 @@ TEST(TrackGenerator, SameSeedAndOptionsGiveTheSameBytes) {
   // Trackdrive and autocross of one seed are different layouts.
   EXPECT_NE(format_track(sim::generate_track(opts(LayoutKind::Trackdrive, 5))),
             format_track(sim::generate_track(opts(LayoutKind::Autocross, 5))));
+}
+
+// FNV-1a (64 bit) of a file's bytes.
+std::uint64_t fnv1a(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+// The rules-conforming defaults stay byte for byte what they were: hashes of seeds 1–5 of every kind (and of open
+// autocross courses) recorded from the generator of commit e736074, before the irregular classes existed.
+TEST(TrackGenerator, DefaultLayoutsAreTheBytesTheyWereBeforeTheIrregularClasses) {
+  struct Fixture {
+    LayoutKind kind;
+    bool open;
+    int seed;
+    std::uint64_t hash;
+  };
+  const Fixture fixtures[] = {
+      {LayoutKind::Trackdrive, false, 1, 0x3af212163ab17fafull},
+      {LayoutKind::Trackdrive, false, 2, 0x32b33f62339e69f6ull},
+      {LayoutKind::Trackdrive, false, 3, 0xdbb72d6d9b6601a7ull},
+      {LayoutKind::Trackdrive, false, 4, 0xbd220a5710a95b0eull},
+      {LayoutKind::Trackdrive, false, 5, 0xea4f84549014f574ull},
+      {LayoutKind::Autocross, false, 1, 0xdbe39566d46233b6ull},
+      {LayoutKind::Autocross, false, 2, 0xeb04117c4d92ce7aull},
+      {LayoutKind::Autocross, false, 3, 0x75e58f5705fbf930ull},
+      {LayoutKind::Autocross, false, 4, 0xc4f8237d21c581c0ull},
+      {LayoutKind::Autocross, false, 5, 0xe238d179b1a3d6c7ull},
+      {LayoutKind::Autocross, true, 1, 0xb3e97d79e2d6bd4eull},
+      {LayoutKind::Autocross, true, 2, 0x9dfd5322c28dc35dull},
+      {LayoutKind::Autocross, true, 3, 0x49d2b6c33f988eb3ull},
+      {LayoutKind::Autocross, true, 4, 0x82996d5c2e8d9fb4ull},
+      {LayoutKind::Autocross, true, 5, 0x45b9e24b1b5232c3ull},
+      {LayoutKind::Acceleration, false, 1, 0xbbbff3e11f0fbe0dull},
+      {LayoutKind::Acceleration, false, 2, 0x1b99b1f0de202d4aull},
+      {LayoutKind::Acceleration, false, 3, 0x956315ddaada68b0ull},
+      {LayoutKind::Acceleration, false, 4, 0x129f689db13f183dull},
+      {LayoutKind::Acceleration, false, 5, 0x24baccc96c956683ull},
+      {LayoutKind::Skidpad, false, 1, 0x3cb28623010c3fbaull},
+      {LayoutKind::Skidpad, false, 2, 0x379f47bb1d5bc99dull},
+      {LayoutKind::Skidpad, false, 3, 0x3b15439b3de5518cull},
+      {LayoutKind::Skidpad, false, 4, 0xd025e19d56770f94ull},
+      {LayoutKind::Skidpad, false, 5, 0x95b88005e47c76b1ull},
+  };
+  for (const Fixture& f : fixtures) {
+    auto o = opts(f.kind, static_cast<std::uint64_t>(f.seed));
+    o.open = f.open;
+    EXPECT_EQ(fnv1a(format_track(sim::generate_track(o))), f.hash)
+        << sim::to_string(f.kind) << (f.open ? " open" : "") << " seed " << f.seed;
+  }
 }
 
 TEST(TrackGenerator, BadOptionsAreRejectedNamingTheOption) {
