@@ -14,7 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libpcap-dev libspdlog-dev libfmt-dev libcli11-dev libzstd-dev liblz4-dev
   libceres-dev libnanoflann-dev ccache
-  fastddsgen cyclonedds-dev libsystemd-dev systemd
+  fastddsgen cyclonedds-dev cyclonedds-tools libsystemd-dev systemd
   clang libclang-rt-14-dev tcpdump
   nodejs npm chromium
 )
