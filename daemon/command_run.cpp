@@ -12,14 +12,20 @@
 #include "common/logging.hpp"
 #include "common/mcap/records.hpp"
 #include "common/params.hpp"
+#include "common/track.hpp"
 #include "daemon/cli.hpp"
 #include "daemon/commands.hpp"
 #include "daemon/dashboard.hpp"
+#include "daemon/dds/perception_role.hpp"
 #include "daemon/hardware_run.hpp"
 #include "daemon/map_export.hpp"
 #include "daemon/recording_reader.hpp"
 #include "daemon/replay_run.hpp"
 #include "daemon/run_options.hpp"
+#include "daemon/service/journal_log.hpp"
+#include "daemon/service/recordings_folder.hpp"
+#include "daemon/service/resource_paths.hpp"
+#include "daemon/service/service_notifier.hpp"
 #include "daemon/settings.hpp"
 #include "daemon/sim_run.hpp"
 #include "daemon/stack.hpp"
@@ -50,6 +56,7 @@ Config load_config(const RunOptions& o) {
   // The virtual car is a desk run: its dashboard stays on this machine unless the file says otherwise (the car's
   // default, every interface, is for the pit lane's Wi-Fi).
   if (o.sim && !file_sets(o.config_file, "web", "bind")) cfg.set("web.bind", std::string("127.0.0.1"), "--sim");
+  locate_resources(cfg);  // the model and the dashboard, wherever fsd was started from
   return cfg;
 }
 
@@ -91,7 +98,12 @@ void export_map(const std::string& path, const Stack& stack) {
                       m.without_role ? " (" + std::to_string(m.without_role) + " without a colour left out)" : "");
 }
 
-int run_command(const RunOptions& o) {
+int run_command(const RunOptions& given) {
+  RunOptions o = given;
+  if (!o.role.empty() && (o.sim || !o.replay.empty() || !o.record.empty()))
+    throw std::invalid_argument(
+        "--role perception runs the perception stages on this computer's sensors: --sim, "
+        "--replay and --record do not apply");
   if (!o.replay.empty() && (o.sim || !o.record.empty() || o.track || o.mission || o.laps || o.seed))
     throw std::invalid_argument(
         "--replay takes the run from the recording: --sim, --record, --track, --mission, "
@@ -114,6 +126,15 @@ int run_command(const RunOptions& o) {
   }
   Config cfg = replay ? replay->config() : load_config(o);
   init_logging(daemon_section().read(cfg).log_level);
+  log_to_journal_if_there();
+  const ServiceSettings service = service_section().read(cfg);
+  ServiceNotifier notifier(service);
+  // The service's recordings: every run records to service.recordings_dir (held under its size cap) unless told.
+  if (!service.recordings_dir.empty() && o.record.empty() && !replay && o.role.empty()) {
+    o.record = next_recording_path(service);
+    prune_recordings(service);
+    logger("run")->info("recording to {}", o.record);
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RealClock clock;
@@ -135,12 +156,15 @@ int run_command(const RunOptions& o) {
   // Either run (sim or the car) the same way: the dashboard after the run's own checks, then drive until done.
   auto drive = [&](auto& run, bool truth_channels, auto report) -> int {
     if (!start_dashboard(truth_channels)) return kExitBadInput;
+    if constexpr (requires { run.set_loop_hook([] {}); }) run.set_loop_hook([&notifier] { notifier.on_cycle(); });
     if (dashboard) {
       run.set_telemetry(&dashboard->telemetry());
       run.set_metrics(&dashboard->metrics());
       run.set_params(&params);
     }
     const int rc = run.run(g_stop);
+    notifier.stopping();
+    if (!o.record.empty()) prune_recordings(service, o.record);
     if (dashboard) dashboard->stop();
     const int done = finish(rc, o.report, report(run));
     try {
@@ -151,6 +175,14 @@ int run_command(const RunOptions& o) {
     }
     return done;
   };
+  if (!o.role.empty()) {
+    // Split mode's perception process: no dashboard, no report; until SIGINT/SIGTERM.
+    dds::PerceptionRole role(cfg, o);
+    role.on_loop([&notifier] { notifier.on_cycle(); });
+    const int rc = role.run(g_stop);
+    notifier.stopping();
+    return rc;
+  }
   if (replay) return drive(*replay, replay->simulator(), [](const ReplayRun& r) { return r.report(); });
   if (!o.sim) {
     // The car's own interfaces (daemon/hardware_run.hpp); bad devices or missions throw and exit 2.
@@ -187,7 +219,26 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--report", o.report, "write the scorecard (JSON) here at the end");
   cmd->add_option("--map-out", o.map_out,
                   "write the cone map here at the end, as a track file (EUFS CSV: drive it with --sim --track)");
-  cmd->callback([&exit_code] { exit_code = run_command(o); });
+  cmd->add_option("--role", o.role,
+                  "split mode: perception = the LiDAR and camera stages here, their frames over DDS "
+                  "to the daemon that drives (run.perception_source = dds; docs/dds.md)")
+      ->check(CLI::IsMember({"perception"}));
+  // A start never aborts: what the usage errors (std::invalid_argument, configuration and track errors, handled by
+  // run_cli) do not cover, a model that does not load, a port, a device, is still exit 2 with its message.
+  cmd->callback([&exit_code] {
+    try {
+      exit_code = run_command(o);
+    } catch (const std::invalid_argument&) {
+      throw;
+    } catch (const ConfigError&) {
+      throw;
+    } catch (const TrackError&) {
+      throw;
+    } catch (const std::exception& e) {
+      std::cerr << "fsd run: " << e.what() << "\n";
+      exit_code = kExitBadInput;
+    }
+  });
 }
 
 }  // namespace fsd

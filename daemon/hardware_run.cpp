@@ -14,6 +14,8 @@
 #include "common/logging.hpp"
 #include "common/params.hpp"
 #include "daemon/cli.hpp"
+#include "daemon/dds/ros_time.hpp"
+#include "daemon/dds/run_dds.hpp"
 #include "daemon/hardware_stats.hpp"
 #include "daemon/recorder.hpp"
 #include "daemon/run_metrics.hpp"
@@ -115,6 +117,8 @@ struct HardwareRun::Impl {
   std::atomic<bool> halt{false};          // the control and camera threads end
   std::atomic<bool> control_done{false};  // the control thread ended the run (--until-finished)
   std::atomic<std::uint64_t> cycles{0}, overruns{0};
+  std::function<void()> loop_hook;   // after each control cycle (the service's watchdog)
+  std::unique_ptr<dds::RunDds> dds;  // dds.enabled or run.perception_source = dds
 
   // Results. Written by the control thread, read after the joins (and by snapshot() under result_m).
   mutable std::mutex result_m;
@@ -203,6 +207,8 @@ struct HardwareRun::Impl {
     vcu = std::make_unique<VcuLink>(vcu_cfg, stack->vcu(), clock, std::move(vh));
 
     if (cam_cfg.enabled) camera = std::make_unique<CameraSource>(cam_cfg, clock);
+    dds = dds::RunDds::make(cfg, false);
+    if (dds) dds->start(*stack, dds::run_epoch(clock.now()));
   }
 
   HardwareCounters snapshot() const {
@@ -254,8 +260,10 @@ struct HardwareRun::Impl {
         next = now;
       }
       while (auto f = frames.try_pop()) stack->feed({f->channel, f->t, f->bytes});
+      if (dds) dds->before_step(*stack);
       stack->step(now);
       cycles.fetch_add(1);
+      if (loop_hook) loop_hook();
       note_cycle(now);
       const AsState as = stack->as_state();
       if (until_finished && (as == AsState::Finished || as == AsState::Emergency)) {
@@ -313,6 +321,10 @@ struct HardwareRun::Impl {
     log->info("stopping ({}): safe stop to the VCU first", ended_by);
     halt = true;
     control_thread.join();
+    if (dds) {
+      dds->stop();
+      log->info("{}", dds->summary());
+    }
     vcu->stop();  // sends drivers.vcu.stop_frames safe Commands, then closes the port
     if (camera) {
       camera->stop();
@@ -368,6 +380,7 @@ void HardwareRun::set_metrics(RunMetrics* metrics) {
   if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
 }
 void HardwareRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
+void HardwareRun::set_loop_hook(std::function<void()> hook) { impl_->loop_hook = std::move(hook); }
 
 const Stack& HardwareRun::stack() const { return *impl_->stack; }
 

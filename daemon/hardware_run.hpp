@@ -15,6 +15,7 @@
 // SIGINT/SIGTERM (or, with --until-finished, AS Finished or Emergency) ends the run: the control thread stops, the
 // VCU link sends its safe-stop Commands (speed 0, brake) before its port closes, then the other drivers stop.
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,8 @@ class HardwareRun {
   void set_metrics(RunMetrics* metrics);
   const Stack& stack() const;              // after run(): the map, the start pose
   void set_params(ParamRegistry* params);  // live tuning of the autopilot's settings
+  // Called by the control thread after each cycle (the service's watchdog, daemon/service/service_notifier.hpp).
+  void set_loop_hook(std::function<void()> hook);
 
  private:
   struct Impl;

@@ -20,6 +20,7 @@ struct RunOptions {
   bool until_finished = false;
   std::string report;   // scorecard JSON path, empty: none
   std::string map_out;  // --map-out: the cone map at the end as a track CSV (daemon/map_export.hpp), empty: none
+  std::string role;     // --role perception: split mode's perception process (daemon/dds/perception_role.hpp)
 };
 
 }  // namespace fsd

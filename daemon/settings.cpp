@@ -3,8 +3,10 @@
 #include "common/car.hpp"
 
 #include "control/control_config.hpp"
+#include "daemon/dds/dds_settings.hpp"
 #include "daemon/lidar_localization.hpp"
 #include "daemon/recorder.hpp"
+#include "daemon/service/service_settings.hpp"
 #include "drivers/camera/camera_source.hpp"
 #include "drivers/gnss/gnss_config.hpp"
 #include "drivers/sim/virtual_car.hpp"
@@ -40,12 +42,13 @@ const ConfigSection<RunSettings>& run_section() {
           .integer("seed", &RunSettings::seed, 0, 1000000000, "", "Seed of every random process of the virtual car.")
           .string("colours", &RunSettings::colours, {"fsg", "fsac"},
                   "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
-          .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera"},
+          .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera", "dds"},
                   "Where cone detections come from: truth = the virtual car's cones within sensor range (on the car, "
                   "which has no truth: lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the "
                   "LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
                   "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
-                  "drivers.camera.calibration on the car).")
+                  "drivers.camera.calibration on the car); dds = the frames of a perception process (fsd run --role "
+                  "perception) over DDS (split mode, docs/dds.md).")
           .string("localization_source", &RunSettings::localization_source,
                   {"truth", "gnss", "fused", "lidar_odometry"},
                   "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
@@ -81,6 +84,8 @@ std::shared_ptr<const ConfigSchema> config_schema() {
   gnss_section().describe(*schema);
   vlp16_section().describe(*schema);
   camera_driver_section().describe(*schema);
+  dds::dds_section().describe(*schema);
+  service_section().describe(*schema);
   return schema;
 }
 

@@ -8,6 +8,8 @@
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 #include "control/missions.hpp"
+#include "daemon/dds/ros_time.hpp"
+#include "daemon/dds/run_dds.hpp"
 #include "daemon/layout_check.hpp"
 #include "daemon/recorder.hpp"
 #include "daemon/run_metrics.hpp"
@@ -57,11 +59,13 @@ struct SimRun::Impl {
   RunSettings run;
   Mission mission;
   bool headless, until_finished;
+  bool real_time;  // paced: not headless, or split mode (a perception process keeps real time)
   Track track;
   sim::VirtualCarSettings car_settings;
   std::unique_ptr<sim::VirtualCar> car;
   std::unique_ptr<SimFaults> faults;
   std::unique_ptr<Stack> stack;
+  std::unique_ptr<dds::RunDds> dds;  // dds.enabled or run.perception_source = dds (daemon/dds/run_dds.hpp)
   std::unique_ptr<SimScoring> scoring;
   Scorecard* card = nullptr;                  // scoring's
   std::unique_ptr<Recorder> recorder;         // --record
@@ -70,12 +74,14 @@ struct SimRun::Impl {
   std::shared_ptr<const std::vector<web::TruthCone>> dashboard_truth_cones;  // rebuilt when a cone falls
   int dashboard_cones_hit = -1;
   std::shared_ptr<spdlog::logger> log = logger("run");
+  std::function<void()> loop_hook;
 
   Impl(const Config& cfg, const RunOptions& opt)
       : run(run_section().read(cfg)),
         mission(mission_of(run)),
         headless(opt.headless),
-        until_finished(opt.until_finished) {
+        until_finished(opt.until_finished),
+        real_time(!opt.headless || run.perception_source == "dds") {
     track = load_track(run.track, ColourConvention::named(run.colours));
     if (track.duplicates_dropped > 0)
       log->warn("{}: {} row(s) repeat a cone already listed; each cone is placed once", run.track,
@@ -90,7 +96,7 @@ struct SimRun::Impl {
     so.simulator = true;
     // In real time the lap-2 build and the loop closure's solve run beside the control loop as on the car; in
     // lockstep inside the step that asks for them, so that a run is the same every time (unless --workers).
-    so.lap_build_worker = !headless || opt.workers;
+    so.lap_build_worker = real_time || opt.workers;
     so.loop_closure_worker = so.lap_build_worker;
     so.paced_workers = headless && opt.workers;
     // The camera stage sees through the virtual camera, calibrated perfectly; its frames arrive after the latency.
@@ -114,8 +120,15 @@ struct SimRun::Impl {
     sim::SensorSinks sinks;
     sinks.vcu_status = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::VcuRx, t, b}); };
     sinks.gnss = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::Nmea, t, b}); };
-    sinks.lidar = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::Vlp16Data, t, b}); };
-    sinks.camera = [this](Stamp t, std::span<const std::uint8_t> b) { stack->feed({RawChannel::Camera, t, b}); };
+    dds = dds::RunDds::make(used, true);
+    sinks.lidar = [this](Stamp t, std::span<const std::uint8_t> b) {
+      stack->feed({RawChannel::Vlp16Data, t, b});
+      if (dds) dds->lidar_packet(b);
+    };
+    sinks.camera = [this, latency = so.camera->latency](Stamp t, std::span<const std::uint8_t> b) {
+      stack->feed({RawChannel::Camera, t, b});
+      if (dds) dds->camera_frame(t - latency, b);
+    };
     car = std::make_unique<sim::VirtualCar>(track, car_settings, static_cast<std::uint64_t>(run.seed), sinks);
     faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
 
@@ -164,14 +177,15 @@ struct SimRun::Impl {
   int run_loop(const std::atomic<bool>& stop) {
     const auto wall0 = std::chrono::steady_clock::now();
     SimulatedClock pace(1.0);
+    if (dds) dds->start(*stack, dds::run_epoch(0.0));
     Stamp t = 0;
     double stopped_since = -1;
     int cycle = 0;
     log->info("driving {} on {} ({} lap(s)), seed {}, {}", to_string(mission), track.name,
-              timed_laps(mission, run.laps), run.seed, headless ? "headless lockstep" : "real time");
+              timed_laps(mission, run.laps), run.seed, real_time ? "real time" : "headless lockstep");
     while (!stop.load(std::memory_order_relaxed)) {
       t = (++cycle) * kControlPeriod;
-      if (!headless && !pace.sleep_until(t)) break;
+      if (real_time && !pace.sleep_until(t)) break;
       car->advance_to(t);
       faults->on_cycle(t);
       scoring->on_truth(car->truth());
@@ -180,8 +194,10 @@ struct SimRun::Impl {
         stack->feed({RawChannel::VcuTx, t, bytes});
         car->feed_vcu(t, bytes);
       });
+      if (dds) dds->before_step(*stack);
       stack->step(t);
       scoring->after_step(car->vcu().state(), car->cones_hit());
+      if (loop_hook) loop_hook();
 
       // The end of a run: the mission is over and the car stands (Finished or Emergency), or time ran out.
       const AsState as = car->vcu().state();
@@ -195,6 +211,10 @@ struct SimRun::Impl {
         log->warn("giving up after {} s of simulated time", run.max_sim_time);
         break;
       }
+    }
+    if (dds) {
+      dds->stop();
+      log->info("{}", dds->summary());
     }
     scoring->finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
     const nlohmann::json injected = faults->report();
@@ -224,6 +244,7 @@ void SimRun::set_metrics(RunMetrics* metrics) {
   if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
 }
 void SimRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
+void SimRun::set_loop_hook(std::function<void()> hook) { impl_->loop_hook = std::move(hook); }
 
 const Stack& SimRun::stack() const { return *impl_->stack; }
 

@@ -42,6 +42,8 @@ class SimRun {
   // Live tuning: changes of the registry's control.* parameters reach the autopilot at the next cycle.
   const Stack& stack() const;  // after run(): the map, the start pose
   void set_params(ParamRegistry* params);
+  // Called by the loop's thread after each cycle (the service's watchdog, daemon/service/service_notifier.hpp).
+  void set_loop_hook(std::function<void()> hook);
 
  private:
   struct Impl;

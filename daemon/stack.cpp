@@ -18,6 +18,7 @@
 #include "control/control_config.hpp"
 #include "daemon/cone_classifier_file.hpp"
 #include "daemon/dashboard_view.hpp"
+#include "daemon/dds/dds_settings.hpp"
 #include "daemon/fused_localization.hpp"
 #include "daemon/gnss_state.hpp"
 #include "daemon/lap_build_thread.hpp"
@@ -44,6 +45,7 @@ constexpr std::size_t kMaxLinkFaults = 256;   // VCU link events kept for the re
 constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
 constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
 constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
+constexpr std::size_t kRemoteFramesKept = 8;  // dds: perception frames between two cycles (10 Hz: one)
 
 double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -105,6 +107,13 @@ struct Stack::Impl {
   std::optional<Stamp> odometry_scan_end;         // the last firing of the scan the odometry took last
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
+  struct RemoteFrame {
+    ConeDetections detections;
+    std::vector<Cone> camera_rejected;
+  };
+  std::deque<RemoteFrame> remote_frames;  // dds: bounded by kRemoteFramesKept
+  double remote_max_age = 0;              // dds.max_detection_age
+  std::uint64_t remote_late = 0;
   ConeMap cone_map;
   MapMatchConfig map_match;                               // the LiDAR alone: the pose drawn towards the cone map
   std::optional<double> lidar_odometry_max_speed;         // the LiDAR alone: control.speed.v_max capped to it
@@ -187,7 +196,11 @@ struct Stack::Impl {
       perception_source = opt.camera ? "lidar_camera" : "lidar";
       log->info("no ground truth on the car: run.perception_source = truth runs the {} stages", perception_source);
     }
-    if (perception_source != "truth") detector = make_detector(cfg);
+    if (perception_source == "lidar" || perception_source == "lidar_camera") detector = make_detector(cfg);
+    if (perception_source == "dds") {
+      remote_max_age = dds::dds_section().read(cfg).max_detection_age;
+      log->info("perception: frames of a perception process over DDS (late after {:.2f} s)", remote_max_age);
+    }
 
     lidar = std::make_unique<Vlp16ScanBuilder>(vlp_cfg, [this](Scan&& scan) {
       last_scan_end = firing_span(scan).last;
@@ -322,6 +335,7 @@ struct Stack::Impl {
   // The perception source's frame, when one is due: detections (vehicle frame) into the map, the map to control.
   bool perceive(Stamp now) {
     if (detector) return perceive_sensors(now);
+    if (perception_source == "dds") return perceive_remote(now);
     const bool due = new_scan || truth_scan;
     new_scan = truth_scan = false;
     if (!due || !truth) return false;
@@ -444,6 +458,25 @@ struct Stack::Impl {
         LabelledCloud{d.detections.stamp, std::move(d.ground_points), std::move(d.obstacle_points)});
     map_detections(now, std::move(d.detections), pose, d.camera_rejected, w0);
     return true;
+  }
+
+  // dds: the perception process's frames since the last cycle, each placed by this process's pose of its instant
+  // (the stamps carry across). One older than dds.max_detection_age is late: counted, not used.
+  bool perceive_remote(Stamp now) {
+    bool any = false;
+    while (!remote_frames.empty()) {
+      RemoteFrame f = std::move(remote_frames.front());
+      remote_frames.pop_front();
+      if (now - f.detections.stamp > remote_max_age) {
+        ++remote_late;
+        continue;
+      }
+      const auto pose = poses.at(f.detections.stamp);
+      if (!pose) continue;
+      map_detections(now, std::move(f.detections), *pose, f.camera_rejected, wall());
+      any = true;
+    }
+    return any;
   }
 
   // The camera frame taken nearest `t`, decoded; empty without a camera stage, a frame, or a frame that decodes.
@@ -667,6 +700,7 @@ struct Stack::Impl {
       counters.camera_rejected = detector->counters().camera.rejected;
     }
     counters.truth_frames_rejected = truth_rejected;
+    counters.remote_frames_late = remote_late;
     counters.cycles = cycles;
     counters.late_plans = late_plans;
   }
@@ -679,6 +713,12 @@ void Stack::feed(const RawFrame& frame) {
   for (auto* tap : impl_->taps) tap->on_frame(frame);
   impl_->decode(frame);
   impl_->refresh_counters();  // cheap (a lock and a copy): the counters never lag the frames taken
+}
+
+void Stack::feed_remote_detections(ConeDetections detections, std::vector<Cone> camera_rejected) {
+  auto& q = impl_->remote_frames;
+  if (q.size() == kRemoteFramesKept) q.pop_front();
+  q.push_back({std::move(detections), std::move(camera_rejected)});
 }
 
 VcuSession& Stack::vcu() { return *impl_->vcu; }

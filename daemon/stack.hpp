@@ -18,6 +18,9 @@
 //                 each LiDAR scan or, without a simulated LiDAR, on each TruthScan tick.
 //                 lidar: the LiDAR stages on each VLP-16 scan, deskewed and accumulated by the localization's poses;
 //                 lidar_camera: and the camera stage on the camera frame nearest the scan (StackOptions::camera).
+//                 dds: the frames of a perception process elsewhere (split mode, feed_remote_detections), each used
+//                 once, unless older than dds.max_detection_age when taken (late: counted, not used, so a late
+//                 perception is the silent LiDAR's fault).
 //   localization  truth: the simulator's state (RawChannel::TruthState); gnss: the GNSS-INS pose as reported;
 //                 fused: GNSS-INS, wheel speeds (and the LiDAR odometry's increments) through a fusion filter;
 //                 lidar_odometry: the LiDAR odometry alone from the start pose (localization.start.*).
@@ -92,6 +95,7 @@ struct StackCounters {
   std::uint64_t camera_frames = 0;
   std::uint64_t camera_decode_failures = 0;  // frames the camera stage could not decode (skipped: LiDAR only)
   std::uint64_t perception_frames = 0;       // perception frames run (scans, or truth ticks)
+  std::uint64_t remote_frames_late = 0;      // dds: perception frames too old when taken (not used)
   std::uint64_t camera_verified = 0, camera_rejected = 0;  // candidates the camera stage accepted / removed
   std::uint64_t truth_frames_rejected = 0;
   std::uint64_t cycles = 0;
@@ -116,6 +120,9 @@ class Stack {
 
   // The one input. Bad frames are counted by their decoder and otherwise ignored.
   void feed(const RawFrame& frame);
+  // run.perception_source = dds: one perception frame of the perception process (daemon/dds/remote_perception),
+  // stamped on this run's clock; taken by the next step. Bounded: the oldest goes when frames pile up.
+  void feed_remote_detections(ConeDetections detections, std::vector<Cone> camera_rejected);
   // The VCU protocol session whose Commands the feeder sends: tick() in lockstep, the link's sender on the car.
   // Thread-safe.
   VcuSession& vcu();
