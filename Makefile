@@ -9,7 +9,7 @@ RUN_ARGS ?= run --sim --config deploy/config/virtual-car.json
 # rebuilds fast; paths are hashed relative to the checkout, so another checkout of the tree reuses the same cache.
 export CCACHE_BASEDIR := $(CURDIR)
 
-.PHONY: run test build deps clean bench fuzz format
+.PHONY: run test build deps clean bench fuzz format install
 
 deps:
 	@bash deploy/install-deps.sh
@@ -38,6 +38,11 @@ bench: build
 # step and stay in test-artifacts/fuzz/. FUZZ_RUNS=N runs N executions per target instead.
 fuzz: deps
 	@bash tests/fuzz/run.sh
+
+# The car's computer (as root): binary, model, dashboard, /etc/fsd, the systemd unit and udev rules
+# (deploy/install.sh; docs/operations.md). PREFIX=/usr/local by default.
+install: build
+	@BUILD=$(BUILD) bash deploy/install.sh
 
 clean:
 	@rm -rf $(BUILD)
