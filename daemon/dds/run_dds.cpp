@@ -41,9 +41,10 @@ std::unique_ptr<RunDds> RunDds::make(const Config& cfg, bool simulator) {
   m->remote = run_section().read(cfg).perception_source == "dds";
   m->simulator = simulator;
   if (!m->settings.enabled && !m->remote) return nullptr;
-  // Split mode needs the participant even with the publishing off: the perception process's frames come over it.
+  // Split mode needs the participant even with the publishing off: the perception process's frames come over it,
+  // and the pose it places its scans by goes out on /fsd/odom.
   DdsSettings s = m->settings;
-  if (!s.enabled) s.topics = "";
+  if (!s.enabled) s.topics = m->remote ? "odom" : "";
   std::set<std::string> without;
   if (m->remote) without = {"cloud", "detections"};  // the perception process publishes them
   m->bridge = std::make_unique<DdsBridge>(s, without);
