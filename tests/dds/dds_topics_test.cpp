@@ -53,7 +53,7 @@ std::string dds_json(int domain) {
 void read_while(test::Fsd& fsd, const std::function<void()>& take_all, const std::function<bool()>& until,
                 std::chrono::seconds timeout) {
   const auto end = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < end && fsd.wait(0s) < 0 && !until()) {
+  while (std::chrono::steady_clock::now() < end && fsd.wait(1ms) < 0 && !until()) {
     take_all();
     std::this_thread::sleep_for(20ms);
   }
