@@ -11,6 +11,7 @@
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 #include "daemon/cone_classifier_file.hpp"
+#include "daemon/dds/checked_type.hpp"
 #include "daemon/dds/dds_participant.hpp"
 #include "daemon/dds/outbox.hpp"
 #include "daemon/dds/ros_messages.hpp"
@@ -168,10 +169,10 @@ struct PerceptionRole::Impl {
     epoch = run_epoch(clock.now());
     participant = std::make_unique<Participant>(ds, "fsd-perception");
     auto& p = *participant;
-    p.reader(kOdomTopic, fdds::TypeSupport(new nav_msgs::msg::dds_::Odometry_PubSubType), TopicKind::State,
+    p.reader(kOdomTopic, fdds::TypeSupport(new CheckedType<nav_msgs::msg::dds_::Odometry_PubSubType>), TopicKind::State,
              poses_in.get());
     if (detector->has_camera() && !camera)
-      p.reader(kCameraTopic, fdds::TypeSupport(new sensor_msgs::msg::dds_::CompressedImage_PubSubType),
+      p.reader(kCameraTopic, fdds::TypeSupport(new CheckedType<sensor_msgs::msg::dds_::CompressedImage_PubSubType>),
                TopicKind::Stream, images_in.get());
     detections = p.writer(kDetectionsTopic, fdds::TypeSupport(new fsd_msgs::msg::dds_::ConeDetections_PubSubType),
                           TopicKind::State);

@@ -5,6 +5,7 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "common/logging.hpp"
+#include "daemon/dds/checked_type.hpp"
 #include "daemon/dds/dds_participant.hpp"
 #include "daemon/dds/topics.hpp"
 #include "fsd_msgs/msg/ConeDetectionsPubSubTypes.h"
@@ -45,7 +46,8 @@ struct RemotePerception::Listener final : fdds::DataReaderListener {
 };
 
 RemotePerception::RemotePerception(Participant& participant) : listener_(std::make_unique<Listener>()) {
-  participant.reader(kDetectionsTopic, fdds::TypeSupport(new fsd_msgs::msg::dds_::ConeDetections_PubSubType),
+  participant.reader(kDetectionsTopic,
+                     fdds::TypeSupport(new CheckedType<fsd_msgs::msg::dds_::ConeDetections_PubSubType>),
                      TopicKind::State, listener_.get());
 }
 

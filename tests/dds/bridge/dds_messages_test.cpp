@@ -3,13 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
 #include <variant>
 
+#include "daemon/dds/checked_type.hpp"
 #include "daemon/dds/ros_messages.hpp"
 #include "daemon/dds/ros_time.hpp"
+#include "fsd_msgs/msg/ConeDetectionsPubSubTypes.h"
 
 namespace fsd::dds {
 namespace {
@@ -119,6 +122,28 @@ TEST(DdsMessages, ACameraFrameMustBeAJpegOfBoundedSize) {
   auto huge = m;
   huge.data().resize(kMaxJpegBytes + 1);
   EXPECT_TRUE(std::holds_alternative<std::string>(from_compressed_image(std::move(huge), 0)));
+}
+
+// The payload dds_messages_fuzz found: an encapsulation header Fast CDR does not know (0x07 0x01). The generated
+// deserializer throws BadParamException through the DataReader; the type the readers register says no instead.
+TEST(DdsMessages, APayloadThatDoesNotDecodeIsRefusedNotThrown) {
+  const std::uint8_t bytes[] = {0x00, 0x07, 0x01, 0x00, 0x00, 0x00, 0xd2, 0x49, 0x6b, 0x05, 0x00, 0x00, 0x00, 0x0a,
+                                0x00, 0x00, 0x00, 'b',  'a',  's',  'e',  '_',  'l',  'i',  'n',  'k',  0x00, 0x00};
+  auto payload = [&] {
+    eprosima::fastrtps::rtps::SerializedPayload_t p(sizeof bytes);
+    std::memcpy(p.data, bytes, sizeof bytes);
+    p.length = sizeof bytes;
+    return p;
+  };
+  fsd_msgs::msg::dds_::ConeDetections_ m;
+  auto p1 = payload();
+  fsd_msgs::msg::dds_::ConeDetections_PubSubType generated;
+  EXPECT_ANY_THROW(generated.deserialize(&p1, &m));  // what Fast DDS's own reader would let escape
+  auto p2 = payload();
+  CheckedType<fsd_msgs::msg::dds_::ConeDetections_PubSubType> checked;
+  bool ok = true;
+  EXPECT_NO_THROW(ok = checked.deserialize(&p2, &m));
+  EXPECT_FALSE(ok);
 }
 
 TEST(DdsMessages, RosTimeSplitsSecondsAndNanoseconds) {
