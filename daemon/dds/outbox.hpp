@@ -2,7 +2,12 @@
 // The DDS bridge's one writer thread: producers (the control thread, a driver thread) post a job that converts
 // and writes a message; the thread runs them in order. A post never waits: the queue is bounded and drops its
 // oldest job when full (counted), so DDS being slow costs messages, never a control cycle (DESIGN.md §4). The
-// destructor runs what is queued, then joins.
+// thread runs at a lower priority (nice +10) than the rest of the daemon, so that on a busy computer the kernel
+// gives a core to the control loop first. The destructor runs what is queued, then joins.
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -32,6 +37,8 @@ class Outbox {
 
  private:
   void loop() {
+    // This thread only (Linux: a thread's nice value is its own); failure leaves it at the daemon's priority.
+    ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), ::getpriority(PRIO_PROCESS, 0) + 10);
     for (;;) {
       auto job = jobs_.pop_for(std::chrono::milliseconds(200));
       if (!job) {
