@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "drivers/sim/track_generator_detail.hpp"
 
@@ -41,6 +43,42 @@ std::string num(double v) {
   return buf;
 }
 
+bool is_loop(LayoutKind k) { return k == LayoutKind::Trackdrive || k == LayoutKind::Autocross; }
+
+// The irregular mix (issue 31's public layouts): the probability of each class per seed and its value.
+constexpr double kMixChain = 0.5, kMixChainShare = 0.15;
+constexpr double kMixJitter = 0.5, kMixConeJitter = 0.25;         // m
+constexpr double kMixSpacing = 0.5, kMixSpacingJitter = 0.3;      // share
+constexpr double kMixOutlier = 0.5, kMixInnerOutlier = 0.3;       // m
+constexpr double kMixNarrowing = 0.4, kMixNarrowingWidth = 2.85;  // m
+constexpr double kMixCircle = 0.05;
+constexpr double kMixBraking = 0.35, kMixBrakingZone = 25.0;  // m: a braking zone closed 25 m after the finish
+
+// The classes that bend the rules: their ranges, and only where they mean something.
+void validate_irregular(const TrackGeneratorOptions& o) {
+  for (double v : {o.cone_jitter, o.spacing_jitter, o.inner_outlier, o.narrowing})
+    require(std::isfinite(v), "options must be finite numbers");
+  require(o.cone_jitter >= 0.0 && o.cone_jitter <= 0.5, "cone jitter " + num(o.cone_jitter) + " m is outside 0–0.5 m");
+  // Room for the jitter inside the rules' 5 m gaps: the even spacing shrinks by twice the jitter.
+  require(o.spacing_min - 2.0 * o.cone_jitter >= 1.0,
+          "cone jitter " + num(o.cone_jitter) + " m leaves under 1 m of cone spacing min " + num(o.spacing_min) + " m");
+  require(o.spacing_jitter >= 0.0 && o.spacing_jitter <= 0.5,
+          "spacing jitter " + num(o.spacing_jitter) + " is outside 0–0.5 (a share of the gap)");
+  require(o.inner_outlier == 0.0 || (o.inner_outlier >= 0.05 && o.inner_outlier <= 1.0),
+          "inner outlier " + num(o.inner_outlier) + " m must be 0 (none) or 0.05–1 m");
+  require(o.narrowing == 0.0 || (o.narrowing >= 2.0 && o.narrowing < 3.0),
+          "narrowing " + num(o.narrowing) + " m must be 0 (none) or 2–3 m (under the rules' 3 m lane)");
+  const std::pair<bool, const char*> loop_only[] = {{o.circle, "circle"},
+                                                    {o.shares.hairpin_chain > 0.0, "hairpin chain share"},
+                                                    {o.cone_jitter > 0.0, "cone jitter"},
+                                                    {o.spacing_jitter > 0.0, "spacing jitter"},
+                                                    {o.inner_outlier > 0.0, "inner outlier"},
+                                                    {o.narrowing > 0.0, "narrowing"}};
+  for (const auto& [given, name] : loop_only)
+    require(is_loop(o.kind) || !given, std::string(name) + " applies to trackdrive and autocross layouts only");
+  require(!(o.circle && o.open), "circle: the whole-lap circle is a closed loop, it cannot be open");
+}
+
 }  // namespace
 
 void validate(const TrackGeneratorOptions& o) {
@@ -72,19 +110,49 @@ void validate(const TrackGeneratorOptions& o) {
     require(finite(v) && v >= 0.0, "feature shares must be finite and not negative");
     sum += v;
   }
+  require(finite(s.hairpin_chain) && s.hairpin_chain >= 0.0 && s.hairpin_chain <= 10.0,
+          "hairpin chain share " + num(s.hairpin_chain) + " is outside 0–10");
   require(sum > 0.0, "at least one feature share must be positive");
   require(s.turn + s.hairpin + s.decreasing + s.straight_hairpin > 0.0,
           "a loop needs a turning feature (turn, hairpin, decreasing or straight_hairpin)");
   require(o.max_attempts >= 1 && o.max_attempts <= 100000, "max attempts must be 1–100000");
+  validate_irregular(o);
 }
 
-Track generate_track(const TrackGeneratorOptions& o) {
-  validate(o);
+TrackGeneratorOptions resolve_mix(const TrackGeneratorOptions& o) {
+  TrackGeneratorOptions r = o;
+  r.irregular = false;
+  if (!o.irregular) return r;
+  // A stream of its own, and every draw made whatever is switched on, so each class's draw is the same for a
+  // seed whatever the others do.
+  Rng rng(hash64(o.seed, 0x400 + static_cast<std::uint64_t>(o.kind), o.open ? 1 : 0));
+  const bool chain = rng.chance(kMixChain), jitter = rng.chance(kMixJitter), spacing = rng.chance(kMixSpacing),
+             outlier = rng.chance(kMixOutlier), narrowing = rng.chance(kMixNarrowing), circle = rng.chance(kMixCircle),
+             braking = rng.chance(kMixBraking);
+  const TrackGeneratorOptions d;  // the defaults: a class at its default is the mix's to switch
+  if (is_loop(o.kind)) {
+    if (chain && o.shares.hairpin_chain == d.shares.hairpin_chain) r.shares.hairpin_chain = kMixChainShare;
+    if (jitter && o.cone_jitter == d.cone_jitter) r.cone_jitter = kMixConeJitter;
+    if (spacing && o.spacing_jitter == d.spacing_jitter) r.spacing_jitter = kMixSpacingJitter;
+    if (outlier && o.inner_outlier == d.inner_outlier) r.inner_outlier = kMixInnerOutlier;
+    if (narrowing && o.narrowing == d.narrowing) r.narrowing = kMixNarrowingWidth;
+    if (circle && !o.open) r.circle = true;
+  } else if (o.kind == LayoutKind::Acceleration) {
+    if (braking && o.braking_min == d.braking_min && o.braking_max == d.braking_max)
+      r.braking_min = r.braking_max = kMixBrakingZone;
+  }
+  return r;
+}
+
+Track generate_track(const TrackGeneratorOptions& options) {
+  validate(options);
+  const TrackGeneratorOptions o = resolve_mix(options);
+  validate(o);  // the mix's values within what the other options leave room for
   Track t;
   switch (o.kind) {
     case LayoutKind::Trackdrive:
     case LayoutKind::Autocross:
-      t = detail::generate_loop(o);
+      t = o.circle ? detail::generate_circle(o) : detail::generate_loop(o);
       break;
     case LayoutKind::Acceleration:
       t = detail::generate_acceleration(o);
@@ -115,8 +183,16 @@ void add_cone(Track& track, ConeRole role, const Vec2& p) {
 
 std::vector<Vec2> place_cones(const std::vector<Vec2>& line, const std::vector<double>& spacing, bool closed,
                               std::vector<std::size_t> anchors) {
-  const std::size_t n = line.size();
   std::vector<Vec2> out;
+  for (const PlacedCone& c : place_cones_along(line, spacing, closed, std::move(anchors))) out.push_back(c.p);
+  return out;
+}
+
+std::vector<PlacedCone> place_cones_along(const std::vector<Vec2>& line, const std::vector<double>& spacing,
+                                          bool closed, std::vector<std::size_t> anchors, double spacing_jitter,
+                                          Rng* rng) {
+  const std::size_t n = line.size();
+  std::vector<PlacedCone> out;
   if (n < 2) return out;
   // Arc length, and the spacing each point may have: the smallest asked within one spacing either side, so a
   // gap that starts on a straight and ends in a turn is already a turn's gap.
@@ -151,7 +227,7 @@ std::vector<Vec2> place_cones(const std::vector<Vec2>& line, const std::vector<d
     i = std::min(i, n - 1);
     const double span = u[i + 1] - u[i];
     const double f = span > 0 ? std::clamp((q - u[i]) / span, 0.0, 1.0) : 0.0;
-    return Vec2(line[i] + f * (line[(i + 1) % n] - line[i]));
+    return PlacedCone{Vec2(line[i] + f * (line[(i + 1) % n] - line[i])), i};
   };
   if (!closed) {
     if (anchors.empty() || anchors.front() != 0) anchors.insert(anchors.begin(), 0);
@@ -159,6 +235,7 @@ std::vector<Vec2> place_cones(const std::vector<Vec2>& line, const std::vector<d
   } else if (anchors.empty()) {
     anchors.push_back(0);
   }
+  const bool uneven = spacing_jitter > 0.0 && rng;
   const std::size_t segments = closed ? anchors.size() : anchors.size() - 1;
   for (std::size_t a = 0; a < segments; ++a) {
     const double u0 = u[anchors[a]];
@@ -166,13 +243,22 @@ std::vector<Vec2> place_cones(const std::vector<Vec2>& line, const std::vector<d
     const double span = u1 - u0;
     const int gaps = std::max(1, static_cast<int>(std::ceil(span - 1e-9)));
     for (int k = 0; k < gaps; ++k) {
-      double q = u0 + span * k / gaps;
+      // The anchor stays; each cone after it moves by up to half the jitter's share of a gap either way.
+      const double shift = uneven && k > 0 ? spacing_jitter * (rng->uniform() - 0.5) : 0.0;
+      double q = u0 + span * (k + shift) / gaps;
       if (q >= u[n]) q -= u[n];
       out.push_back(at_u(q));
     }
   }
-  if (!closed) out.push_back(line.back());
+  if (!closed) out.push_back({line.back(), n - 1});
   return out;
+}
+
+Vec2 hand_offset(Rng& rng, double jitter, double inward_room) {
+  const double r = jitter * std::sqrt(rng.uniform()), a = 2.0 * std::numbers::pi * rng.uniform();
+  Vec2 d(r * std::cos(a), r * std::sin(a));
+  if (-d.y() > inward_room) d.y() = -d.y();
+  return d;
 }
 
 }  // namespace detail

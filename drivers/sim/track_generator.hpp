@@ -7,7 +7,9 @@
 //     `open` makes an autocross-style course with separate start and finish lines instead.
 //   acceleration: the 75 m straight and a braking zone closed by a row of cones.
 //   skidpad: the rules' figure of eight with its entry and exit lanes.
-// Every constraint and the rule it comes from is listed in docs/track-generator.md.
+// Every constraint and the rule it comes from is listed in docs/track-generator.md. Options add what public
+// layouts have and the rules-conforming defaults do not (hairpin chains, a whole-lap circle, hand-placed cones,
+// a narrowing; `irregular` mixes them per seed); without them the defaults are unchanged.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -30,6 +32,9 @@ struct FeatureShares {
   double chicane = 0.12;           // two opposite bends
   double decreasing = 0.12;        // a turn that tightens as it goes
   double straight_hairpin = 0.12;  // a long straight (50–80 m) into a hairpin
+  // 2–3 hairpins at the tightest radius, back to back with no straight between, alternating sides (150–190°
+  // each). Above 0 every layout also holds at least one chain.
+  double hairpin_chain = 0.0;
 };
 
 // Each range [min, max] is sampled once per layout; min == max fixes the value.
@@ -47,14 +52,29 @@ struct TrackGeneratorOptions {
   double braking_min = 30.0, braking_max = 100.0;  // acceleration: m from the finish line to the closing row
   FeatureShares shares;
   int max_attempts = 4000;  // candidate loops drawn before giving up
+
+  // What public layouts have beyond the rules (docs/track-generator.md); trackdrive/autocross only.
+  bool circle = false;          // the whole lap one turn at the rules' minimum (9 m outside, 3 m lane), car inside
+  double cone_jitter = 0.0;     // m: each cone moved up to this far off its place, as cones placed by hand
+  double spacing_jitter = 0.0;  // share: gaps along a boundary up to this share longer or shorter than even
+  double inner_outlier = 0.0;   // m: in each tight turn one inner cone this far out of its ring, into the lane
+  double narrowing = 0.0;       // m: one stretch per lap where the lane narrows to this width (under 3 m); 0 none
+  // Each class above (and, for acceleration, a braking zone of 25 m) switched on per seed with its probability;
+  // a class whose option is not at its default keeps that value for every seed.
+  bool irregular = false;
 };
 
 // Throws std::invalid_argument naming the option that is out of range.
 void validate(const TrackGeneratorOptions& options);
 
-// The layout (name "generated_<kind>_<seed>"); validates first. Throws std::runtime_error when no candidate of
-// max_attempts met every constraint (options that leave too little room, e.g. a very short lap with only
-// hairpins).
+// The options a seed is generated with: `options` itself without `irregular`; with it, each class whose option
+// is at its default is switched on or not by the seed's own draws (a stream of its own, so the layouts without
+// `irregular` are untouched). The result has `irregular` false.
+TrackGeneratorOptions resolve_mix(const TrackGeneratorOptions& options);
+
+// The layout (name "generated_<kind>_<seed>") of resolve_mix(options); validates first. Throws
+// std::runtime_error when no candidate of max_attempts met every constraint (options that leave too little room,
+// e.g. a very short lap with only hairpins).
 Track generate_track(const TrackGeneratorOptions& options);
 
 }  // namespace fsd::sim

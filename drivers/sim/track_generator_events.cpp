@@ -10,9 +10,8 @@ namespace fsd::sim::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kAccelLength = 75.0;   // m, start line to finish line
-constexpr double kTimingHalfGap = 0.6;  // m either side of a timing line to its big orange cones
-constexpr double kRowGap = 1.2;         // m between the cones of a closing row (the car is 1.4 m wide)
+constexpr double kAccelLength = 75.0;  // m, start line to finish line
+constexpr double kRowGap = 1.2;        // m between the cones of a closing row (the car is 1.4 m wide)
 
 // The skid pad (rules): circle centres 18.25 m apart, inner diameter 15.25 m, outer 21.25 m (a 3 m lane),
 // 16 cones on each inner and 13 on each outer circle; the timing line through both centres.

@@ -2,6 +2,7 @@
 // connection back to the start straight, then checked against the rules and the separation of its own parts;
 // a candidate that fails is dropped and the next one drawn (docs/track-generator.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -16,32 +17,19 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
-constexpr double kHairpinOuterMin = 4.5;               // m: the rules' 9 m outside diameter
 constexpr double kTurnOuterMax = 25.0;                 // m: the rules' 50 m constant-turn diameter
 constexpr double kStraightMax = 80.0;                  // m: the rules' longest straight
 constexpr double kSlalomMin = 7.5, kSlalomMax = 12.0;  // m between slalom cones (the rules)
-constexpr double kStartLine = 6.0;                     // m from car_start to the start line (the shared EPFL files)
 constexpr double kLapMargin = 5.0;                     // m inside the lap range: the chords between cones are shorter
-constexpr double kStraightCurvature = 0.02;            // 1/m: straighter than half the widest turn counts as straight
-constexpr double kTimingHalfGap = 0.6;                 // m either side of a timing line to its big orange cones
-constexpr double kTimingOutside = 0.5;                 // m outside the boundary line (as the EPFL files place them)
-constexpr double kMinConeGap = 1.0;                    // m: the densest spacing in tight turns
 constexpr double kRunOff = 30.0;     // m of free straight after an open course's finish (the stop zone)
 constexpr double kBehindOpen = 4.0;  // m of boundary behind the car on an open course
+constexpr double kChainAngleMin = 150.0, kChainAngleMax = 190.0;  // degrees of each hairpin of a chain
 
-enum class Feature { Straight, Turn, Hairpin, Slalom, Chicane, Decreasing, StraightHairpin };
+// HairpinChain last, so a share of 0 leaves the draws of the other features as they were.
+enum class Feature { Straight, Turn, Hairpin, Slalom, Chicane, Decreasing, StraightHairpin, HairpinChain };
 
-struct Layout {
-  double width = 3, spacing = 5, yaw0 = 0;
-  double rc_min = 3;  // m: the tightest centre-line radius (9 m outside, and the island inside a hairpin)
-};
-
-struct Candidate {
-  std::vector<CentreSample> line;
-  std::vector<std::pair<std::size_t, int>> anchors;  // slalom cones: sample index, side (+1 left, -1 right)
-  double start_s = 0;                                // car_start's arc length
-  double end_s = 0;                                  // open: the finish line's arc length
-};
+using Layout = LoopLayout;
+using Candidate = LoopCandidate;
 
 // The sign of a turn that keeps the heading near a steady progression to the total it must reach, most of
 // the time (so loops close), and the other one otherwise (so they are not all round).
@@ -56,14 +44,15 @@ double slalom_min_spacing(double width, double rc_min) {
 }
 
 Feature pick_feature(Rng& rng, const FeatureShares& sh, bool after_straight, bool slalom_ok) {
-  const std::array<std::pair<Feature, double>, 7> w = {
+  const std::array<std::pair<Feature, double>, 8> w = {
       {{Feature::Straight, after_straight ? 0.0 : sh.straight},
        {Feature::Turn, sh.turn},
        {Feature::Hairpin, sh.hairpin},
        {Feature::Slalom, slalom_ok ? sh.slalom : 0.0},
        {Feature::Chicane, sh.chicane},
        {Feature::Decreasing, sh.decreasing},
-       {Feature::StraightHairpin, after_straight ? 0.0 : sh.straight_hairpin}}};
+       {Feature::StraightHairpin, after_straight ? 0.0 : sh.straight_hairpin},
+       {Feature::HairpinChain, sh.hairpin_chain}}};
   double sum = 0;
   for (const auto& [f, v] : w) sum += v;
   double r = rng.uniform() * sum;
@@ -73,6 +62,23 @@ Feature pick_feature(Rng& rng, const FeatureShares& sh, bool after_straight, boo
     r -= v;
   }
   return Feature::Turn;
+}
+
+// An S of 2–3 hairpins at radius r: back to back, each turning the other way, 150–190° each. The first turns
+// the way that keeps the chain's net turning near the heading's progression (as a single turn's sign).
+template <typename TargetAt>
+void hairpin_chain(CentreLineBuilder& b, Rng& rng, double r, double& cum, const TargetAt& target_at) {
+  const int count = rng.uniform_int(2, 3);
+  std::array<double, 3> angle{};
+  double net = 0, len = 0;
+  for (int k = 0; k < count; ++k) {
+    angle[static_cast<std::size_t>(k)] = rng.uniform(kChainAngleMin, kChainAngleMax) * kDeg;
+    net += (k % 2 == 0 ? 1.0 : -1.0) * angle[static_cast<std::size_t>(k)];
+    len += r * angle[static_cast<std::size_t>(k)];
+  }
+  const int sign = pick_sign(rng, cum, net, target_at(b.length() + len));
+  for (int k = 0; k < count; ++k) b.arc(r, (k % 2 == 0 ? sign : -sign) * angle[static_cast<std::size_t>(k)]);
+  cum += sign * net;
 }
 
 std::optional<Candidate> draw(const TrackGeneratorOptions& o, const Layout& lay, Rng& rng) {
@@ -152,6 +158,10 @@ std::optional<Candidate> draw(const TrackGeneratorOptions& o, const Layout& lay,
         cum += sign * a;
         break;
       }
+      case Feature::HairpinChain:
+        hairpin_chain(b, rng, rc_min, cum, target_at);
+        ++c.chains;
+        break;
     }
     if (b.length() > 2.0 * length) return std::nullopt;
   }
@@ -219,56 +229,6 @@ bool acceptable(const Candidate& c, const TrackGeneratorOptions& o, const Layout
   return true;
 }
 
-Track cones_of(const Candidate& c, const TrackGeneratorOptions& o, const Layout& lay) {
-  const bool closed = !o.open;
-  const double half = 0.5 * lay.width;
-  std::size_t n = c.line.size();
-  if (!closed)
-    while (n > 1 && c.line[n - 1].s > c.end_s + 1e-9) --n;  // no cones on the run-off
-  std::vector<Vec2> left(n), right(n);
-  std::vector<double> sp_left(n), sp_right(n);
-  auto spacing = [&](double kappa) {
-    return std::fabs(kappa) < 1e-9 ? lay.spacing
-                                   : std::clamp(o.turn_angle / std::fabs(kappa), kMinConeGap, lay.spacing);
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    const CentreSample& s = c.line[i];
-    const Vec2 normal(-std::sin(s.heading), std::cos(s.heading));
-    left[i] = s.p + half * normal;
-    right[i] = s.p - half * normal;
-    // Each boundary is an offset curve: its curvature is κ / (1 ∓ κ·w/2).
-    sp_left[i] = spacing(s.kappa / (1.0 - s.kappa * half));
-    sp_right[i] = spacing(s.kappa / (1.0 + s.kappa * half));
-  }
-  std::vector<std::size_t> anchor_left, anchor_right;
-  for (const auto& [i, side] : c.anchors)
-    if (i < n) (side > 0 ? anchor_left : anchor_right).push_back(i);
-  for (auto* a : {&anchor_left, &anchor_right}) {
-    std::sort(a->begin(), a->end());
-    a->erase(std::unique(a->begin(), a->end()), a->end());
-  }
-  Track t;
-  t.start = {0.0, 0.0, lay.yaw0};
-  for (const Vec2& p : place_cones(left, sp_left, closed, anchor_left)) add_cone(t, ConeRole::Left, p);
-  for (const Vec2& p : place_cones(right, sp_right, closed, anchor_right)) add_cone(t, ConeRole::Right, p);
-  // Timing lines: two big orange cones each side, just outside the boundary lines.
-  auto timing_line = [&](double s_line) {
-    for (double ds : {-kTimingHalfGap, kTimingHalfGap}) {
-      const double q = s_line + ds;
-      const auto it =
-          std::lower_bound(c.line.begin(), c.line.end(), q, [](const CentreSample& a, double v) { return a.s < v; });
-      const CentreSample& s = it == c.line.end() ? c.line.back() : *it;
-      const Vec2 normal(-std::sin(s.heading), std::cos(s.heading));
-      const Vec2 p = s.p + (q - s.s) * Vec2(std::cos(s.heading), std::sin(s.heading));
-      add_cone(t, ConeRole::Timing, p + (half + kTimingOutside) * normal);
-      add_cone(t, ConeRole::Timing, p - (half + kTimingOutside) * normal);
-    }
-  };
-  timing_line(c.start_s + kStartLine);
-  if (!closed) timing_line(c.end_s - kTimingHalfGap);
-  return t;
-}
-
 }  // namespace
 
 Track generate_loop(const TrackGeneratorOptions& o) {
@@ -279,9 +239,14 @@ Track generate_loop(const TrackGeneratorOptions& o) {
   lay.yaw0 = rng.uniform(-kPi, kPi);
   lay.rc_min = std::max(kHairpinOuterMin - 0.5 * lay.width, 0.5 * (lay.width + o.separation));
   for (int attempt = 0; attempt < o.max_attempts; ++attempt) {
-    Rng draw_rng(hash64(rng.next(), static_cast<std::uint64_t>(attempt)));
+    const std::uint64_t attempt_seed = hash64(rng.next(), static_cast<std::uint64_t>(attempt));
+    Rng draw_rng(attempt_seed);
     const auto c = draw(o, lay, draw_rng);
-    if (c && acceptable(*c, o, lay)) return cones_of(*c, o, lay);
+    if (!c || !acceptable(*c, o, lay)) continue;
+    if (o.shares.hairpin_chain > 0.0 && c->chains == 0) continue;  // asked for chains: at least one
+    // Hand placement draws from a stream of its own: the same centre line with or without it.
+    Rng hand(hash64(attempt_seed, 0x4A17));
+    if (auto t = loop_cones(*c, o, lay, hand)) return *t;
   }
   throw std::runtime_error("track generator: no " + std::string(to_string(o.kind)) + " layout for seed " +
                            std::to_string(o.seed) + " met every constraint in " + std::to_string(o.max_attempts) +

@@ -2,8 +2,10 @@
 // the project's loader and measured by an independent checker from its cones alone (tests/sim/layout_rules.hpp).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <set>
@@ -47,7 +49,7 @@ V2 left_of(double yaw) { return {-std::sin(yaw), std::cos(yaw)}; }
 
 // The start line: two big orange cones each side, 6 m ahead of car_start (the EPFL files), across the heading;
 // car_start midway between the boundaries.
-void expect_start_line(const test::LayoutRows& l, std::size_t timing_cones) {
+void expect_start_line(const test::LayoutRows& l, std::size_t timing_cones, double centred = 0.05) {
   ASSERT_EQ(l.big_orange.size(), timing_cones);
   int left = 0, right = 0;
   V2 mean = V2::Zero();
@@ -67,12 +69,14 @@ void expect_start_line(const test::LayoutRows& l, std::size_t timing_cones) {
   EXPECT_NEAR((mean - l.start).dot(left_of(l.yaw)), 0.0, 0.05);
   const double dl = test::distance_to_polyline(l.start, l.blue, false);
   const double dr = test::distance_to_polyline(l.start, l.yellow, false);
-  EXPECT_NEAR(dl, dr, 0.05);
+  EXPECT_NEAR(dl, dr, centred);
 }
 
-void expect_course_rules(const TrackGeneratorOptions& o, bool closed, test::CourseFigures* out = nullptr) {
+void expect_course_rules(const TrackGeneratorOptions& o, bool closed, test::CourseFigures* out = nullptr,
+                         test::LayoutRows* rows = nullptr) {
   SCOPED_TRACE(std::string(sim::to_string(o.kind)) + (closed ? "" : " open") + " seed " + std::to_string(o.seed));
   const auto l = generate_rows(o);
+  if (rows) *rows = l;
   EXPECT_EQ(l.car_starts, 1);
   EXPECT_EQ(l.unknown, 0);
   EXPECT_TRUE(l.orange.empty());
@@ -223,25 +227,9 @@ TEST(TrackGenerator, AccelerationLanesKeepEveryRule) {
   EXPECT_GE(zones.size(), 5u) << "braking zones from 30 to 100 m";
 }
 
-// Skid pad: two concentric ring fits per side (Kasa least squares), then the rules' figures.
-struct Ring {
-  V2 centre = V2::Zero();
-  double radius = 0;
-};
-Ring fit_circle(const std::vector<V2>& pts) {
-  // x² + y² + D·x + E·y + F = 0 in least squares.
-  Eigen::MatrixXd a(static_cast<long>(pts.size()), 3);
-  Eigen::VectorXd b(static_cast<long>(pts.size()));
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    a.row(static_cast<long>(i)) << pts[i].x(), pts[i].y(), 1.0;
-    b(static_cast<long>(i)) = -pts[i].squaredNorm();
-  }
-  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(b);
-  Ring r;
-  r.centre = V2(-0.5 * s(0), -0.5 * s(1));
-  r.radius = std::sqrt(r.centre.squaredNorm() - s(2));
-  return r;
-}
+// Skid pad: two concentric ring fits per side (the checker's least squares), then the rules' figures.
+using test::fit_circle;
+using test::Ring;
 
 TEST(TrackGenerator, SkidpadsAreTheRulesFigureOfEight) {
   for (int seed = 1; seed <= kSeeds / 2; ++seed) {
@@ -330,6 +318,478 @@ TEST(TrackGenerator, SkidpadsAreTheRulesFigureOfEight) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------------------------
+// What public layouts have beyond the rules (options; docs/track-generator.md), each measured from the cones.
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Which classes the cones show, by the checker alone.
+struct Seen {
+  bool circle = false, chain = false, jittered = false, uneven = false, outlier = false, narrowing = false;
+  test::HandFigures hand;
+  test::ChainFigures chains;
+};
+
+Seen seen_in(const test::LayoutRows& l, bool closed) {
+  Seen s;
+  s.circle = test::measure_circle(l).found;
+  if (s.circle) return s;
+  s.hand = test::measure_hand(l, closed);
+  // Cones placed exactly leave a third or more of them on the arc through their neighbours (straights, arcs);
+  // cones moved by hand leave almost none (the slalom's, a narrowing's and an outlier's ring stay exact).
+  s.jittered = s.hand.on_curve_share < 0.2;
+  // Moved cones scatter about their ring (outward only at the tightest hairpins): a looser fit, a radius up to
+  // 0.75 m wide of the tightest, and a link that would also take a straight under ~4.5 m between (the generator's
+  // straights are 10 m or more).
+  s.chains = s.jittered ? test::measure_chains(l, s.hand.width_median, 0.3, 0.75, 1.5)
+                        : test::measure_chains(l, s.hand.width_median, 0.005, 0.05, 0.05);
+  s.chain = s.chains.chains > 0;
+  // Uneven gaps next to even ones; measurable where the cones are not also moved (jitter changes gaps too).
+  s.uneven = !s.jittered && s.hand.gap_change_median > 0.04;
+  s.outlier = s.hand.outliers > 0;
+  s.narrowing = s.hand.narrowings > 0;
+  return s;
+}
+
+// The rules a layout with hand placement still keeps, from its cones: gaps within 5 m, the lane 3 m between
+// cones across (outliers and the narrowing aside), one simple course of a rules' lap, its start line. Parts of
+// the loop keep the separation less what the jitter may take from each side.
+void expect_bent_rules(const TrackGeneratorOptions& o, const test::LayoutRows& l, bool closed) {
+  const auto f = test::measure_course(l, closed);
+  const auto h = test::measure_hand(l, closed);
+  EXPECT_LE(f.gap_max, std::min(5.0, o.spacing_max) + 1e-3);
+  EXPECT_GE(h.cone_width_min, 3.0 - 2e-3);  // cones stand on the boundary's chords: a millimetre in, at most
+  EXPECT_FALSE(f.boundaries_cross);
+  EXPECT_GE(f.length, 200.0);
+  EXPECT_LE(f.length, 500.0);
+  EXPECT_GE(f.same_boundary_parts_min, o.separation - 2.0 * o.cone_jitter - 0.05);
+  EXPECT_EQ(l.car_starts, 1);
+  EXPECT_TRUE(l.orange.empty());
+  expect_start_line(l, closed ? 4 : 8, 0.05 + 2.0 * o.cone_jitter);
+}
+
+TEST(TrackGenerator, HairpinChainsAreBackToBackMinimumHairpins) {
+  int of_three = 0, without_the_share = 0;
+  std::vector<double> angles;
+  for (int seed = 1; seed <= 12; ++seed) {
+    auto o = opts(LayoutKind::Trackdrive, seed);
+    o.width_min = o.width_max = 3.0;
+    o.shares.hairpin_chain = 0.15;
+    test::LayoutRows l;
+    expect_course_rules(o, true, nullptr, &l);  // every rule, as the defaults
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    // 2–3 hairpins at the rules' 9 m outside diameter, each turning the other way, with no straight between
+    // (their outer rings as far apart as a centre line meeting at an inflection puts them, within 5 cm).
+    const auto c = test::measure_chains(l, 3.0, 0.005, 0.05, 0.05);
+    EXPECT_GE(c.chains, 1);
+    EXPECT_NEAR(2.0 * c.outer_radius_min, 9.0, 0.04);  // a cone at an end may be a millimetre off its ring
+    EXPECT_NEAR(2.0 * c.outer_radius_max, 9.0, 0.04);
+    for (const double a : c.middle_angles) {
+      EXPECT_GE(a, 150.0 * kDeg - 0.02);
+      EXPECT_LE(a, 190.0 * kDeg + 0.02);
+      angles.push_back(a);
+    }
+    if (c.longest >= 3) ++of_three;
+    // The same seed without the share: chains only where two hairpin features happen to meet.
+    auto d = o;
+    d.shares.hairpin_chain = 0.0;
+    if (test::measure_chains(generate_rows(d), 3.0, 0.005, 0.05, 0.05).chains > 0) ++without_the_share;
+  }
+  EXPECT_GE(of_three, 2);
+  EXPECT_LE(without_the_share, 2);
+  ASSERT_GE(angles.size(), 3u);
+  EXPECT_LT(*std::min_element(angles.begin(), angles.end()), 170.0 * kDeg) << "150–190° drawn";
+  EXPECT_GT(*std::max_element(angles.begin(), angles.end()), 170.0 * kDeg);
+  // Wider lanes: the chain's hairpins at the tightest the width allows (the island inside at the separation).
+  for (int seed = 13; seed <= 18; ++seed) {
+    auto o = opts(LayoutKind::Autocross, seed);
+    o.shares.hairpin_chain = 0.15;
+    const auto l = generate_rows(o);
+    const auto h = test::measure_hand(l, true);
+    const auto c = test::measure_chains(l, h.width_median, 0.005, 0.05, 0.05);
+    EXPECT_GE(c.chains, 1) << "seed " << seed << " width " << h.width_median;
+    EXPECT_GE(2.0 * c.outer_radius_min, 9.0 - 0.02) << "seed " << seed;
+  }
+}
+
+TEST(TrackGenerator, CircleIsOneMinimumTurnWithTheCarInside) {
+  std::set<int> directions, counts;
+  for (auto kind : {LayoutKind::Trackdrive, LayoutKind::Autocross})
+    for (int seed = 1; seed <= 10; ++seed) {
+      SCOPED_TRACE(std::string(sim::to_string(kind)) + " seed " + std::to_string(seed));
+      auto o = opts(kind, seed);
+      o.circle = true;
+      const auto l = generate_rows(o);
+      const auto c = test::measure_circle(l);
+      ASSERT_TRUE(c.found);
+      // The rules' minimum: 9 m outside diameter, a 3 m lane, every cone on its ring.
+      EXPECT_NEAR(c.inner.radius, 1.5, 0.002);
+      EXPECT_NEAR(c.outer.radius, 4.5, 0.002);
+      EXPECT_LE(c.inner_max, 1.5 + 0.002);
+      EXPECT_GE(c.outer_min, 4.5 - 0.002);
+      EXPECT_GE(test::measure_hand(l, true).cone_width_min, 3.0 - 1e-3);
+      // About 16 cones, no timing cones; gaps within the rules' 5 m.
+      EXPECT_GE(c.inner_cones, 5);
+      EXPECT_LE(c.inner_cones, 8);
+      EXPECT_GE(c.outer_cones, 8);
+      EXPECT_LE(c.outer_cones, 12);
+      EXPECT_TRUE(l.big_orange.empty());
+      EXPECT_LE(c.gap_max, 5.0);
+      // The car inside, on the centre circle, heading along it; blue on its left.
+      EXPECT_EQ(l.car_starts, 1);
+      EXPECT_NEAR(c.start_radius, 3.0, 0.002);
+      EXPECT_LT(c.start_heading_error, 1e-3);
+      EXPECT_TRUE(c.colours_as_driven);
+      directions.insert(c.direction);
+      counts.insert(c.inner_cones + c.outer_cones);
+    }
+  EXPECT_EQ(directions.size(), 2u) << "clockwise and counter-clockwise";
+  EXPECT_GE(counts.size(), 4u) << "the cone counts vary with the seed";
+}
+
+// The circle by hand, against the same seed placed exactly (the same rings): outer cones only outwards, the
+// inner ring exact but for one cone 0.3 m into the lane.
+TEST(TrackGenerator, CircleByHandKeepsItsOutsideAndPutsOneInnerConeIntoTheLane) {
+  double moved_max = 0;
+  for (int seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    auto exact = opts(LayoutKind::Trackdrive, seed);
+    exact.circle = true;
+    auto hand = exact;
+    hand.cone_jitter = 0.25;
+    hand.inner_outlier = 0.3;
+    const auto le = generate_rows(exact);
+    const auto lh = generate_rows(hand);
+    const auto ce = test::measure_circle(le);
+    ASSERT_TRUE(ce.found);
+    const bool blue_inner = ce.direction > 0;
+    const auto& inner = blue_inner ? lh.blue : lh.yellow;
+    const auto& outer = blue_inner ? lh.yellow : lh.blue;
+    const auto& outer_exact = blue_inner ? le.yellow : le.blue;
+    ASSERT_EQ(outer.size(), outer_exact.size());
+    int out_of_ring = 0;
+    for (const V2& p : inner) {
+      const double r = (p - ce.outer.centre).norm();
+      if (std::fabs(r - 1.8) < 0.002)
+        ++out_of_ring;
+      else
+        EXPECT_NEAR(r, 1.5, 0.002);
+    }
+    EXPECT_EQ(out_of_ring, 1);
+    for (std::size_t i = 0; i < outer.size(); ++i) {
+      EXPECT_GE((outer[i] - ce.outer.centre).norm(), 4.5 - 1e-3) << "the outside no tighter than 9 m";
+      const double moved = (outer[i] - outer_exact[i]).norm();
+      EXPECT_LE(moved, 0.25 + 2e-4);
+      moved_max = std::max(moved_max, moved);
+    }
+    EXPECT_LE(test::measure_circle(lh).gap_max, 5.0);
+  }
+  EXPECT_GE(moved_max, 0.2);
+}
+
+// Cone jitter against the same seed placed exactly with the spacing it shrinks to (cone for cone): each cone
+// within its disc, the lane and the outside of tight turns as the rules have them.
+TEST(TrackGenerator, ConeJitterMovesEachConeWithinItsDiscAndKeepsTheRules) {
+  constexpr double kJitter = 0.25;
+  double moved_sum = 0, moved_max = 0;
+  int moved_n = 0, tight_outer = 0;
+  for (int seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    auto o = opts(LayoutKind::Trackdrive, seed);
+    o.spacing_min = o.spacing_max = 4.0;
+    if (seed <= 6) o.width_min = o.width_max = 3.0;      // the lane at the rules' minimum: cones only move outward
+    if (seed <= 3) o.shares = {0, 0, 1, 0, 0, 0, 1, 0};  // hairpins, half at the rules' minimum
+    auto exact = o;
+    exact.spacing_min = exact.spacing_max = 4.0 - 2.0 * kJitter;
+    o.cone_jitter = kJitter;
+    const auto le = generate_rows(exact);
+    const auto lj = generate_rows(o);
+    expect_bent_rules(o, lj, true);
+    for (int side = 0; side < 2; ++side) {
+      const auto& e = side == 0 ? le.blue : le.yellow;
+      const auto& j = side == 0 ? lj.blue : lj.yellow;
+      ASSERT_EQ(e.size(), j.size());
+      for (std::size_t i = 0; i < e.size(); ++i) {
+        const double moved = (j[i] - e[i]).norm();
+        EXPECT_LE(moved, kJitter + 2e-4);
+        moved_sum += moved, ++moved_n, moved_max = std::max(moved_max, moved);
+      }
+      // The outside of the tight turns (exact rings of the cones placed exactly, with the lane inside them):
+      // no cone moved within the rules' 4.5 m of the turn's centre.
+      const auto other = test::smooth_boundary(side == 0 ? le.yellow : le.blue, true);
+      for (const auto& ring : test::exact_rings(e, 4.5 + kJitter)) {
+        if (test::distance_to_polyline(ring.ring.centre, other, true) > ring.ring.radius) continue;  // inner
+        ++tight_outer;
+        for (std::size_t i = ring.first; i <= ring.last; ++i)
+          EXPECT_GE((j[i] - ring.ring.centre).norm(), 4.5 - 1e-3) << "cone " << i;
+      }
+    }
+  }
+  // Uniform in the disc: the mean distance is two thirds of the radius, and the edge is reached.
+  EXPECT_NEAR(moved_sum / moved_n, 2.0 * kJitter / 3.0, 0.02);
+  EXPECT_GE(moved_max, 0.95 * kJitter);
+  EXPECT_GE(tight_outer, 3) << "minimum hairpins were among them";
+}
+
+// Uneven spacing against the same seed spaced evenly at the shorter spacing it spreads about (spacing and turn
+// angle divided by 1 + S; cone for cone): each gap within the share of its even one, each cone still on its
+// boundary.
+TEST(TrackGenerator, SpacingJitterMakesGapsUnevenWithinTheRules) {
+  constexpr double kShare = 0.3;
+  double spread = 0;
+  for (int seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    auto o = opts(LayoutKind::Autocross, seed);
+    o.spacing_min = o.spacing_max = 5.0;
+    auto even = o;
+    even.spacing_min = even.spacing_max = 5.0 / (1.0 + kShare);
+    even.turn_angle = o.turn_angle / (1.0 + kShare);
+    o.spacing_jitter = kShare;
+    const auto l = generate_rows(o);
+    const auto le = generate_rows(even);
+    expect_bent_rules(o, l, true);
+    EXPECT_GT(test::measure_hand(l, true).gap_change_median, 0.04);
+    EXPECT_LT(test::measure_hand(le, true).gap_change_median, 0.01);
+    for (int side = 0; side < 2; ++side) {
+      const auto& u = side == 0 ? l.blue : l.yellow;
+      const auto& e = side == 0 ? le.blue : le.yellow;
+      ASSERT_EQ(u.size(), e.size());
+      const auto line = test::smooth_boundary(e, true);
+      for (std::size_t i = 0; i < u.size(); ++i) {
+        // Along its boundary: the smooth curve through the even cones strays up to ~10 cm where 5 m gaps meet
+        // a turn.
+        EXPECT_LT(test::distance_to_polyline(u[i], line, true), 0.1) << "along its boundary, cone " << i;
+        const std::size_t k = (i + 1) % u.size();
+        const double share = (u[k] - u[i]).norm() / (e[k] - e[i]).norm() - 1.0;
+        EXPECT_LE(std::fabs(share), kShare + 0.02) << "gap " << i;
+        spread = std::max(spread, std::fabs(share));
+      }
+    }
+  }
+  EXPECT_GE(spread, 0.8 * kShare) << "the share is used";
+}
+
+TEST(TrackGenerator, InnerOutlierStandsIntoTheLaneInEachTightTurn) {
+  int rings_seen_without = 0;
+  for (int seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    auto o = opts(LayoutKind::Trackdrive, seed);
+    if (seed <= 5) o.width_min = o.width_max = 3.0;
+    o.inner_outlier = 0.3;
+    const auto l = generate_rows(o);
+    expect_bent_rules(o, l, true);
+    const auto h = test::measure_hand(l, true);
+    EXPECT_GE(h.outliers, 1);
+    EXPECT_NEAR(h.outlier_min, 0.3, 0.002);
+    EXPECT_NEAR(h.outlier_max, 0.3, 0.002);
+    EXPECT_EQ(h.rings_without_outlier, 0) << "every tight inner ring has its cone out";
+    if (seed <= 5) {
+      EXPECT_NEAR(h.outlier_lane_min, 2.7, 0.02) << "a 3 m lane narrowed to 2.7 m there";
+    }
+    // Placed exactly, the same seed has tight rings and none out: the checker tells the two apart.
+    const auto d = test::measure_hand(generate_rows(opts(LayoutKind::Trackdrive, seed)), true);
+    EXPECT_EQ(d.outliers, 0);
+    rings_seen_without += d.rings_without_outlier;
+  }
+  EXPECT_GT(rings_seen_without, 0);
+}
+
+TEST(TrackGenerator, NarrowingPinchesTheLaneOnAStraightForAFewMetres) {
+  std::set<int> plateaus;
+  for (int seed = 1; seed <= 12; ++seed) {
+    const bool open = seed > 8;
+    SCOPED_TRACE(std::string(open ? "open " : "") + "seed " + std::to_string(seed));
+    auto o = opts(LayoutKind::Autocross, seed);
+    o.open = open;
+    o.narrowing = 2.85;
+    const auto l = generate_rows(o);
+    expect_bent_rules(o, l, !open);
+    const auto h = test::measure_hand(l, !open);
+    EXPECT_EQ(h.narrowings, 2) << "one stretch, both boundaries pinched";
+    EXPECT_NEAR(h.narrowing_width, 2.85, 0.003);
+    EXPECT_GE(h.narrowing_plateau, 3.0 - 0.15);
+    EXPECT_LE(h.narrowing_plateau, 8.0 + 0.15);
+    EXPECT_LT(h.narrowing_bend, 0.02) << "on a straight";
+    plateaus.insert(static_cast<int>(h.narrowing_plateau));
+    EXPECT_EQ(test::measure_hand(generate_rows(opts(LayoutKind::Autocross, seed)), true).narrowings, 0);
+  }
+  EXPECT_GE(plateaus.size(), 3u) << "plateaus from 3 to 8 m";
+}
+
+// The mix: per seed, the classes the seed drew (resolve_mix) are the ones its cones show, and over the seeds
+// each shows at about its probability.
+TEST(TrackGenerator, IrregularMixGivesEachClassAtItsProbability) {
+  constexpr int kSeeds = 30;  // of trackdrive and of autocross
+  int loops = 0, circles = 0, chains = 0, jittered = 0, unjittered = 0, uneven = 0, outliers = 0, narrowings = 0,
+      chains_undrawn = 0, undrawn = 0;
+  for (auto kind : {LayoutKind::Trackdrive, LayoutKind::Autocross})
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      SCOPED_TRACE(std::string(sim::to_string(kind)) + " seed " + std::to_string(seed));
+      auto o = opts(kind, seed);
+      o.irregular = true;
+      const auto r = sim::resolve_mix(o);
+      const auto l = generate_rows(o);
+      const Seen s = seen_in(l, true);
+      EXPECT_EQ(s.circle, r.circle);
+      if (s.circle) {
+        ++circles;
+        continue;
+      }
+      ++loops;
+      EXPECT_EQ(s.jittered, r.cone_jitter > 0.0);
+      if (!s.jittered) {
+        EXPECT_EQ(s.uneven, r.spacing_jitter > 0.0);
+      }
+      EXPECT_EQ(s.outlier, r.inner_outlier > 0.0);
+      EXPECT_EQ(s.narrowing, r.narrowing > 0.0);
+      if (r.shares.hairpin_chain > 0.0) {
+        EXPECT_TRUE(s.chain);
+      }
+      if (r.shares.hairpin_chain == 0.0) ++undrawn, chains_undrawn += s.chain ? 1 : 0;
+      auto worst = o;
+      worst.cone_jitter = 0.25;
+      expect_bent_rules(worst, l, true);
+      chains += s.chain, jittered += s.jittered, outliers += s.outlier, narrowings += s.narrowing;
+      if (!s.jittered) ++unjittered, uneven += s.uneven;
+    }
+  const double n = 2.0 * kSeeds;
+  EXPECT_LE(circles, 0.05 * n + 4) << "circle, 5 %";
+  EXPECT_GE(circles, 1);
+  EXPECT_NEAR(jittered / double(loops), 0.5, 0.2) << "cone jitter";
+  EXPECT_NEAR(uneven / double(unjittered), 0.5, 0.25) << "spacing jitter (where the cones are not moved too)";
+  EXPECT_NEAR(outliers / double(loops), 0.5, 0.2) << "inner outlier";
+  EXPECT_NEAR(narrowings / double(loops), 0.4, 0.2) << "narrowing";
+  EXPECT_NEAR(chains / double(loops), 0.5, 0.2) << "hairpin chains";
+  EXPECT_LE(chains_undrawn, undrawn / 5) << "chains without the class: two hairpin features meeting";
+  // Acceleration: a braking zone closed 25 m after the finish, measured as the end row's distance from the
+  // finish's big orange cones.
+  int short_zones = 0;
+  constexpr int kAccel = 60;
+  for (int seed = 1; seed <= kAccel; ++seed) {
+    auto o = opts(LayoutKind::Acceleration, seed);
+    o.irregular = true;
+    const auto l = generate_rows(o);
+    const V2 fwd = heading(l.yaw);
+    std::vector<double> xs;
+    for (const V2& p : l.big_orange) xs.push_back((p - l.start).dot(fwd));
+    std::sort(xs.begin(), xs.end());
+    ASSERT_EQ(xs.size(), 8u);
+    const double finish = 0.25 * (xs[4] + xs[5] + xs[6] + xs[7]);
+    double end = 0;
+    for (const V2& p : l.orange) end = std::max(end, (p - l.start).dot(fwd));
+    const double zone = end - finish;
+    const bool drawn = sim::resolve_mix(o).braking_max == 25.0;
+    if (drawn) ++short_zones;
+    EXPECT_EQ(std::fabs(zone - 25.0) < 0.01, drawn) << "seed " << seed << " zone " << zone;
+    if (!drawn) {
+      EXPECT_GE(zone, 30.0 - 0.01) << "seed " << seed;
+    }
+  }
+  EXPECT_NEAR(short_zones / double(kAccel), 0.35, 0.15);
+}
+
+// Seeds the mix switched nothing on are the default layouts byte for byte (the mix draws from a stream of its
+// own); values given with `irregular` hold on every seed.
+TEST(TrackGenerator, IrregularMixKeepsTheDefaultDrawsAndTheOptionsGiven) {
+  int plain = 0;
+  for (int seed = 1; seed <= 100; ++seed) {
+    auto o = opts(LayoutKind::Trackdrive, seed);
+    o.irregular = true;
+    const auto r = sim::resolve_mix(o);
+    if (r.circle || r.shares.hairpin_chain > 0 || r.cone_jitter > 0 || r.spacing_jitter > 0 || r.inner_outlier > 0 ||
+        r.narrowing > 0)
+      continue;
+    ++plain;
+    EXPECT_EQ(format_track(sim::generate_track(o)),
+              format_track(sim::generate_track(opts(LayoutKind::Trackdrive, seed))))
+        << "seed " << seed;
+  }
+  EXPECT_GE(plain, 1);
+  for (int seed = 1; seed <= 6; ++seed) {
+    auto o = opts(LayoutKind::Autocross, seed);
+    o.irregular = true;
+    o.narrowing = 2.5;
+    const Seen s = seen_in(generate_rows(o), true);
+    if (s.circle) continue;
+    EXPECT_NEAR(s.hand.narrowing_width, 2.5, 0.003) << "seed " << seed;
+    o.circle = true;
+    EXPECT_TRUE(test::measure_circle(generate_rows(o)).found) << "seed " << seed;
+  }
+}
+
+// The figures docs/track-generator.md quotes: how often each class shows over 200 seeds of each kind, as the
+// checker sees it, how often that disagrees with what the seed drew, and the time to generate. By hand:
+//   build-gen/tests/test_sim --gtest_also_run_disabled_tests --gtest_filter='TrackGenerator.DISABLED_MixFigures'
+TEST(TrackGenerator, DISABLED_MixFigures) {
+  constexpr int kSeeds = 200;
+  const std::string path = test::scratch_path("mix_figures.csv");
+  for (auto kind : {LayoutKind::Trackdrive, LayoutKind::Autocross}) {
+    int loops = 0, circles = 0, chains = 0, jittered = 0, unjittered = 0, uneven = 0, outliers = 0, narrowings = 0;
+    int missed = 0, unasked_chains = 0;  // a class drawn but not seen (chains aside); chains seen but not drawn
+    double seconds = 0, worst = 0;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      auto o = opts(kind, seed);
+      o.irregular = true;
+      const auto r = sim::resolve_mix(o);
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::string text = format_track(sim::generate_track(o));
+      const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      seconds += dt, worst = std::max(worst, dt);
+      std::ofstream(path, std::ios::binary) << text;
+      const Seen s = seen_in(test::read_layout(path), true);
+      auto disagree = [&](bool seen, bool drawn, const char* what) {
+        if (seen == drawn) return;
+        ++missed;
+        std::printf("  %s seed %d: %s %s but %s\n", std::string(sim::to_string(kind)).c_str(), seed, what,
+                    drawn ? "drawn" : "not drawn", seen ? "seen" : "not seen");
+      };
+      disagree(s.circle, r.circle, "circle");
+      if (s.circle) {
+        ++circles;
+        continue;
+      }
+      ++loops;
+      chains += s.chain, jittered += s.jittered, outliers += s.outlier, narrowings += s.narrowing;
+      if (!s.jittered) {
+        ++unjittered, uneven += s.uneven;
+        disagree(s.uneven, r.spacing_jitter > 0, "spacing jitter");
+      }
+      disagree(s.jittered, r.cone_jitter > 0, "cone jitter");
+      disagree(s.outlier, r.inner_outlier > 0, "inner outlier");
+      disagree(s.narrowing, r.narrowing > 0, "narrowing");
+      if (r.shares.hairpin_chain > 0) disagree(s.chain, true, "hairpin chain");
+      unasked_chains += r.shares.hairpin_chain == 0 && s.chain;
+    }
+    std::printf(
+        "%s, %d seeds: circle %d (%.1f %%); of the %d loops: hairpin chains %.1f %%, cone jitter %.1f %%, inner "
+        "outlier %.1f %%, narrowing %.1f %%; uneven spacing %.1f %% of the %d without jitter. Seen against drawn: "
+        "%d disagreements, %d layouts with chains not drawn. Generation %.1f ms mean, %.1f ms worst\n",
+        std::string(sim::to_string(kind)).c_str(), kSeeds, circles, 100.0 * circles / kSeeds, loops,
+        100.0 * chains / loops, 100.0 * jittered / loops, 100.0 * outliers / loops, 100.0 * narrowings / loops,
+        100.0 * uneven / unjittered, unjittered, missed, unasked_chains, 1e3 * seconds / kSeeds, 1e3 * worst);
+    EXPECT_EQ(missed, 0);
+    EXPECT_NEAR(jittered / double(loops), 0.5, 0.1);
+    EXPECT_NEAR(narrowings / double(loops), 0.4, 0.1);
+    EXPECT_NEAR(circles / double(kSeeds), 0.05, 0.04);
+  }
+  int short_zones = 0;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    auto o = opts(LayoutKind::Acceleration, seed);
+    o.irregular = true;
+    const auto l = generate_rows(o);
+    const V2 fwd = heading(l.yaw);
+    std::vector<double> xs;
+    for (const V2& p : l.big_orange) xs.push_back((p - l.start).dot(fwd));
+    std::sort(xs.begin(), xs.end());
+    double end = 0;
+    for (const V2& p : l.orange) end = std::max(end, (p - l.start).dot(fwd));
+    short_zones += std::fabs(end - 0.25 * (xs[4] + xs[5] + xs[6] + xs[7]) - 25.0) < 0.01;
+  }
+  std::printf("acceleration, %d seeds: braking zone closed 25 m after the finish %.1f %%\n", kSeeds,
+              100.0 * short_zones / kSeeds);
+  EXPECT_NEAR(short_zones / double(kSeeds), 0.35, 0.1);
+}
+
 TEST(TrackGenerator, SameSeedAndOptionsGiveTheSameBytes) {
   for (auto kind : {LayoutKind::Trackdrive, LayoutKind::Autocross, LayoutKind::Acceleration, LayoutKind::Skidpad}) {
     const auto a = format_track(sim::generate_track(opts(kind, 17)));
@@ -337,6 +797,23 @@ TEST(TrackGenerator, SameSeedAndOptionsGiveTheSameBytes) {
     const auto c = format_track(sim::generate_track(opts(kind, 18)));
     EXPECT_EQ(a, b) << sim::to_string(kind);
     EXPECT_NE(a, c) << sim::to_string(kind);
+  }
+  // Each class beyond the rules, and the mix: the same bytes again, not the default's.
+  const auto plain = format_track(sim::generate_track(opts(LayoutKind::Autocross, 17)));
+  for (void (*set)(TrackGeneratorOptions&) : {
+           +[](TrackGeneratorOptions& o) { o.shares.hairpin_chain = 0.15; },
+           +[](TrackGeneratorOptions& o) { o.circle = true; },
+           +[](TrackGeneratorOptions& o) { o.cone_jitter = 0.25; },
+           +[](TrackGeneratorOptions& o) { o.spacing_jitter = 0.3; },
+           +[](TrackGeneratorOptions& o) { o.inner_outlier = 0.3; },
+           +[](TrackGeneratorOptions& o) { o.narrowing = 2.85; },
+           +[](TrackGeneratorOptions& o) { o.irregular = true; },
+       }) {
+    auto o = opts(LayoutKind::Autocross, 17);
+    set(o);
+    const auto a = format_track(sim::generate_track(o));
+    EXPECT_EQ(a, format_track(sim::generate_track(o)));
+    EXPECT_NE(a, plain);
   }
   // Trackdrive and autocross of one seed are different layouts.
   EXPECT_NE(format_track(sim::generate_track(opts(LayoutKind::Trackdrive, 5))),
@@ -421,6 +898,28 @@ TEST(TrackGenerator, BadOptionsAreRejectedNamingTheOption) {
   o = opts(LayoutKind::Trackdrive, 1);
   o.width_min = std::nan("");
   expect_rejected(o, "finite");
+  // The classes beyond the rules: their ranges, and only on trackdrive/autocross.
+  struct Bent {
+    void (*set)(TrackGeneratorOptions&);
+    const char* says;
+  };
+  const Bent bents[] = {
+      {[](TrackGeneratorOptions& b) { b.cone_jitter = 0.7; }, "cone jitter"},
+      {[](TrackGeneratorOptions& b) { b.cone_jitter = 0.3, b.spacing_min = 1.5; }, "cone jitter"},
+      {[](TrackGeneratorOptions& b) { b.spacing_jitter = 0.9; }, "spacing jitter"},
+      {[](TrackGeneratorOptions& b) { b.inner_outlier = 2.0; }, "inner outlier"},
+      {[](TrackGeneratorOptions& b) { b.narrowing = 3.5; }, "narrowing"},
+      {[](TrackGeneratorOptions& b) { b.narrowing = 1.0; }, "narrowing"},
+      {[](TrackGeneratorOptions& b) { b.shares.hairpin_chain = -1.0; }, "hairpin chain"},
+      {[](TrackGeneratorOptions& b) { b.circle = true, b.open = true; }, "circle"},
+      {[](TrackGeneratorOptions& b) { b.circle = true, b.kind = LayoutKind::Acceleration; }, "circle"},
+      {[](TrackGeneratorOptions& b) { b.cone_jitter = 0.2, b.kind = LayoutKind::Skidpad; }, "cone jitter"},
+  };
+  for (const Bent& b : bents) {
+    o = opts(LayoutKind::Trackdrive, 1);
+    b.set(o);
+    expect_rejected(o, b.says);
+  }
   EXPECT_FALSE(sim::layout_kind_from_string("endurance"));
   EXPECT_EQ(sim::layout_kind_from_string("skidpad"), LayoutKind::Skidpad);
 }
