@@ -1,5 +1,6 @@
 // `fsd track generate`: a layout within the Formula Student Driverless rules from a seed, in the shared track
-// CSV format (drivers/sim/track_generator, docs/track-generator.md).
+// CSV format (drivers/sim/track_generator, docs/track-generator.md); options add what public layouts have beyond
+// the rules.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -95,6 +96,21 @@ void add_track_command(CLI::App& app, int& exit_code) {
   gen->add_option("--share-decreasing", sh.decreasing, "weight of decreasing-radius turns")->capture_default_str();
   gen->add_option("--share-straight-hairpin", sh.straight_hairpin, "weight of long straights into a hairpin")
       ->capture_default_str();
+  // What public layouts have beyond the rules (docs/track-generator.md); trackdrive/autocross.
+  gen->add_option("--share-hairpin-chain", sh.hairpin_chain,
+                  "weight of chains of 2-3 minimum hairpins back to back (above 0: at least one per layout)")
+      ->capture_default_str();
+  gen->add_flag("--circle", o.circle, "the whole lap one turn at the rules' minimum (9 m, 3 m lane), car inside");
+  gen->add_option("--cone-jitter", o.cone_jitter, "m each cone may stand off its place (placed by hand)")
+      ->capture_default_str();
+  gen->add_option("--spacing-jitter", o.spacing_jitter, "share by which gaps along a boundary may differ")
+      ->capture_default_str();
+  gen->add_option("--inner-outlier", o.inner_outlier, "m one inner cone of each tight turn stands into the lane")
+      ->capture_default_str();
+  gen->add_option("--narrowing", o.narrowing, "m the lane narrows to on one straight stretch (0: none)")
+      ->capture_default_str();
+  gen->add_flag("--irregular", o.irregular,
+                "mix the classes above per seed (and a 25 m braking zone for acceleration); options given win");
   gen->callback([&exit_code] {
     try {
       exit_code = generate(a);
