@@ -2,18 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
-#include "control/mission_acceleration.hpp"
-#include "control/mission_inspection.hpp"
-#include "control/mission_skidpad.hpp"
-#include "control/mission_trackdrive.hpp"
+#include "control/missions/mission_acceleration.hpp"
+#include "control/missions/mission_inspection.hpp"
+#include "control/missions/mission_skidpad.hpp"
+#include "control/missions/mission_trackdrive.hpp"
 
 namespace fsd {
 
 Autopilot::Autopilot(AutopilotConfig config, Mission mission, ColourConvention convention)
     : config_(config),
       mission_(mission),
-      planner_(config.planner, convention, config.speed.realtime()),
+      planner_(config.planner, config.path, convention, config.speed.realtime()),
+      guard_(config.guard),
       follower_(config.follower),
       lap2_follower_(config.lap2.follower(config.follower)),
       supervisor_(config.supervisor) {
@@ -62,7 +64,8 @@ void Autopilot::set_lap_builder(LapBuildService* service) {
 
 void Autopilot::set_config(const AutopilotConfig& config) {
   config_ = config;
-  planner_.set_config(config.planner);
+  planner_.set_config(config.planner, config.path);
+  guard_.set_config(config.guard);
   planner_.set_speed_limits(config.speed.realtime());
   follower_.set_config(config.follower);
   lap2_follower_.set_config(config.lap2.follower(config.follower));
@@ -75,6 +78,7 @@ void Autopilot::on_vcu(const VcuStatus& status) { supervisor_.on_vcu(status); }
 void Autopilot::on_cones(Stamp t, std::vector<Cone> map_cones) {
   if (!std::isfinite(t)) return;
   cones_ = std::move(map_cones);
+  obstacles_ = obstacles_of(cones_, config_.path.cone_radius, config_.path.big_cone_radius);
   ++cones_seq_;
   if (cones_stamp_ < 0 || t - cones_stamp_ > config_.supervisor.lidar_timeout) cones_unbroken_since_ = t;
   cones_stamp_ = t;
@@ -104,21 +108,43 @@ void Autopilot::relocate(const std::function<Pose2(Stamp)>& correction, Stamp no
   // Moved with the pose, so that the correction is no distance driven.
   if (last_position_) last_position_ = correction(now).transform(*last_position_);
   if (plan_) transform_path(*plan_, correction(plan_->stamp));
+  if (plan_pending_) discard_plan_ = true;  // planned on the map before the correction
   run_->relocate(correction, now);
 }
 
 bool Autopilot::plan(Stamp now) {
   plan_outcome_ = {};
   if (!run_->uses_planner() || !state_ || planner_stalled_) return false;
-  if (!new_cones_ && now - last_plan_attempt_ < config_.replan_period) return false;
+  bool taken = false;
+  if (plan_pending_) {
+    if (auto r = plan_service_->poll()) {
+      plan_pending_ = false;
+      if (!std::exchange(discard_plan_, false)) {
+        take_plan(now, std::move(*r));
+        taken = true;
+      }
+    }
+  }
+  if (plan_pending_ || (!new_cones_ && now - last_plan_attempt_ < config_.replan_period)) return taken;
   new_cones_ = false;
   last_plan_attempt_ = now;
-  PlanResult r = planner_.plan(cones_, *state_, held_turn_ ? &*held_turn_ : nullptr);
-  plan_outcome_ = {true, r.ok, r.single_boundary, r.ignored_colours, r.tight_turn.has_value()};
-  supervisor_.on_plan(now, r.ok);
-  if (r.ok) held_turn_ = r.tight_turn;
-  if (r.ok) plan_ = std::move(r.path);
+  if (plan_service_) {
+    // The job gets copies: the map and the state move on meanwhile.
+    PlanJob job = [planner = planner_, cones = cones_, state = *state_] { return planner.plan(cones, state); };
+    if (plan_service_->submit(std::move(job))) {
+      plan_pending_ = true;
+      return taken;
+    }
+  }
+  take_plan(now, planner_.plan(cones_, *state_));
   return true;
+}
+
+void Autopilot::take_plan(Stamp now, PlanResult r) {
+  plan_outcome_ = {true, r.ok, r.single_boundary, r.ignored_colours, r.cut_short};
+  // A plan that fails or ends short says why; a stop for want of a plan, or for standing still, names it.
+  supervisor_.on_plan(now, r.ok, r.reason);
+  if (r.ok) plan_ = std::move(r.path);
 }
 
 MissionInput Autopilot::mission_input(Stamp now, bool plan_ok) const {
@@ -148,7 +174,7 @@ ControlOutput Autopilot::step(Stamp now) {
   out.plan_ok = plan_outcome_.ok;
   out.plan_one_boundary = plan_outcome_.one_boundary;
   out.plan_colour_blind = plan_outcome_.colour_blind;
-  out.plan_tight_turn = plan_outcome_.tight_turn;
+  out.plan_cut_short = plan_outcome_.cut_short;
   plan_outcome_ = {};
   const double speed = state_ ? std::max(0.0, state_->speed()) : 0.0;
   if (state_) {
@@ -200,6 +226,14 @@ ControlOutput Autopilot::step(Stamp now) {
   cmd.stamp = now;
   cmd.target_speed = std::min(cmd.target_speed, config_.speed.v_max);
   run_->limit(in, cmd);
+  // The contact guard: the car's predicted motion against the mapped cones; a predicted contact slows it first.
+  if (path && state_ && follow.ok) {
+    const PathFollower& f = source == PathSource::Recorded ? lap2_follower_ : follower_;
+    out.guard = guard_.check(*path, f, *state_, cmd, obstacles_, config_.path.body, config_.follower.wheelbase,
+                             config_.follower.max_steer);
+    if (out.guard.contact) cmd.target_speed = std::min(cmd.target_speed, out.guard.speed_cap);
+  }
+  supervisor_.report(now, "guard", "contact with a cone predicted", "slowing to stop short of it", out.guard.contact);
 
   // Supervision: no motion outside Driving, controlled stop on faults, Ready/Finished/Emergency requests.
   const Supervision sup = supervisor_.evaluate(now, speed, run_->finished());

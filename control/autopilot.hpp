@@ -1,7 +1,8 @@
 #pragma once
 // The driving brain in one object, for the daemon's control thread: takes the newest VCU status, cone map,
 // fused vehicle state and GNSS quality, and each cycle returns the command for the VCU and the AS request.
-// Inside: real-time midline planning, the path followers, the AS supervisor and the mission (one MissionRun of
+// Inside: real-time planning (control/planning), the path followers and the contact guard (control/tracking), the
+// AS supervisor (control/supervisor) and the mission (one MissionRun of
 // control/mission_*.hpp: trackdrive and autocross with the lap counter and the lap-2 trajectory, acceleration and
 // EBS test, skid pad, inspection). No I/O, no threads: the caller owns time (every call carries the stack's clock)
 // and calls from one thread.
@@ -11,7 +12,7 @@
 //   on_cones(t, map)        only when mapping produced a new cone map (map frame, all cones so far; ~10 Hz)
 //   on_state(state)         the fused VehicleState (map frame; steering = measured wheel angle)
 //   on_gnss(t, good)        the newest GNSS-INS sample's GnssSample::good
-//   plan(now)               the real-time planner, when new cones arrived or replan_period passed (≈ 0.2–0.5 ms)
+//   plan(now)               the real-time planner, when new cones arrived or replan_period passed (a few ms)
 //   out = step(now)         send out.command to the VCU every cycle, out.request while it is not None;
 //                           out.path / out.follow / out.lap / faults() feed telemetry and the scorecard.
 // plan() and step() are separate calls so that the caller can time each (the core reads no clock). Lap 2's path
@@ -25,13 +26,15 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
-#include "control/as_supervisor.hpp"
 #include "control/autopilot_config.hpp"
-#include "control/follower.hpp"
-#include "control/lap_build_service.hpp"
-#include "control/midline_planner.hpp"
-#include "control/mission_run.hpp"
-#include "control/skidpad.hpp"
+#include "control/missions/lap_build_service.hpp"
+#include "control/missions/mission_run.hpp"
+#include "control/missions/skidpad.hpp"
+#include "control/planning/plan_service.hpp"
+#include "control/planning/realtime_planner.hpp"
+#include "control/supervisor/as_supervisor.hpp"
+#include "control/tracking/contact_guard.hpp"
+#include "control/tracking/follower.hpp"
 
 namespace fsd {
 
@@ -49,8 +52,9 @@ struct ControlOutput {
   bool plan_ok = false;                  // its outcome when it ran
   bool plan_one_boundary = false;        // that plan ran half a width inside the only boundary seen
   bool plan_colour_blind = false;        // that plan ignored cone colours that contradicted the geometry
-  bool plan_tight_turn = false;          // that plan shaped a turn to the steering lock
+  bool plan_cut_short = false;           // that plan ends before a place its body would come too near a cone
   std::optional<LapLineBuilt> lap_line;  // the lap path was built this cycle
+  GuardResult guard;                     // the contact guard's prediction this cycle
   bool finished = false;                 // past the mission's finish (stopping or stopped)
   bool stopping = false;                 // a fault stop is under way
 };
@@ -66,7 +70,8 @@ class Autopilot {
   void on_gnss(Stamp t, bool good);                     // each GNSS-INS sample: usable for lap-2 tracking?
 
   // The real-time planner at time `now`, when it is due (new cones, or replan_period since the last attempt);
-  // returns whether it ran. Call before step() in each cycle of a mission that plans (trackdrive, autocross).
+  // returns whether a plan was taken this cycle. Call before step() in each cycle of a mission that plans
+  // (trackdrive, autocross). With a plan service the plan is handed over and taken in a later cycle.
   bool plan(Stamp now);
   // One control cycle at time `now` (≥ the newest input stamp): runs the mission, follows, supervises. Always
   // returns a command; outside AS Driving it holds the car.
@@ -92,6 +97,8 @@ class Autopilot {
   void set_config(const AutopilotConfig& config);
   // Lap 2's path built by `service` (which must outlive the autopilot) instead of inside step(); null: inside step().
   void set_lap_builder(LapBuildService* service);
+  // Lap 1's plans made by `service` (which must outlive the autopilot) instead of inside plan(); null: inside.
+  void set_plan_service(PlanService* service) { plan_service_ = service; }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
 
@@ -99,11 +106,13 @@ class Autopilot {
   // The one place that tells the missions apart: the mission's class, and the typed views of two of them.
   std::unique_ptr<MissionRun> make_run(Mission mission, const ColourConvention& convention);
   MissionInput mission_input(Stamp now, bool plan_ok) const;
+  void take_plan(Stamp now, PlanResult r);
   void report(Stamp now, const std::vector<MissionFault>& faults);
 
   AutopilotConfig config_;
   Mission mission_;
-  MidlinePlanner planner_;
+  RealtimePlanner planner_;
+  ContactGuard guard_;
   PathFollower follower_;
   PathFollower lap2_follower_;  // on the recorded lap path (its own gains)
   AsSupervisor supervisor_;
@@ -123,11 +132,14 @@ class Autopilot {
 
   // Real-time planning.
   std::optional<Path> plan_;
-  std::optional<TightTurn> held_turn_;  // the tight turn the newest plan shaped (map frame): kept through it
+  std::vector<Obstacle> obstacles_;     // the cone map as the body must avoid it (refreshed with the cones)
   Stamp last_plan_attempt_ = -1e9;
+  PlanService* plan_service_ = nullptr;
+  bool plan_pending_ = false;  // a plan is out with the service
+  bool discard_plan_ = false;  // ... made before a loop closure moved the map: dropped when it comes
   bool planner_stalled_ = false;
   struct PlanOutcome {  // of the plan() call of this cycle, for step()'s output
-    bool planned = false, ok = false, one_boundary = false, colour_blind = false, tight_turn = false;
+    bool planned = false, ok = false, one_boundary = false, colour_blind = false, cut_short = false;
   } plan_outcome_;
 
   // Following.

@@ -1,19 +1,23 @@
 #pragma once
 // The autopilot's settings, one section per part (control.* keys, control/control_config.hpp). In a header of
-// its own because the missions (control/mission_run.hpp) read them too.
-#include "control/as_supervisor.hpp"
-#include "control/follower.hpp"
-#include "control/lap2_config.hpp"
-#include "control/lap_counter.hpp"
-#include "control/midline_planner.hpp"
-#include "control/missions.hpp"
-#include "control/recorded_trajectory.hpp"
+// its own because the missions (control/missions/mission_run.hpp) read them too.
+#include "control/missions/lap2_config.hpp"
+#include "control/missions/lap_counter.hpp"
+#include "control/missions/missions.hpp"
+#include "control/planning/path_config.hpp"
+#include "control/planning/realtime_planner.hpp"
+#include "control/planning/recorded_trajectory.hpp"
+#include "control/supervisor/as_supervisor.hpp"
+#include "control/tracking/contact_guard.hpp"
+#include "control/tracking/follower.hpp"
 
 namespace fsd {
 
 struct AutopilotConfig {
-  MidlinePlannerConfig planner;
+  PlannerConfig planner;
+  PathConfig path;
   FollowerConfig follower;
+  ContactGuardConfig guard;
   SpeedConfig speed;
   MissionConfig mission;
   SupervisorConfig supervisor;

@@ -4,14 +4,33 @@
 
 namespace fsd {
 
-const ConfigSection<MidlinePlannerConfig>& planner_section() {
-  using C = MidlinePlannerConfig;
+const ConfigSection<PlannerConfig>& planner_section() {
+  using C = PlannerConfig;
   static const auto s =
       ConfigSection<C>("control.planner")
           .number("range", &C::range, 5, 60, "m", "Cones farther from the car are not planned through.")
           .number("behind", &C::behind, 0, 20, "m", "Cones farther behind the rear axle are ignored.")
           .integer("max_cones", &C::max_cones, 10, 1000, "", "Nearest cones kept per plan (bounds the work).")
           .number("merge_distance", &C::merge_distance, 0, 1, "m", "Cones closer than this are one cone.")
+          .number("reference_wavelength", &C::reference_wavelength, 0, 20, "m",
+                  "The walk's midline is smoothed over this before the path is optimized in its corridor.", true)
+          .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the straight paths the missions lay (lanes, run-outs).")
+          .number("free_from", &C::free_from, 0, 5, "m",
+                  "Clearance from the cones is asked from this far ahead of the car (it stands where it is).", true)
+          .number("min_length", &C::min_length, 0.5, 50, "m", "A shorter clear path is a failed plan.")
+          .number("end_speed", &C::end_speed, 0, 40, "m/s",
+                  "Speed allowed at the end of the planned horizon (0: a stop within what is seen).", true)
+          .number("time_budget", &C::time_budget, 0.001, 1, "s",
+                  "A plan whose CPU time exceeds this is counted late (a warning in the log and /metrics); time "
+                  "spent waiting for a core does not count.",
+                  true);
+  return s;
+}
+
+const ConfigSection<CorridorWalkConfig>& walk_section() {
+  using C = CorridorWalkConfig;
+  static const auto s =
+      ConfigSection<C>("control.planner")
           .boolean("use_colours", &C::use_colours, "Use cone colours; false plans colour-blind from geometry.", true)
           .number("width_min", &C::width_min, 1, 10, "m", "Shortest edge the walk may cross.")
           .number("width_max", &C::width_max, 2, 15, "m", "Longest crossing edge unless its colours say left-right.")
@@ -46,57 +65,66 @@ const ConfigSection<MidlinePlannerConfig>& planner_section() {
                   "A colour-blind walk this much better in geometry wins (< 0: off).")
           .integer("max_wrong_colours", &C::max_wrong_colours, 0, 20, "",
                    "... if it passes at most this many cones against their colour.")
-          .number("ds", &C::ds, 0.05, 2, "m", "Spacing of the planned path.")
-          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 50, "m",
-                  "Ripples shorter than this are smoothed out.", true)
-          .boolean("keep_clear", &C::keep_clear,
-                   "Push the path off cones nearer than the body's half width (control.tight_turn's body).", true)
-          .number("keep_clear_window", &C::keep_clear_window, 0.5, 20, "m",
-                  "A push off a cone fades out over this either side of it.", true)
-          .number("min_length", &C::min_length, 0.5, 50, "m", "Shorter walks are a failed plan.")
           .number("fallback_below", &C::fallback_below, 0, 50, "m",
-                  "Walks shorter than this, along them from the car, try the single-boundary fallback.")
-          .number("end_speed", &C::end_speed, 0, 40, "m/s", "Speed allowed at the end of the planned horizon.", true)
-          .number("time_budget", &C::time_budget, 0.001, 1, "s",
-                  "A plan whose CPU time exceeds this is counted late (a warning in the log and /metrics); time "
-                  "spent waiting for a core does not count.",
+                  "Walks shorter than this, along them from the car, try the single-boundary fallback.");
+  return s;
+}
+
+const ConfigSection<PathConfig>& path_section() {
+  using C = PathConfig;
+  static const auto s =
+      ConfigSection<C>("control.path")
+          .number("node_spacing", &C::node_spacing, 0.2, 2, "m",
+                  "Spacing of the optimizer's nodes (the path: them, and the arc point half way between each two).")
+          .number("cone_radius", &C::cone_radius, 0.05, 0.5, "m", "A small cone's base radius the body keeps from.")
+          .number("big_cone_radius", &C::big_cone_radius, 0.05, 0.5, "m", "A big orange cone's base radius.")
+          .number("accept_clearance", &C::accept_clearance, -0.1, 0.5, "m",
+                  "A planned path whose body comes nearer a cone than this is cut before it (lap 1) or refused "
+                  "(lap 2).",
                   true);
   return s;
 }
 
-const ConfigSection<TightTurnConfig>& tight_turn_section() {
-  using C = TightTurnConfig;
+const ConfigSection<PathOptimizerConfig>& optimizer_section() {
+  using C = PathOptimizerConfig;
   static const auto s =
-      ConfigSection<C>("control.tight_turn")
-          .boolean("enabled", &C::enabled, "Shape the line through turns at the steering lock to the car.", true)
-          .number("kappa_on", &C::kappa_on, 0.01, 2, "1/m",
-                  "A turn is where the planned path curves tighter than this.", true)
-          .number("min_turn_deg", &C::min_turn_deg, 10, 360, "deg", "Heading change of a turn worth shaping.", true)
-          .number("lane_radius_max", &C::lane_radius_max, 1, 30, "m",
-                  "Only turns whose lane centre radius is below this are shaped.", true)
-          .number("cone_radius", &C::cone_radius, 0, 0.5, "m", "Half a cone's base.")
-          .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and the cones.", true)
-          .number("lock_margin", &C::lock_margin, 0, 0.5, "", "The arc's curvature stays this share below the lock's.",
+      ConfigSection<C>("control.path")
+          .number("w_centre", &C::w_centre, 0, 1e3, "1/m³", "Cost per metre of the squared offset from the centre.",
                   true)
-          .number("lock_authority", &C::lock_authority, 0, 0.5, "",
-                  "And this share below it where the cones leave room: steering left for the follower to correct "
-                  "with.",
+          .number("w_curvature", &C::w_curvature, 0, 1e4, "m", "Cost per metre of the squared curvature.", true)
+          .number("w_curvature_rate", &C::w_curvature_rate, 0, 1e4, "m³",
+                  "Cost per metre of the squared change of curvature along the path.", true)
+          .number("lock_margin", &C::lock_margin, 0, 0.5, "",
+                  "Share of the steering lock's curvature never planned (left to correct with).", true)
+          .number("lock_margin_soft", &C::lock_margin_soft, 0, 0.5, "",
+                  "Share below the lock's curvature where curvature starts to cost.", true)
+          .number("w_lock_soft", &C::w_lock_soft, 0, 1e5, "m", "Cost per metre of curvature beyond that, squared.", true)
+          .number("kappa_rate_max", &C::kappa_rate_max, 0.01, 10, "1/m²", "Steepest change of curvature along a path.",
                   true)
-          .number("lead", &C::lead, 0.5, 20, "m", "The path is rejoined this far before and after the turn.", true)
-          .number("transition_length", &C::transition_length, 0.1, 20, "m", "Turn-in and turn-out clothoid length.",
+          .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and every cone's base.", true)
+          .number("clearance_soft", &C::clearance_soft, 0, 2, "m", "Below this, the clearance costs.", true)
+          .number("w_clearance_soft", &C::w_clearance_soft, 0, 1e5, "1/m", "Cost per metre of that shortfall, squared.",
                   true)
-          .number("smoothing_wavelength", &C::smoothing_wavelength, 0.5, 10, "m",
-                  "The joins with the path are rounded over about this.", true)
-          .number("v_max", &C::v_max, 0.5, 60, "m/s",
-                  "A shaped turn, entry to rejoin, is driven at most this fast (no steering left to correct with).",
-                  true)
-          .number("understeer", &C::understeer, 0, 0.1, "rad/(m/s²)",
-                  "The car's understeer gradient K (δ = L/R + K·v²/R); 0: a turn's room does not cap lap 1's speed.",
-                  true)
-          .number("room_share", &C::room_share, 0.05, 1, "",
-                  "Lap 1 drives a shaped turn no faster than running wide by this share of the room its cones leave.",
-                  true)
-          .number("v_min", &C::v_min, 0.5, 60, "m/s", "Lap 1's speed through a shaped turn that leaves no room.", true);
+          .number("penalty", &C::penalty, 1, 1e9, "", "Weight of a hard constraint's violation, squared.", true)
+          .integer("max_iterations", &C::max_iterations, 1, 1000, "", "Solver iterations at most per plan.", true);
+  return s;
+}
+
+const ConfigSection<ContactGuardConfig>& guard_section() {
+  using C = ContactGuardConfig;
+  static const auto s =
+      ConfigSection<C>("control.guard")
+          .boolean("enabled", &C::enabled, "Check the predicted motion against the mapped cones each cycle.", true)
+          .number("horizon", &C::horizon, 0.1, 5, "s", "Predicted motion checked.", true)
+          .number("dt", &C::dt, 0.01, 0.5, "s", "Step of the prediction.", true)
+          .number("steer_rate", &C::steer_rate, 0.1, 10, "rad/s", "The steering actuator's rate, as predicted.", true)
+          .number("steer_delay", &C::steer_delay, 0, 1, "s", "The steering actuator's dead time, as predicted.", true)
+          .number("margin", &C::margin, -0.1, 1, "m", "A predicted clearance below this is a contact.", true)
+          .number("decel", &C::decel, 0.5, 20, "m/s²",
+                  "Braking the speed cap before a predicted contact assumes (and the prediction slows at).", true)
+          .number("accel", &C::accel, 0.1, 20, "m/s²", "Acceleration the prediction speeds up at.", true)
+          .number("latency", &C::latency, 0, 2, "s", "Delay before that braking acts, as assumed.", true)
+          .number("range", &C::range, 2, 60, "m", "Cones farther from the car are not checked.", true);
   return s;
 }
 
@@ -151,6 +179,16 @@ const ConfigSection<SpeedConfig>& speed_section() {
                   true)
           .number("kappa_rate_max", &C::kappa_rate_max, 0, 10, "1/(m·s)",
                   "Fastest curvature change of the steering (rate / wheelbase); 0 = no limit.", true)
+          .number("understeer", &C::understeer, 0, 0.1, "rad·s²/m",
+                  "Understeer gradient K (δ = atan(L·κ) + K·v²·κ): each point is driven no faster than keeps the "
+                  "steering within the lock less steer_reserve; 0 = no such limit.",
+                  true)
+          .number("steer_reserve", &C::steer_reserve, 0, 0.2, "rad",
+                  "Steering left to correct with at every planned speed.", true)
+          .number("stop_latency", &C::stop_latency, 0, 2, "s",
+                  "From a stop being planned to the brakes acting: every stop is planned to hold with it.", true)
+          .number("stop_margin", &C::stop_margin, 0, 10, "m",
+                  "Every stop is planned this short of the end of the known free lane.", true)
           .boolean("traction_ellipse", &C::traction_ellipse,
                    "Traction shrinks with cornering on an ellipse (rear-wheel drive); false: friction circle capped at "
                    "a_accel_max.",
@@ -170,10 +208,6 @@ const ConfigSection<MissionConfig>& mission_section() {
                   "Acceleration: stop within this after the finish.")
           .number("acceleration_stop_decel", &C::acceleration_stop_decel, 0.5, 15, "m/s²",
                   "Acceleration: braking to standstill after the finish (hard: a braking zone may be short).", true)
-          .number("lane_end_margin", &C::lane_end_margin, 0.2, 10, "m",
-                  "Acceleration and EBS test: room left between the nose and a cone across the straight ahead (the "
-                  "braking zone's closing row).",
-                  true)
           .number("acceleration_start_offset", &C::acceleration_start_offset, 0, 50, "m",
                   "Start pose to start line when no timing cones are seen.")
           .number("open_end_sight", &C::open_end_sight, 0, 50, "m",
@@ -225,7 +259,8 @@ const ConfigSection<LapCounterConfig>& lap_counter_section() {
   using C = LapCounterConfig;
   static const auto s =
       ConfigSection<C>("control.laps")
-          .number("hysteresis", &C::hysteresis, 1, 100, "m", "Distance from the line before the next crossing counts.")
+          .number("hysteresis", &C::hysteresis, 1, 100, "m",
+                  "Distance driven since the previous crossing before the next one counts.")
           .number("min_lap_time", &C::min_lap_time, 0, 600, "s", "Crossings closer in time are ignored.")
           .number("line_margin", &C::line_margin, 0, 10, "m", "The timing line's ends are extended by this.");
   return s;
@@ -246,12 +281,9 @@ const ConfigSection<RecordedTrajectoryConfig>& trajectory_section() {
           .boolean("recentre", &C::recentre, "Pull the lap onto the middle of the mapped cones.")
           .number("recentre_reach", &C::recentre_reach, 0.5, 20, "m",
                   "Cones this close along and across count for recentring.")
-          .number("max_centre_offset", &C::max_centre_offset, 0, 5, "m",
-                  "The recentred lap, smoothed, stays this close to the centre line; 0 = unbounded.")
           .string("line", &C::line, {"centre", "min_curvature"},
-                  "Lap 2's line: the centre line, or the flattest line within the mapped boundaries.")
-          .number("racing_keep", &C::racing_keep, 0.5, 5, "m",
-                  "min_curvature: the line stays this far from each boundary's cone line.")
+                  "Lap 2's line: near the centre line (control.path.w_centre), or the flattest within the mapped "
+                  "boundaries.")
           .number("early_build_distance", &C::early_build_distance, 0, 50, "m",
                   "Lap 1's path is built and taken this far before the line (0: at the line).");
   return s;
@@ -287,7 +319,10 @@ const ConfigSection<AutopilotConfig>& autopilot_section() {
 void describe_control(ConfigSchema& schema) {
   describe_car(schema);
   planner_section().describe(schema);
-  tight_turn_section().describe(schema);
+  walk_section().describe(schema);
+  path_section().describe(schema);
+  optimizer_section().describe(schema);
+  guard_section().describe(schema);
   follower_section().describe(schema);
   speed_section().describe(schema);
   mission_section().describe(schema);
@@ -301,9 +336,9 @@ void describe_control(ConfigSchema& schema) {
 namespace {
 // The settings that more than one part reads, copied from the one place the configuration sets them.
 void share_settings(AutopilotConfig& c) {
-  c.planner.tight_turn.wheelbase = c.follower.wheelbase;
-  c.planner.tight_turn.max_steer = c.follower.max_steer;
-  c.trajectory.tight_turn = c.planner.tight_turn;
+  c.trajectory.path = c.path;
+  c.guard.understeer = c.speed.understeer;
+  c.follower.understeer = c.speed.understeer;
 }
 
 // The car's description (car.*), read by every part that needs the car's size, steering or mass.
@@ -311,16 +346,22 @@ void describe_the_car(const CarDescription& car, AutopilotConfig& c) {
   c.follower.wheelbase = car.wheelbase;
   c.follower.max_steer = car.max_steer;
   c.speed.mass = car.mass;
-  c.planner.tight_turn.body_front = car.nose();
-  c.planner.tight_turn.body_half_width = car.body_width / 2;
+  c.speed.wheelbase = car.wheelbase;
+  c.speed.max_steer = car.max_steer;
+  c.path.wheelbase = car.wheelbase;
+  c.path.max_steer = car.max_steer;
+  c.path.body = {car.nose(), car.rear_overhang, car.body_width / 2};
 }
 }  // namespace
 
 AutopilotConfig read_control(const Config& config) {
   AutopilotConfig c = autopilot_section().read(config);
   c.planner = planner_section().read(config);
+  c.planner.walk = walk_section().read(config);
+  c.path = path_section().read(config);
+  c.path.optimizer = optimizer_section().read(config);
+  c.guard = guard_section().read(config);
   c.follower = follower_section().read(config);
-  c.planner.tight_turn = tight_turn_section().read(config);
   c.speed = speed_section().read(config);
   c.mission = mission_section().read(config);
   c.supervisor = supervisor_section().read(config);
@@ -333,7 +374,9 @@ AutopilotConfig read_control(const Config& config) {
 }
 
 std::optional<double> control_param(const AutopilotConfig& c, const std::string& key) {
-  for (auto v : {planner_section().value(key, c.planner), tight_turn_section().value(key, c.planner.tight_turn),
+  for (auto v : {planner_section().value(key, c.planner), walk_section().value(key, c.planner.walk),
+                 path_section().value(key, c.path), optimizer_section().value(key, c.path.optimizer),
+                 guard_section().value(key, c.guard),
                  follower_section().value(key, c.follower), speed_section().value(key, c.speed),
                  mission_section().value(key, c.mission), supervisor_section().value(key, c.supervisor),
                  lap_counter_section().value(key, c.laps), trajectory_section().value(key, c.trajectory),
@@ -344,7 +387,9 @@ std::optional<double> control_param(const AutopilotConfig& c, const std::string&
 
 bool apply_control_param(AutopilotConfig& c, const std::string& key, double value) {
   const bool applied =
-      planner_section().apply(key, value, c.planner) || tight_turn_section().apply(key, value, c.planner.tight_turn) ||
+      planner_section().apply(key, value, c.planner) || walk_section().apply(key, value, c.planner.walk) ||
+      path_section().apply(key, value, c.path) || optimizer_section().apply(key, value, c.path.optimizer) ||
+      guard_section().apply(key, value, c.guard) ||
       follower_section().apply(key, value, c.follower) || speed_section().apply(key, value, c.speed) ||
       mission_section().apply(key, value, c.mission) || supervisor_section().apply(key, value, c.supervisor) ||
       lap_counter_section().apply(key, value, c.laps) || trajectory_section().apply(key, value, c.trajectory) ||

@@ -9,8 +9,11 @@
 
 namespace fsd {
 
-const ConfigSection<MidlinePlannerConfig>& planner_section();         // control.planner
-const ConfigSection<TightTurnConfig>& tight_turn_section();           // control.tight_turn
+const ConfigSection<PlannerConfig>& planner_section();                // control.planner (lap 1's planner)
+const ConfigSection<CorridorWalkConfig>& walk_section();              // control.planner (its corridor walk)
+const ConfigSection<PathConfig>& path_section();                      // control.path (every planned path)
+const ConfigSection<PathOptimizerConfig>& optimizer_section();        // control.path (its optimizer)
+const ConfigSection<ContactGuardConfig>& guard_section();             // control.guard
 const ConfigSection<FollowerConfig>& follower_section();              // control.follower
 const ConfigSection<SpeedConfig>& speed_section();                    // control.speed
 const ConfigSection<MissionConfig>& mission_section();                // control.mission (laps: run.laps)

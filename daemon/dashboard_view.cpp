@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "control/missions.hpp"
+#include "control/missions/missions.hpp"
 
 namespace fsd {
 

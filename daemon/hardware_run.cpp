@@ -146,6 +146,7 @@ struct HardwareRun::Impl {
     so.mission = mission;
     so.laps = run.laps;
     so.lap_build_worker = true;     // the lap-2 build must not hold up the 100 Hz control thread
+    so.plan_worker = true;          // nor lap 1's real-time plans
     so.loop_closure_worker = true;  // nor the loop closure's solve
     so.start = clock.now();
     // The camera stage sees through the calibrated camera; its frames are stamped at capture already.

@@ -2,7 +2,7 @@
 // Lap 2's path built on a thread of its own (Autopilot::set_lap_builder), so that the control thread keeps its
 // period: the build takes 10–30 ms, once per run (bench/control_bench BM_LapBuild). The thread is started with the
 // object and joined by its destructor, which waits for a build under way (at most a few tens of ms).
-#include "control/lap_build_service.hpp"
+#include "control/missions/lap_build_service.hpp"
 #include "daemon/job_thread.hpp"
 
 namespace fsd {

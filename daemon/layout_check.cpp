@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include "control/missions.hpp"
-#include "control/path.hpp"
-#include "control/skidpad.hpp"
-#include "control/straight_lane.hpp"
+#include "control/missions/missions.hpp"
+#include "control/planning/path.hpp"
+#include "control/missions/skidpad.hpp"
+#include "control/missions/straight_lane.hpp"
 
 namespace fsd {
 

@@ -109,6 +109,7 @@ struct ReplayRun::Impl {
     // In lockstep the lap-2 build runs inside the step that asks for it, as the headless run did; a replay with
     // the dashboard of a real-time recording builds it on the worker, as that run did.
     so.lap_build_worker = !headless && !recorded.lockstep;
+    so.plan_worker = so.lap_build_worker;
     so.loop_closure_worker = so.lap_build_worker;
     if (recorded.camera_latency) {
       nlohmann::json j;

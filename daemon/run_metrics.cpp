@@ -30,7 +30,7 @@ RunMetrics::RunMetrics(web::Metrics& m)
                                     "Plans that saw one boundary only and ran half a lane width inside it")),
       plans_colour_blind_(m.counter("fsd_plans_colour_blind_total",
                                     "Plans that ignored cone colours contradicting the geometry (colour-blind)")),
-      plans_tight_turn_(m.counter("fsd_plans_tight_turn_total", "Plans that shaped a turn to the steering lock")),
+      plans_cut_short_(m.counter("fsd_plans_cut_short_total", "Plans that end before a place the body would come too near a cone")),
       late_plans_(m.counter("fsd_late_plans_total",
                             "Plans whose CPU time exceeded control.planner.time_budget (a warning: the plan is used)")),
       rate_(m.gauge("fsd_control_loop_rate_hz", "Control cycles per second of wall time, over the last second")),
@@ -67,7 +67,7 @@ void RunMetrics::on_cycle(const CycleFigures& f) {
     plans_.inc();
     if (f.plan_one_boundary) plans_one_boundary_.inc();
     if (f.plan_colour_blind) plans_colour_blind_.inc();
-    if (f.plan_tight_turn) plans_tight_turn_.inc();
+    if (f.plan_cut_short) plans_cut_short_.inc();
   }
   if (f.control_s >= 0) control_.observe(f.control_s);
   if (f.end_to_end_s >= 0) end_to_end_.observe(f.end_to_end_s);

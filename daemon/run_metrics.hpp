@@ -22,7 +22,7 @@ struct CycleFigures {
   bool planned = false;            // a real-time plan ran; and what it had to do:
   bool plan_one_boundary = false;  //   only one boundary seen
   bool plan_colour_blind = false;  //   colours contradicted the geometry
-  bool plan_tight_turn = false;    //   a turn shaped to the steering lock
+  bool plan_cut_short = false;     //   ending before a place the body would come too near a cone
   double end_to_end_s = -1;        // from the start of perception to the command handed to the VCU link
   AsState as_state = AsState::Off;
   int laps = 0;
@@ -41,7 +41,7 @@ class RunMetrics {
   using clock = std::chrono::steady_clock;
   web::Metrics& registry_;
   web::Summary &perception_, &planning_, &planning_cpu_, &control_, &end_to_end_, &period_;
-  web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_tight_turn_, &late_plans_;
+  web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_cut_short_, &late_plans_;
   web::Gauge &rate_, &as_state_, &laps_, &cones_hit_, &sim_time_;
   web::Gauge* as_active_[5];
   clock::time_point last_cycle_{}, window_start_{};

@@ -7,7 +7,7 @@
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
-#include "control/missions.hpp"
+#include "control/missions/missions.hpp"
 #include "daemon/dds/ros_time.hpp"
 #include "daemon/dds/run_dds.hpp"
 #include "daemon/layout_check.hpp"
@@ -97,6 +97,7 @@ struct SimRun::Impl {
     // In real time the lap-2 build and the loop closure's solve run beside the control loop as on the car; in
     // lockstep inside the step that asks for them, so that a run is the same every time (unless --workers).
     so.lap_build_worker = real_time || opt.workers;
+    so.plan_worker = so.lap_build_worker;
     so.loop_closure_worker = so.lap_build_worker;
     so.paced_workers = headless && opt.workers;
     // The camera stage sees through the virtual camera, calibrated perfectly; its frames arrive after the latency.

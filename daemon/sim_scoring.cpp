@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "control/missions.hpp"
+#include "control/missions/missions.hpp"
 #include "daemon/map_score.hpp"
 #include "daemon/stack.hpp"
 

@@ -60,6 +60,7 @@ struct StackOptions {
   Mission mission = Mission::Trackdrive;
   int laps = 2;                      // trackdrive laps (run.laps, or --laps)
   bool lap_build_worker = false;     // lap 2 built on a thread of the Stack's (real time); else inside the step
+  bool plan_worker = false;          // lap 1's real-time plans so; else inside the step
   bool loop_closure_worker = false;  // the loop's solve so (that thread reads wall_clock: the solve's time)
   // The feeder runs faster than real time (a headless simulation with workers): a worker's result is taken once
   // as much run time has passed as the job took on the wall clock, the step waiting while the run is ahead of it

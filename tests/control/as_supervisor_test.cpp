@@ -3,7 +3,7 @@
 // and the fault log (once per onset, with time, source, what and action).
 #include <gtest/gtest.h>
 
-#include "control/as_supervisor.hpp"
+#include "control/supervisor/as_supervisor.hpp"
 
 namespace fsd {
 namespace {

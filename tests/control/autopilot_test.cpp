@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "control/smoothing.hpp"
+#include "control/planning/smoothing.hpp"
 #include "tests/control/mission_harness.hpp"
 #include "tests/daemon/friction_limited_lap.hpp"
 
@@ -70,8 +70,8 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   std::printf("  lap 2 %.2f s, friction-limited centre line %.2f s (+%.1f %%)\n", h.laps()[1].time_s, t_ref,
               100 * (h.laps()[1].time_s / t_ref - 1));
   EXPECT_LT(h.laps()[1].time_s, 1.10 * t_ref);
-  // This bicycle has no tyres to limit it and its lap-2 line may cut the centre line's corners by up to
-  // control.trajectory.max_centre_offset: it can beat the centre line's friction limit, but not by much.
+  // This bicycle has no tyres to limit it and its lap-2 line may cut the centre line's corners a little (the
+  // optimizer's curvature cost against its centre cost): it can beat the centre line's friction limit, not by much.
   EXPECT_GT(h.laps()[1].time_s, 0.95 * t_ref);
   // The lap path was built once, shortly before the end of lap 1, as long as the lap and closed.
   ASSERT_EQ(lap_lines.size(), 1u);
@@ -80,7 +80,8 @@ TEST(Autopilot, TrackdriveTwoLapsThenStopAndFinish) {
   EXPECT_NEAR(lap_lines[0].second.length, centre.length(), 0.03 * centre.length());
   EXPECT_LT(lap_lines[0].second.closure_gap, 1.0);
   EXPECT_GT(lap_lines[0].second.recentre_rms, 0.0);
-  EXPECT_EQ(lap_lines[0].second.tight_turns, 0);  // epfl_track_1 has no hairpin
+  // The lap's line keeps the body clear of every mapped cone (the optimizer's margin, less its tolerance).
+  EXPECT_GT(lap_lines[0].second.clearance, test_config().path.accept_clearance);
   bool used_recorded = false;
   for (const auto& r : h.records()) used_recorded = used_recorded || r.source == PathSource::Recorded;
   EXPECT_TRUE(used_recorded);
@@ -190,17 +191,26 @@ TEST(Autopilot, AccelerationStopsInTheBrakingZone) {
     EXPECT_GT(past_start, 75.0);
     EXPECT_LT(past_start, 75.0 + c.mission.acceleration_stop_distance);
     // Lower bound: full traction (a_max) from standstill at the start pose, capped at v_max, timed from the
-    // start line to 75 m past it. A good run is within a second of it (the speed loop lags).
-    const double a = c.speed.a_accel_max, vm = c.speed.v_max, sc = vm * vm / (2 * a);
-    auto time_to = [&](double s) { return s <= sc ? std::sqrt(2 * s / a) : vm / a + (s - sc) / vm; };
+    // start line to 75 m past it. The car never drives faster than stops it, braking (a_brake_max) after the
+    // latency, a margin short of where the sensor range ends less its nose: v_sight = −a·t + √((a·t)² + 2·a·d).
+    // A good run is within a second of that speed's time (the speed loop lags).
+    const double ab = c.speed.a_brake_max, lat = c.speed.stop_latency;
+    const double d_sight = test::HarnessOptions{}.sensor_range - 2.4 - c.speed.stop_margin;
+    const double v_sight = -ab * lat + std::sqrt(ab * ab * lat * lat + 2 * ab * d_sight);
+    const double a = c.speed.a_accel_max;
     const double d0 = -start->past(track.start.position());
-    const double t_min = time_to(d0 + 75.0) - time_to(d0);
-    std::printf("    run %.2f s, bound %.2f s\n", h.laps()[0].time_s, t_min);
+    auto run_time = [&](double vm) {
+      const double sc = vm * vm / (2 * a);
+      auto time_to = [&](double s) { return s <= sc ? std::sqrt(2 * s / a) : vm / a + (s - sc) / vm; };
+      return time_to(d0 + 75.0) - time_to(d0);
+    };
+    const double t_min = run_time(c.speed.v_max), t_sight = run_time(std::min(c.speed.v_max, v_sight));
+    std::printf("    run %.2f s, bound %.2f s, at the sight's speed %.2f s\n", h.laps()[0].time_s, t_min, t_sight);
     EXPECT_GT(h.laps()[0].time_s, t_min);
-    EXPECT_LT(h.laps()[0].time_s, t_min + 1.0);
+    EXPECT_LT(h.laps()[0].time_s, t_sight + 1.0);
     double vmax = 0;
     for (const auto& r : h.records()) vmax = std::max(vmax, r.speed);
-    EXPECT_LE(vmax, c.speed.v_max + 0.3);
+    EXPECT_LE(vmax, std::min(c.speed.v_max, v_sight) + 0.3);
   }
 }
 

@@ -19,8 +19,10 @@ TEST(ControlConfig, DefaultsRoundTrip) {
   const Config cfg(schema);
   const AutopilotConfig c = read_control(cfg);
   const AutopilotConfig d;
-  EXPECT_EQ(c.planner.beam_width, d.planner.beam_width);
-  EXPECT_DOUBLE_EQ(c.planner.w_length, d.planner.w_length);
+  EXPECT_EQ(c.planner.walk.beam_width, d.planner.walk.beam_width);
+  EXPECT_DOUBLE_EQ(c.planner.walk.w_length, d.planner.walk.w_length);
+  EXPECT_DOUBLE_EQ(c.path.optimizer.w_curvature, d.path.optimizer.w_curvature);
+  EXPECT_DOUBLE_EQ(c.guard.horizon, d.guard.horizon);
   EXPECT_EQ(c.follower.type, d.follower.type);
   EXPECT_DOUBLE_EQ(c.speed.mu, d.speed.mu);
   EXPECT_DOUBLE_EQ(c.supervisor.plan_timeout, d.supervisor.plan_timeout);
@@ -94,9 +96,11 @@ TEST(ControlConfig, LiveChangeEqualsReadingTheChangedConfiguration) {
       if (k.type == ValueType::String) continue;
       EXPECT_EQ(control_param(live, k.key), control_param(read, k.key)) << "after " << e.key << ": " << k.key;
     }
-    EXPECT_EQ(live.trajectory.tight_turn.clearance, read.trajectory.tight_turn.clearance) << e.key;
-    EXPECT_EQ(live.trajectory.tight_turn.v_max, read.trajectory.tight_turn.v_max) << e.key;
-    EXPECT_EQ(live.trajectory.tight_turn.clearance, live.planner.tight_turn.clearance) << e.key;
+    // Lap 2's copy of the path settings and the guard's of the understeer follow a live change as a read does.
+    EXPECT_EQ(live.trajectory.path.optimizer.clearance, read.trajectory.path.optimizer.clearance) << e.key;
+    EXPECT_EQ(live.trajectory.path.accept_clearance, read.trajectory.path.accept_clearance) << e.key;
+    EXPECT_EQ(live.trajectory.path.optimizer.w_centre, live.path.optimizer.w_centre) << e.key;
+    EXPECT_EQ(live.guard.understeer, live.speed.understeer) << e.key;
   }
   EXPECT_GT(tunables, 20);
   AutopilotConfig c;

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "control/follower.hpp"
-#include "control/smoothing.hpp"
-#include "control/speed_profile.hpp"
+#include "control/tracking/follower.hpp"
+#include "control/planning/smoothing.hpp"
+#include "control/planning/speed_profile.hpp"
 #include "tests/control/bicycle_sim.hpp"
 #include "tests/control/path_helpers.hpp"
 #include "tests/control/track_truth.hpp"

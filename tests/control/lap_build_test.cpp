@@ -144,9 +144,9 @@ TEST(LapBuild, OnAWorkerThreadTheTwoLapsAreTheSame) {
 }
 
 TEST(LapBuild, RetuningDuringLapTwoKeepsTheLapsOwnSpeeds) {
-  // epfl_autoX_Vaudoise_Sponso's lap path has tight turns capped at control.tight_turn.v_max and runs at
-  // control.lap2.mu_margin of μ. A live parameter change re-profiles the lap with the new limits: with the
-  // same values, the same speeds (it used to take the known-straight share of μ and drop the turns' caps).
+  // epfl_autoX_Vaudoise_Sponso's lap path has hairpins at the steering's reach, slowed by the steering's limit,
+  // and runs at control.lap2.mu_margin of μ. A live parameter change re-profiles the lap with the new limits: with
+  // the same values, the same speeds (it used to take the known-straight share of μ).
   const Track track = test::shared_track("epfl_autoX_Vaudoise_Sponso");
   const AutopilotConfig config = bicycle_config();
   std::vector<double> before, after;
@@ -171,7 +171,9 @@ TEST(LapBuild, RetuningDuringLapTwoKeepsTheLapsOwnSpeeds) {
     EXPECT_NEAR(after[i], before[i], 1e-9) << i;
     v_min = std::min(v_min, after[i]);
   }
-  EXPECT_LE(v_min, config.trajectory.tight_turn.v_max + 1e-9);  // the hairpins' cap is there
+  // The hairpins are there: taken at their friction limit √(0.97 · μ g / κ), κ near the lock's 0.36 (this bicycle does
+  // not understeer, so its steering does not slow it further).
+  EXPECT_LT(v_min, 6.0);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/mission_acceleration.hpp"
+#include "control/missions/mission_acceleration.hpp"
 #include "tests/control/mission_world.hpp"
 
 namespace fsd {
@@ -95,35 +95,53 @@ TEST_F(LaneTest, TheRunIsTimedFromTheStartLineTo75mPastIt) {
   EXPECT_NEAR(cmd.target_speed, std::sqrt(260.0), 1e-6);
 }
 
-TEST_F(LaneTest, ConesAcrossTheLaneCapTheSpeedToStopShortOfThem) {
-  // A closing row at x = 100 across the middle of the lane.
+// The highest speed that stops within d braking at a after a latency t: v² + 2·a·t·v = 2·a·d.
+double stops_within(double d, double a, double t) { return d <= 0 ? 0.0 : -a * t + std::sqrt(a * a * t * t + 2 * a * d); }
+
+TEST_F(LaneTest, ARowAcrossTheLaneIsStoppedShortOf) {
+  // A closing row at x = 100 across the middle of the lane (bases 0.12 m in radius as control counts them).
   std::vector<Cone> cones = lane_cones();
   cones.push_back(cone_at(100.0, 0.5, ConeColour::Orange));
   cones.push_back(cone_at(100.0, -0.5, ConeColour::Orange));
   world.see(0.0, cones);
   AccelerationMission run(config, false, ColourConvention{});
   run.update_path(world.input(0.0));
+  run.start(world.input(0.0));
+  drive_to(run, 5.0, 50.0, 20.0);
+  // The nose (2.4 m ahead of the rear axle) reaches the row's bases with the rear axle at x = 100 − 0.12 − 2.4,
+  // 100.48 m along the lane from its start at x = −3 (the body is swept every 0.1 m).
+  EXPECT_NEAR(run.free_s(), 100.48, 0.1);
+  const Path* drive = run.drive();
+  ASSERT_NE(drive, nullptr);
+  // Every point stops a metre short of it braking at 8 m/s² after 0.3 s; at x = 70 that is what binds (v_max is 20,
+  // traction from the start would allow √(2 · 6 · 73) = 29.6 m/s).
+  const double a = config.speed.a_brake_max, t = config.speed.stop_latency, margin = config.speed.stop_margin;
+  for (const auto& q : drive->points) {
+    EXPECT_LE(q.v, stops_within(run.free_s() - q.s - margin, a, t) + 1e-6) << q.s;
+    if (q.s > run.free_s()) {
+      EXPECT_EQ(q.v, 0.0) << q.s;
+    }
+  }
+  EXPECT_NEAR(sample(*drive, 73.0).v, stops_within(100.48 - 73.0 - margin, a, t), 0.1);
+}
+
+TEST_F(LaneTest, TheSpeedStopsWithinTheMappedLane) {
+  // Only the cones up to x = 70 are mapped: at x = 50 the body may go 70 − 2.4 − 50 m further, less the margin.
+  std::vector<Cone> seen;
+  for (const auto& c : lane_cones())
+    if (c.position.x() <= 70.0) seen.push_back(c);
+  world.see(0.0, seen);
+  AccelerationMission run(config, false, ColourConvention{});
+  run.update_path(world.input(0.0));
+  run.start(world.input(0.0));
+  drive_to(run, 5.0, 50.0, 14.0);
   ControlCommand cmd;
   cmd.target_speed = 30.0;
-  run.limit(world.input(0.0), cmd);
-  EXPECT_EQ(cmd.target_speed, 30.0);  // not before the start
-  run.start(world.input(0.0));
-
-  // At x = 50 the nose (2.4 m ahead of the rear axle) is 47.6 m from the row: at 80 % of a_brake_max (8 m/s²)
-  // and 1.5 m short of it, √(2 · 6.4 · 46.1).
-  world.move(5.0, {50.0, 0.0}, 0.0, 20.0);
-  cmd.target_speed = 30.0;
   run.limit(world.input(5.0), cmd);
-  EXPECT_NEAR(cmd.target_speed, std::sqrt(2 * 6.4 * 46.1), 1e-6);
-  world.move(6.0, {90.0, 0.0}, 0.0, 9.0);
-  cmd.target_speed = 30.0;
-  run.limit(world.input(6.0), cmd);
-  EXPECT_NEAR(cmd.target_speed, std::sqrt(2 * 6.4 * 6.1), 1e-6);
-  // Within the margin: stand.
-  world.move(7.0, {97.0, 0.0}, 0.0, 1.0);
-  cmd.target_speed = 30.0;
-  run.limit(world.input(7.0), cmd);
-  EXPECT_EQ(cmd.target_speed, 0.0);
+  EXPECT_NEAR(cmd.target_speed,
+              stops_within(70.0 - 2.4 - 50.0 - config.speed.stop_margin, config.speed.a_brake_max,
+                           config.speed.stop_latency),
+              1e-6);
 }
 
 TEST_F(LaneTest, TheLaneOwnConesDoNotCapTheSpeed) {

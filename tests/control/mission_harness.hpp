@@ -37,8 +37,9 @@ inline AutopilotConfig bicycle_autopilot_config() {
   c.lap2.lqr_q_lateral = c.follower.lqr_q_lateral;
   c.lap2.lqr_q_heading = c.follower.lqr_q_heading;
   c.lap2.lqr_r = c.follower.lqr_r;
-  // No tyres, no slip: the sideslip feed-forward would only bias this bicycle's heading.
+  // No tyres, no slip: the sideslip feed-forward would only bias this bicycle's heading, and it does not understeer.
   c.follower.lqr_sideslip_gain = 0;
+  c.speed.understeer = c.follower.understeer = c.guard.understeer = 0;
   return c;
 }
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "control/mission_inspection.hpp"
+#include "control/missions/mission_inspection.hpp"
 #include "tests/control/mission_world.hpp"
 
 namespace fsd {

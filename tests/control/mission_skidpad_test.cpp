@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/mission_skidpad.hpp"
+#include "control/missions/mission_skidpad.hpp"
 #include "tests/control/mission_world.hpp"
 
 namespace fsd {

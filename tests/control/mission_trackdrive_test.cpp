@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/mission_trackdrive.hpp"
+#include "control/missions/mission_trackdrive.hpp"
 #include "tests/control/mission_world.hpp"
 #include "tests/control/path_helpers.hpp"
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "control/mission_run.hpp"
+#include "control/missions/mission_run.hpp"
 #include "tests/cone_at.hpp"
 
 namespace fsd::test {

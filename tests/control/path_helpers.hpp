@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/path.hpp"
+#include "control/planning/path.hpp"
 
 namespace fsd::test {
 

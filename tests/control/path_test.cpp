@@ -5,7 +5,7 @@
 #include <numbers>
 #include <random>
 
-#include "control/smoothing.hpp"
+#include "control/planning/smoothing.hpp"
 #include "tests/control/path_helpers.hpp"
 
 namespace fsd {

@@ -7,7 +7,7 @@
 #include <random>
 #include <tuple>
 
-#include "control/recorded_trajectory.hpp"
+#include "control/planning/recorded_trajectory.hpp"
 #include "tests/control/track_truth.hpp"
 
 namespace fsd {
@@ -247,10 +247,11 @@ std::vector<Cone> ring_of_cones(double radius, int n, ConeColour colour) {
   return out;
 }
 
-TEST(RecordedTrajectory, TheMinimumCurvatureLineRunsTheRingAtItsOuterEdgeLessTheKeep) {
+TEST(RecordedTrajectory, TheMinimumCurvatureLineRunsTheRingAsWideAsTheBodyAllows) {
   // A ring track, counter-clockwise: inner (left, blue) cones at 8 m, outer (right, yellow) at 12 m, every 2 m
-  // along the outer edge; lap 1 driven on the centre circle (10 m). The flattest line is the largest circle the
-  // room allows: the outer cones' line (12 m, a chord's sagitta less) less racing_keep (1.2 m).
+  // along the outer edge; lap 1 driven on the centre circle (10 m). The flattest line is the largest circle the body
+  // fits: its outer front corner runs on √((R + w)² + f²), which must stay inside the outer cones' bases, so
+  // R < √((12 − 0.12)² − 2.4²) − 0.7 = 10.93 m; the soft clearance (0.3 m) keeps it a little inside that.
   RecordedTrajectoryConfig cfg;
   cfg.line = "min_curvature";
   RecordedTrajectory rec(cfg);
@@ -267,15 +268,24 @@ TEST(RecordedTrajectory, TheMinimumCurvatureLineRunsTheRingAtItsOuterEdgeLessThe
   lim.v_max = 30;
   const auto res = rec.build(0, lap / v, cones, ColourConvention{}, SpeedProfile(lim));
   ASSERT_TRUE(res.path) << res.reason;
-  // The outer boundary between cones is a chord: 12·cos(π/38) ≈ 11.959 m at its middle.
-  const double outer_line = 12.0 * std::cos(std::numbers::pi / n_out);
-  for (const auto& q : res.path->points) {
-    EXPECT_LE(q.p.norm(), 12.0 - cfg.racing_keep + 0.02);
-    EXPECT_GE(q.p.norm(), outer_line - cfg.racing_keep - 0.1);
-  }
-  EXPECT_NEAR(res.racing_offset, outer_line - cfg.racing_keep - r, 0.1);
+  const double body_limit = std::sqrt(std::pow(12.0 - 0.12, 2) - 2.4 * 2.4) - 0.7;
+  double lo = 1e9, hi = 0;
+  for (const auto& q : res.path->points) lo = std::min(lo, q.p.norm()), hi = std::max(hi, q.p.norm());
+  EXPECT_LT(hi, body_limit);
+  EXPECT_GT(lo, body_limit - 0.5);
+  EXPECT_LT(hi - lo, 0.1) << "a circle";
   // Faster than the centre circle: √(μ g R) at the larger radius.
   for (const auto& q : res.path->points) EXPECT_GT(q.v, std::sqrt(9.81 * r) * 1.02);
+  // On the centre line instead, it stays on the centre circle.
+  cfg.line = "centre";
+  RecordedTrajectory centre(cfg);
+  for (double t = 0; t <= lap / v; t += 0.02) {
+    const double a = v * t / r;
+    centre.record(at(t, r * Vec2(std::cos(a), std::sin(a))));
+  }
+  const auto c = centre.build(0, lap / v, cones, ColourConvention{}, SpeedProfile(lim));
+  ASSERT_TRUE(c.path) << c.reason;
+  for (const auto& q : c.path->points) EXPECT_NEAR(q.p.norm(), r, 0.15);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 
 #include <numbers>
 
-#include "control/skidpad.hpp"
+#include "control/missions/skidpad.hpp"
 #include "tests/control/track_truth.hpp"
 
 namespace fsd {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "control/speed_profile.hpp"
+#include "control/planning/speed_profile.hpp"
 #include "tests/control/path_helpers.hpp"
 
 namespace fsd {

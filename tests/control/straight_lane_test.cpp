@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-#include "control/straight_lane.hpp"
+#include "control/missions/straight_lane.hpp"
 #include "tests/cone_at.hpp"
 
 namespace fsd {

@@ -30,11 +30,14 @@ TEST(CarDescription, OneKeyMovesEveryPartThatReadsTheCar) {
   EXPECT_DOUBLE_EQ(control.follower.wheelbase, 1.6);
   EXPECT_DOUBLE_EQ(control.follower.max_steer, 0.45);
   EXPECT_DOUBLE_EQ(control.speed.mass, 250.0);
-  EXPECT_DOUBLE_EQ(control.planner.tight_turn.wheelbase, 1.6);
-  EXPECT_DOUBLE_EQ(control.planner.tight_turn.max_steer, 0.45);
-  EXPECT_DOUBLE_EQ(control.planner.tight_turn.body_front, 2.6);  // 3.0 long, 0.4 of it behind the rear axle
-  EXPECT_DOUBLE_EQ(control.planner.tight_turn.body_half_width, 0.75);
-  EXPECT_DOUBLE_EQ(control.trajectory.tight_turn.body_front, 2.6);
+  EXPECT_DOUBLE_EQ(control.path.wheelbase, 1.6);
+  EXPECT_DOUBLE_EQ(control.path.max_steer, 0.45);
+  EXPECT_DOUBLE_EQ(control.path.body.front, 2.6);  // 3.0 long, 0.4 of it behind the rear axle
+  EXPECT_DOUBLE_EQ(control.path.body.rear, 0.4);
+  EXPECT_DOUBLE_EQ(control.path.body.half_width, 0.75);
+  EXPECT_DOUBLE_EQ(control.trajectory.path.body.front, 2.6);
+  EXPECT_DOUBLE_EQ(control.speed.wheelbase, 1.6);
+  EXPECT_DOUBLE_EQ(control.speed.max_steer, 0.45);
 
   const Vlp16Config lidar = read_vlp16_config(cfg);
   EXPECT_DOUBLE_EQ(lidar.mount.x, 1.8);
@@ -74,7 +77,7 @@ TEST(CarDescription, TheDefaultsAreTheVirtualCarsAndEveryPartAgrees) {
   EXPECT_EQ(sim_car.vehicle.wheelbase, control.follower.wheelbase);
   EXPECT_EQ(sim_car.vehicle.steer_max_angle, control.follower.max_steer);
   EXPECT_EQ(sim_car.vehicle.mass, control.speed.mass);
-  EXPECT_EQ(sim_car.vehicle.body_length - sim_car.vehicle.rear_overhang, control.planner.tight_turn.body_front);
+  EXPECT_EQ(sim_car.vehicle.body_length - sim_car.vehicle.rear_overhang, control.path.body.front);
   EXPECT_TRUE(sim::lidar_mount(sim_car.lidar).isApprox(read_vlp16_config(cfg).body_from_sensor()));
   EXPECT_EQ(sim_car.gnss.antenna_x, read_gnss_config(cfg).antenna_x);
   EXPECT_EQ(sim_car.gnss.antenna_z, read_gnss_config(cfg).antenna_z);
@@ -102,7 +105,7 @@ TEST(CarDescription, AMismatchMovesOnlyTheSimulatedCar) {
 TEST(CarDescription, ThePerPartCopiesOfTheCarAreGone) {
   for (const char* json :
        {R"({"control": {"follower": {"wheelbase": 1.6}}})", R"({"control": {"speed": {"mass": 240}}})",
-        R"({"control": {"tight_turn": {"body_front": 2.5}}})", R"({"drivers": {"vlp16": {"mount_x": 1.5}}})",
+        R"({"control": {"path": {"body_front": 2.5}}})", R"({"drivers": {"vlp16": {"mount_x": 1.5}}})",
         R"({"drivers": {"gnss": {"antenna_x": 0.4}}})", R"({"sim": {"vehicle": {"wheelbase": 1.6}}})",
         R"({"sim": {"lidar": {"x": 1.5}}})", R"({"sim": {"gnss": {"antenna_z": 1.0}}})"}) {
     Config cfg(config_schema());

@@ -270,7 +270,7 @@ TEST(Telemetry, PlanFallbacksAreCounted) {
     f.planning_s = f.planned ? 0.001 : -1;
     f.plan_one_boundary = i == 0 || i == 2 || i == 3;
     f.plan_colour_blind = i == 2;
-    f.plan_tight_turn = i == 8 || i == 9;
+    f.plan_cut_short = i == 8 || i == 9;
     f.planning_cpu_s = f.planned ? 0.010 * i : -1;  // 0, 20, 40, 60, 80 ms against a 25 ms budget: three late
     f.late_plan = f.planned && f.planning_cpu_s > 0.025;
     metrics.on_cycle(f);
@@ -279,7 +279,7 @@ TEST(Telemetry, PlanFallbacksAreCounted) {
   EXPECT_EQ(m.at("fsd_plans_total"), 5);
   EXPECT_EQ(m.at("fsd_plans_one_boundary_total"), 2);
   EXPECT_EQ(m.at("fsd_plans_colour_blind_total"), 1);
-  EXPECT_EQ(m.at("fsd_plans_tight_turn_total"), 1);
+  EXPECT_EQ(m.at("fsd_plans_cut_short_total"), 1);
   EXPECT_EQ(m.at("fsd_late_plans_total"), 3);
   EXPECT_EQ(m.at("fsd_planning_cpu_seconds_count"), 5);
   EXPECT_NEAR(m.at("fsd_planning_cpu_seconds_sum"), 0.2, 1e-9);
@@ -316,7 +316,7 @@ TEST(Telemetry, MetricsOfARunAreScrapedOverHttp) {
   // epfl_track_1 from its start: both boundaries in sight, colours right, no tight turn.
   EXPECT_EQ(at("fsd_plans_one_boundary_total"), 0);
   EXPECT_EQ(at("fsd_plans_colour_blind_total"), 0);
-  EXPECT_EQ(at("fsd_plans_tight_turn_total"), 0);
+  EXPECT_EQ(at("fsd_plans_cut_short_total"), 0);
   for (const std::string stage : {"perception", "planning", "control", "end_to_end"}) {
     const double p50 = at(lat + "{stage=\"" + stage + "\",quantile=\"0.5\"}");
     const double p99 = at(lat + "{stage=\"" + stage + "\",quantile=\"0.99\"}");

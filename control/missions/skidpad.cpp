@@ -1,0 +1,148 @@
+#include "control/missions/skidpad.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "control/planning/smoothing.hpp"
+
+namespace fsd {
+
+namespace {
+
+// Algebraic (Kåsa) circle fit: |p|² = 2c·p + (r² − |c|²), linear in c and the constant.
+std::optional<Vec2> kasa_centre(const std::vector<Vec2>& pts) {
+  if (pts.size() < 3) return std::nullopt;
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(pts.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(pts.size()));
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    A(k, 0) = 2 * pts[i].x();
+    A(k, 1) = 2 * pts[i].y();
+    A(k, 2) = 1;
+    b(k) = pts[i].squaredNorm();
+  }
+  const Eigen::Vector3d x = A.colPivHouseholderQr().solve(b);
+  if (!x.allFinite()) return std::nullopt;
+  return Vec2(x(0), x(1));
+}
+
+// Two concentric rings: the split into inner and outer by distance from the current centre, then one linear
+// fit of the shared centre and both radii; a few rounds settle the split.
+std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
+  auto centre = kasa_centre(pts);
+  if (!centre || pts.size() < 6) return std::nullopt;
+  SkidpadCircle c;
+  for (int round = 0; round < 5; ++round) {
+    std::vector<double> d;
+    for (const auto& p : pts) d.push_back((p - *centre).norm());
+    const auto [mn, mx] = std::minmax_element(d.begin(), d.end());
+    const double split = 0.5 * (*mn + *mx);
+    Eigen::MatrixXd A(static_cast<Eigen::Index>(pts.size()), 4);
+    Eigen::VectorXd b(static_cast<Eigen::Index>(pts.size()));
+    int inner = 0, outer = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      const bool in = d[i] < split;
+      inner += in;
+      outer += !in;
+      A.row(k) << 2 * pts[i].x(), 2 * pts[i].y(), in ? 1.0 : 0.0, in ? 0.0 : 1.0;
+      b(k) = pts[i].squaredNorm();
+    }
+    if (inner < 3 || outer < 3) return std::nullopt;
+    const Eigen::Vector4d x = A.colPivHouseholderQr().solve(b);
+    if (!x.allFinite()) return std::nullopt;
+    *centre = Vec2(x(0), x(1));
+    const double r2_in = x(2) + centre->squaredNorm(), r2_out = x(3) + centre->squaredNorm();
+    if (r2_in <= 0 || r2_out <= 0) return std::nullopt;
+    c.inner_radius = std::sqrt(r2_in);
+    c.outer_radius = std::sqrt(r2_out);
+  }
+  c.centre = *centre;
+  c.cones = static_cast<int>(pts.size());
+  return c;
+}
+
+}  // namespace
+
+std::optional<SkidpadGeometry> fit_skidpad(const std::vector<Cone>& cones, const Pose2& start,
+                                           const ColourConvention& convention, std::string* reason) {
+  auto fail = [&](const std::string& why) -> std::optional<SkidpadGeometry> {
+    if (reason) *reason = why;
+    return std::nullopt;
+  };
+  std::vector<Vec2> right, left;
+  for (const auto& c : cones) {
+    if (!c.position.allFinite()) continue;
+    const ConeRole role = convention.role_of(c.colour);
+    if (role == ConeRole::Timing || role == ConeRole::Other) continue;
+    const Vec2 m = c.position.head<2>();
+    const double lateral = start.inverse_transform(m).y();
+    if (std::abs(lateral) < 0.5) continue;  // on the entry axis: belongs to neither circle
+    (lateral < 0 ? right : left).push_back(m);
+  }
+  const auto r = fit_rings(right);
+  const auto l = fit_rings(left);
+  if (!r) return fail("right circle: cannot fit two rings to " + std::to_string(right.size()) + " cones");
+  if (!l) return fail("left circle: cannot fit two rings to " + std::to_string(left.size()) + " cones");
+  SkidpadGeometry g;
+  g.right = *r;
+  g.left = *l;
+  g.crossing = 0.5 * (r->centre + l->centre);
+  const Vec2 across = l->centre - r->centre;  // right → left
+  const double d = across.norm();
+  if (d < 10.0 || d > 30.0) return fail("circle centres " + std::to_string(d) + " m apart (expected ~18.25 m)");
+  g.forward = Vec2(across.y(), -across.x()) / d;
+  if (g.forward.dot(Vec2(std::cos(start.yaw), std::sin(start.yaw))) < 0) g.forward = -g.forward;
+  for (const auto* c : {&g.right, &g.left})
+    if (c->inner_radius >= c->outer_radius || c->outer_radius - c->inner_radius > 6.0)
+      return fail("ring radii implausible (" + std::to_string(c->inner_radius) + ", " +
+                  std::to_string(c->outer_radius) + ")");
+  return g;
+}
+
+SkidpadPlan skidpad_path(const SkidpadGeometry& g, const Pose2& start, double exit_length, double ds,
+                         double transition) {
+  SkidpadPlan plan;
+  Path& p = plan.path;
+  auto add = [&](const Vec2& q) {
+    if (p.points.empty() || (q - p.points.back().p).norm() > 1e-6) p.points.push_back({q, 0, 0, 0, 0});
+  };
+  // Entry: from the start's foot on the axis through the crossing.
+  const double before = std::min(-1.0, (start.position() - g.crossing).dot(g.forward));
+  for (double s = before; s < 0; s += ds) add(g.crossing + s * g.forward);
+  auto circle = [&](const Vec2& centre, bool clockwise) {
+    const Vec2 r0 = g.crossing - centre;
+    const double radius = r0.norm();
+    const double a0 = std::atan2(r0.y(), r0.x());
+    const int n = std::max(8, static_cast<int>(std::ceil(2 * std::numbers::pi * radius / ds)));
+    for (int k = 0; k < n; ++k) {
+      const double a = a0 + (clockwise ? -1 : 1) * 2 * std::numbers::pi * k / n;
+      add(centre + radius * Vec2(std::cos(a), std::sin(a)));
+    }
+  };
+  std::array<std::size_t, 5> idx{};
+  idx[0] = p.points.size();
+  circle(g.right.centre, true);
+  idx[1] = p.points.size();
+  circle(g.right.centre, true);
+  idx[2] = p.points.size();
+  circle(g.left.centre, false);
+  idx[3] = p.points.size();
+  circle(g.left.centre, false);
+  idx[4] = p.points.size();
+  for (double s = 0; s <= exit_length + 1e-9; s += ds) add(g.crossing + s * g.forward);
+  // Points are (nearly) uniformly spaced, so the smoother keeps each index where it was along the figure.
+  if (transition > 0) {
+    std::vector<Vec2> pts;
+    for (const auto& q : p.points) pts.push_back(q.p);
+    pts = whittaker_smooth(pts, false, whittaker_lambda(transition, ds));
+    for (std::size_t i = 0; i < pts.size(); ++i) p.points[i].p = pts[i];
+  }
+  compute_geometry(p);
+  for (std::size_t k = 0; k < 5; ++k) plan.crossing_s[k] = p.points[std::min(idx[k], p.points.size() - 1)].s;
+  return plan;
+}
+
+}  // namespace fsd
