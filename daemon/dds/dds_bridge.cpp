@@ -222,11 +222,16 @@ void DdsBridge::attach(Stack& stack, double epoch) {
   stack.add_tap(this);
 }
 
-void DdsBridge::publish_camera(std::shared_ptr<const std::vector<std::uint8_t>> jpeg, Stamp capture) {
+void DdsBridge::open_camera_topic() {
   auto& m = *impl_;
   if (!m.camera)
     m.camera = m.participant->writer(
         kCameraTopic, fdds::TypeSupport(new sensor_msgs::msg::dds_::CompressedImage_PubSubType), TopicKind::Stream);
+}
+
+void DdsBridge::publish_camera(std::shared_ptr<const std::vector<std::uint8_t>> jpeg, Stamp capture) {
+  auto& m = *impl_;
+  if (!m.camera) return;
   m.outbox->post([&m, jpeg = std::move(jpeg), capture] {
     auto msg = to_compressed_image(*jpeg, capture, m.epoch);
     m.write(m.camera, msg);

@@ -45,7 +45,9 @@ class DdsBridge final : public StackTap {
 
   // Taps `stack` (its state after each cycle, its snapshots). `epoch`: the Unix time of the run clock's zero.
   void attach(Stack& stack, double epoch);
-  // The virtual car's camera frames for a perception process (split mode), from the thread that steps the car.
+  // The virtual car's camera frames for a perception process (split mode): the topic opened before the run, then
+  // each frame from the thread that steps the car (nothing before the topic is open).
+  void open_camera_topic();
   void publish_camera(std::shared_ptr<const std::vector<std::uint8_t>> jpeg, Stamp capture);
   Participant& participant();
   BridgeCounters counters() const;

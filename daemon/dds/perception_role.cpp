@@ -63,7 +63,7 @@ struct CheckedListener final : fdds::DataReaderListener {
   std::string what;
   Convert convert;
   std::atomic<std::uint64_t> received{0}, refused{0};
-  std::chrono::steady_clock::time_point last_log{};
+  std::atomic<std::int64_t> last_log_ns{0};  // Fast DDS may call from more than one thread
 
   void on_data_available(fdds::DataReader* reader) override {
     Msg m;
@@ -74,9 +74,10 @@ struct CheckedListener final : fdds::DataReaderListener {
       auto checked = convert(std::move(m));
       if (auto* why = std::get_if<std::string>(&checked)) {
         refused.fetch_add(1, std::memory_order_relaxed);
-        const auto now = std::chrono::steady_clock::now();
-        if (now - last_log > std::chrono::seconds(1)) {
-          last_log = now;
+        const std::int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
+        std::int64_t last = last_log_ns.load();
+        if (now - last > std::chrono::nanoseconds(std::chrono::seconds(1)).count() &&
+            last_log_ns.compare_exchange_strong(last, now)) {
           logger("dds")->warn("refused {}: {} ({} refused so far)", what, *why, refused.load());
         }
         continue;
@@ -123,7 +124,7 @@ struct PerceptionRole::Impl {
   PoseHistory poses{kPosesKept};
   std::deque<Jpeg> images;
   std::uint64_t frames_out = 0, scans_without_pose = 0, scans_dropped = 0, published = 0;
-  std::function<void()> ready, loop_hook;
+  std::function<void()> loop_hook;
 
   Impl(const Config& cfg, const RunOptions&)
       : vlp_cfg(read_vlp16_config(cfg)), cam_cfg(camera_driver_section().read(cfg)) {
@@ -261,7 +262,6 @@ struct PerceptionRole::Impl {
     }
     log->info("perception role: {} stages, VLP-16 on udp {}:{}, poses from /fsd/odom, frames to {}", stages,
               vlp_cfg.address, lidar_rx->port(), kDetectionsTopic);
-    if (ready) ready();
     Stamp next = clock.now();
     Stamp next_stats = next + 5.0;
     while (!stop.load()) {
@@ -300,7 +300,6 @@ PerceptionRole::PerceptionRole(const Config& config, const RunOptions& options)
     : impl_(std::make_unique<Impl>(config, options)) {}
 PerceptionRole::~PerceptionRole() = default;
 int PerceptionRole::run(const std::atomic<bool>& stop) { return impl_->run(stop); }
-void PerceptionRole::on_ready(std::function<void()> ready) { impl_->ready = std::move(ready); }
 void PerceptionRole::on_loop(std::function<void()> loop) { impl_->loop_hook = std::move(loop); }
 
 }  // namespace fsd::dds

@@ -29,8 +29,7 @@ class PerceptionRole {
   PerceptionRole(const Config& config, const RunOptions& options);
   ~PerceptionRole();
   int run(const std::atomic<bool>& stop);
-  // Called once the drivers are up (the service's READY); each pass of the perception thread's loop (WATCHDOG).
-  void on_ready(std::function<void()> ready);
+  // Called by the perception thread after each pass, the drivers up (the service's READY, then WATCHDOG).
   void on_loop(std::function<void()> loop);
 
  private:

@@ -22,7 +22,7 @@ struct RemotePerception::Listener final : fdds::DataReaderListener {
   BoundedQueue<RemoteDetections> frames{kFramesQueued};
   std::atomic<double> epoch{0};
   std::atomic<std::uint64_t> received{0}, refused{0};
-  std::chrono::steady_clock::time_point last_log{};
+  std::atomic<std::int64_t> last_log_ns{0};  // Fast DDS may call from more than one thread
 
   void on_data_available(fdds::DataReader* reader) override {
     fsd_msgs::msg::dds_::ConeDetections_ m;
@@ -33,9 +33,10 @@ struct RemotePerception::Listener final : fdds::DataReaderListener {
       auto checked = from_detections(m, epoch.load());
       if (auto* why = std::get_if<std::string>(&checked)) {
         refused.fetch_add(1, std::memory_order_relaxed);
-        const auto now = std::chrono::steady_clock::now();
-        if (now - last_log > std::chrono::seconds(1)) {
-          last_log = now;
+        const std::int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
+        std::int64_t last = last_log_ns.load();
+        if (now - last > std::chrono::nanoseconds(std::chrono::seconds(1)).count() &&
+            last_log_ns.compare_exchange_strong(last, now)) {
           logger("dds")->warn("refused a perception frame: {} ({} refused so far)", *why, refused.load());
         }
         continue;

@@ -57,6 +57,7 @@ std::unique_ptr<RunDds> RunDds::make(const Config& cfg, bool simulator) {
     if (inet_pton(AF_INET, m->settings.sim_lidar_address.c_str(), &m->lidar_to.sin_addr) != 1)
       throw std::invalid_argument("dds.sim_lidar_address: '" + m->settings.sim_lidar_address +
                                   "' is not an IPv4 address");
+    if (m->settings.sim_camera) m->bridge->open_camera_topic();
     logger("dds")->info("split mode: the virtual car's VLP-16 to udp {}:{}, its camera on DDS{}",
                         m->settings.sim_lidar_address, m->settings.sim_lidar_port,
                         m->settings.sim_camera ? "" : " (off: dds.sim_camera)");
