@@ -130,13 +130,15 @@ bool Autopilot::plan(Stamp now) {
   last_plan_attempt_ = now;
   if (plan_service_) {
     // The job gets copies: the map and the state move on meanwhile.
-    PlanJob job = [planner = planner_, cones = cones_, state = *state_] { return planner.plan(cones, state); };
+    PlanJob job = [planner = planner_, cones = cones_, state = *state_, previous = plan_] {
+      return planner.plan(cones, state, previous ? &*previous : nullptr);
+    };
     if (plan_service_->submit(std::move(job))) {
       plan_pending_ = true;
       return taken;
     }
   }
-  take_plan(now, planner_.plan(cones_, *state_));
+  take_plan(now, planner_.plan(cones_, *state_, plan_ ? &*plan_ : nullptr));
   return true;
 }
 

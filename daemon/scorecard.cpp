@@ -66,13 +66,13 @@ void Scorecard::on_truth(const sim::VehicleTruth& truth) {
   std::optional<sim::Gate> crossed;
   Stamp t_cross = truth.t;
   if (!last_) {
-    // A car that starts just past a timing line (some layouts) begins its first lap when it first moves, as the
-    // stack's lap counter counts it from the go (not through the seconds it stands in Ready); otherwise lap 1
-    // begins at the first crossing.
+    // A car that starts on or just past a timing line (some layouts; a layout without timing cones, whose line is
+    // drawn through the start pose) begins its first lap when it first moves, as the stack's lap counter counts it
+    // from the go (not through the seconds it stands in Ready); otherwise lap 1 begins at the first crossing.
     for (std::size_t g = 0; g < gates_.gates().size() && !open_; ++g) {
       const double past = gates_.past(g, pos);
       const Vec2 lat(-gates_.gates()[g].forward.y(), gates_.gates()[g].forward.x());
-      if (past > 0.0 && past < 10.0 &&
+      if (past >= 0.0 && past < 10.0 &&
           std::fabs((pos - gates_.gates()[g].centre).dot(lat)) <= gates_.gates()[g].half_width)
         start_past_line_ = true;
     }

@@ -231,7 +231,7 @@ struct Stack::Impl {
     }
     if (opt.plan_worker) {
       plan_worker = std::make_unique<PlanThread>();
-      if (opt.paced_workers) plan_worker->pace_by([this] { return step_now; });
+      if (opt.paced_workers) plan_worker->pace_by([this] { return step_now; }, plan_budget);
       autopilot->set_plan_service(plan_worker.get());
     }
   }

@@ -26,10 +26,10 @@ struct SpeedConfig {
   double v_max_realtime = 8.0;      // m/s: cap when planning on what is seen
   double kappa_rate_max = 0.5;      // 1/(m·s): steering rate / wheelbase is 0.78; the yaw response lags too; 0 = off
   bool traction_ellipse = true;     // traction shrinks with cornering on an ellipse (rear-wheel drive)
-  double understeer = 0.0036;       // rad per m/s²: K of δ = atan(L·κ) + K·v²·κ (the virtual car's, at the lock)
-  double steer_reserve = 0.01;      // rad of lock left for the follower to correct with at every planned speed
-  double stop_latency = 0.3;        // s from a stop being planned to the brakes acting (loop, link, speed control)
-  double stop_margin = 1.0;         // m: every stop planned this short of the end of the known free lane
+  double understeer = 0.0036;   // rad per m/s²: K of δ = atan(L·κ) + K·v²·κ (the virtual car's, at the lock)
+  double steer_reserve = 0.01;  // rad of lock left for the follower to correct with at every planned speed
+  double stop_latency = 0.3;    // s from a stop being planned to the brakes acting (loop, link, speed control)
+  double stop_margin = 1.0;     // m: every stop planned this short of the end of the known free lane
   // Not configuration keys: the car (car.*).
   double wheelbase = 1.53;
   double max_steer = 0.5;
@@ -48,7 +48,7 @@ struct MissionConfig {
   double open_end_sight = 12.0;              // m: a plan ending this near with no cone beyond is an open layout's end
   double open_end_min_travel = 20.0;         // m driven before an end of the track is believed
   double open_end_settle = 0.5;              // s of unbroken cone updates before an end of the track is believed
-  double open_end_confirm = 3.0;  // m driven with the end in sight on every fresh plan before it is believed
+  double open_end_confirm = 3.0;             // m driven with the end in sight on every fresh plan before it is believed
   double ebs_trigger_distance = 40.0;        // m past the start line where the EBS test asks for Emergency
   double skidpad_exit_length = 25.0;         // m of exit lane past the crossing
   double skidpad_entry_speed = 4.0;          // m/s until the circles are fitted

@@ -26,10 +26,12 @@ Path arc_path(const std::vector<Vec2>& nodes, bool closed) {
   }
   if (!closed) kappa.front() = kappa[1], kappa.back() = kappa[n - 2];
   const std::size_t segments = closed ? n : n - 1;
+  std::vector<double> point_kappa;
   for (std::size_t i = 0; i < segments; ++i) {
     const Vec2& a = nodes[i];
     const Vec2& b = nodes[(i + 1) % n];
     out.points.push_back({a, 0, 0, 0, 0});
+    point_kappa.push_back(kappa[i]);
     const Vec2 chord = b - a;
     const double c = chord.norm();
     if (c < 1e-9) continue;
@@ -37,9 +39,16 @@ Path arc_path(const std::vector<Vec2>& nodes, bool closed) {
     const Vec2 left(-chord.y() / c, chord.x() / c);
     // A left turn's arc bulges to the right of its chord (away from the centre).
     out.points.push_back({0.5 * (a + b) - k * c * c / 8.0 * left, 0, 0, 0, 0});
+    point_kappa.push_back(k);
   }
-  if (!closed) out.points.push_back({nodes.back(), 0, 0, 0, 0});
+  if (!closed) {
+    out.points.push_back({nodes.back(), 0, 0, 0, 0});
+    point_kappa.push_back(kappa.back());
+  }
   compute_geometry(out);
+  // The curvature is the nodes' own (what the optimizer bounded) and their mean between: three neighbours of unequal
+  // curvature would give a point a circle the path does not have where the curvature changes fast.
+  for (std::size_t i = 0; i < out.points.size(); ++i) out.points[i].kappa = point_kappa[i];
   return out;
 }
 

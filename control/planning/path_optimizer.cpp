@@ -82,7 +82,7 @@ struct StartCost {
   Node a, b, c;
   double heading;
   const double* w_heading;
-  double kappa;
+  double kappa, slack;
   const double* w_kappa;  // null: the curvature is free (the car steers in place)
   template <typename T>
   bool operator()(const T* ab, const T* ac, T* r) const {
@@ -99,7 +99,8 @@ struct StartCost {
     while (diff > T(3.14159265358979323846)) diff -= two_pi;
     while (diff < T(-3.14159265358979323846)) diff += two_pi;
     r[0] = T(*w_heading) * diff;
-    r[1] = w_kappa ? T(*w_kappa) * (k - T(kappa)) : T(0.0);
+    using std::abs;
+    r[1] = w_kappa ? T(*w_kappa) * hinge(abs(k - T(kappa)) - T(slack)) : T(0.0);
     return true;
   }
 };
@@ -195,85 +196,113 @@ OptimizerOutput PathOptimizer::solve(const OptimizerInput& in, const std::vector
   auto node = [&](int i) -> const Node& { return nodes[idx(i)]; };
   auto par = [&](int i) { return &alpha[idx(i)]; };
 
-  ceres::Problem::Options po;
-  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(po);
-  for (int i = 0; i < n; ++i) problem.AddParameterBlock(par(i), 1);
-  for (int i = 0; i < n; ++i) {
-    if (i < fixed) {
-      problem.SetParameterBlockConstant(par(i));
-      continue;
-    }
-    const auto k = static_cast<std::size_t>(i);
-    const double lo = std::min(in.lo[k], in.hi[k]), hi = std::max(in.lo[k], in.hi[k]);
-    if (hi - lo < 1e-6) {
-      problem.SetParameterBlockConstant(par(i));
-      continue;
-    }
-    problem.SetParameterLowerBound(par(i), 0, lo);
-    problem.SetParameterUpperBound(par(i), 0, hi);
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CentreCost, 1, 1>(new CentreCost{std::sqrt(c.w_centre * ds)}),
-                             nullptr, par(i));
-  }
-  const int first = closed ? 0 : 1, last = closed ? n - 1 : n - 2;  // nodes with two neighbours
-  for (int i = first; i <= last; ++i) {
-    auto* f = new CurvatureCost{node(i - 1), node(i), node(i + 1), std::sqrt(c.w_curvature * ds), kappa_hard,
-                                kappa_soft, pen, std::sqrt(c.w_lock_soft * ds)};
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CurvatureCost, 3, 1, 1, 1>(f), nullptr, par(i - 1),
-                             par(i), par(i + 1));
-  }
-  const int rate_last = closed ? n - 1 : n - 3;
-  const int rate_first = closed ? 0 : std::max(first, static_cast<int>(std::ceil(in.rate_free_until / ds)));
-  for (int i = rate_first; i <= rate_last; ++i) {
-    auto* f = new CurvatureRateCost{node(i - 1), node(i),         node(i + 1), node(i + 2),
-                                    std::sqrt(c.w_curvature_rate * ds), c.kappa_rate_max, pen};
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CurvatureRateCost, 2, 1, 1, 1, 1>(f), nullptr,
-                             par(i - 1), par(i), par(i + 1), par(i + 2));
-  }
-  if (!closed && in.start_heading && fixed == 1 && n > 2) {
-    auto* f = new StartCost{node(0), node(1), node(2), *in.start_heading, pen, in.start_kappa.value_or(0.0),
-                            in.start_kappa ? pen : nullptr};
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<StartCost, 2, 1, 1>(f), nullptr, par(1), par(2));
-  }
-
-  // Clearance: each node and each chord's middle against the obstacles the body could come near from there.
+  // The body's pose at node i (heading along its neighbours' chord) and half-way to node i + 1, for the alpha of now.
+  auto point = [&](int i) { return node(i).r + alpha[idx(i)] * node(i).n; };
+  auto node_pose = [&](int i) {
+    const Vec2 a = (closed || i > 0) ? point(i - 1) : point(i), b = (closed || i < n - 1) ? point(i + 1) : point(i);
+    const Vec2 p = point(i), d = b - a;
+    return Pose2{p.x(), p.y(), std::atan2(d.y(), d.x())};
+  };
+  auto chord_pose = [&](int i) {
+    const Vec2 a = point(i), b = point(i + 1), m = 0.5 * (a + b), d = b - a;
+    return Pose2{m.x(), m.y(), std::atan2(d.y(), d.x())};
+  };
+  // Which node (and chord) may meet which obstacle: by distance from the reference, once.
   const double soft = std::max(c.clearance_soft, c.clearance);
-  const double sqrt_soft = std::sqrt(c.w_clearance_soft * ds * 0.5);  // two poses per node
+  struct Pair {
+    int i;
+    std::size_t o;
+  };
+  std::vector<Pair> candidates;
   double s_along = 0;
   for (int i = 0; i < n; ++i) {
-    if (i > 0 || closed) s_along += i > 0 ? (node(i).r - node(i - 1).r).norm() : 0.0;
+    if (i > 0) s_along += (node(i).r - node(i - 1).r).norm();
     if (!closed && s_along < in.free_from) continue;
     const auto k = static_cast<std::size_t>(i);
-    const double swing = std::max(std::abs(in.lo[k]), std::abs(in.hi[k]));
-    const double within = body_.reach() + swing + soft + ds;
-    const bool has_prev = closed || i > 0, has_next = closed || i < n - 1;
-    for (const Obstacle& o : in.obstacles) {
-      if ((o.p - node(i).r).norm() > within + o.radius) continue;
-      if (has_prev && has_next) {
-        auto* f = new NodeClearanceCost{node(i - 1), node(i), node(i + 1), o,   &body_,
-                                        c.clearance, soft,    pen,         sqrt_soft};
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeClearanceCost, 2, 1, 1, 1>(f), nullptr,
-                                 par(i - 1), par(i), par(i + 1));
-      }
-      if (has_next) {
-        auto* f = new ChordClearanceCost{node(i), node(i + 1), 0.5, o, &body_, c.clearance, soft, pen, sqrt_soft};
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ChordClearanceCost, 2, 1, 1>(f), nullptr, par(i),
-                                 par(i + 1));
-      }
-    }
+    const double within = body_.reach() + std::max(std::abs(in.lo[k]), std::abs(in.hi[k])) + soft + ds;
+    for (std::size_t o = 0; o < in.obstacles.size(); ++o)
+      if ((in.obstacles[o].p - node(i).r).norm() <= within + in.obstacles[o].radius) candidates.push_back({i, o});
   }
 
   ceres::Solver::Options so;
-  so.linear_solver_type = n > 150 ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::DENSE_NORMAL_CHOLESKY;
+  // Each residual touches at most four nodes: the normal equations are banded, sparse at any length.
+  so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = c.max_iterations;
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;
   so.function_tolerance = 1e-8;
   so.parameter_tolerance = 1e-7;
+  const double sqrt_soft = std::sqrt(c.w_clearance_soft * ds * 0.5);  // two poses per node
   out.converged = true;
-  for (double weight = std::min(c.penalty, 1e3);; weight = std::min(c.penalty, weight * 100.0)) {
+  // The stages: each a problem of its own, with the clearance terms only of the pairs whose body comes within reach
+  // of costing from where the last stage left it (the first stage: as far as the offsets and turning could bring
+  // them). Far pairs cost nothing and only slow the solver; the exact sweep after the optimizer checks them all.
+  for (int stage = 0;; ++stage) {
+    const double weight = std::min(c.penalty, 1e3 * std::pow(100.0, stage));
     sqrt_pen = std::sqrt(weight);
+    const double reach_in = stage == 0 ? 1.5 : 0.3;  // m beyond the soft clearance a pair is kept
+    ceres::Problem::Options po;
+    po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    ceres::Problem problem(po);
+    for (int i = 0; i < n; ++i) problem.AddParameterBlock(par(i), 1);
+    for (int i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double lo = std::min(in.lo[k], in.hi[k]), hi = std::max(in.lo[k], in.hi[k]);
+      if (i < fixed || hi - lo < 1e-6) {
+        problem.SetParameterBlockConstant(par(i));
+        continue;
+      }
+      problem.SetParameterLowerBound(par(i), 0, lo);
+      problem.SetParameterUpperBound(par(i), 0, hi);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<CentreCost, 1, 1>(new CentreCost{std::sqrt(c.w_centre * ds)}), nullptr,
+          par(i));
+    }
+    const int first = closed ? 0 : 1, last = closed ? n - 1 : n - 2;  // nodes with two neighbours
+    for (int i = first; i <= last; ++i) {
+      auto* f = new CurvatureCost{node(i - 1), node(i),    node(i + 1), std::sqrt(c.w_curvature * ds),
+                                  kappa_hard,  kappa_soft, pen,         std::sqrt(c.w_lock_soft * ds)};
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CurvatureCost, 3, 1, 1, 1>(f), nullptr, par(i - 1),
+                               par(i), par(i + 1));
+    }
+    const int rate_last = closed ? n - 1 : n - 3;
+    const int rate_first = closed ? 0 : std::max(first, static_cast<int>(std::ceil(in.rate_free_until / ds)));
+    for (int i = rate_first; i <= rate_last; ++i) {
+      auto* f = new CurvatureRateCost{
+          node(i - 1), node(i), node(i + 1), node(i + 2), std::sqrt(c.w_curvature_rate * ds), c.kappa_rate_max, pen};
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CurvatureRateCost, 2, 1, 1, 1, 1>(f), nullptr,
+                               par(i - 1), par(i), par(i + 1), par(i + 2));
+    }
+    if (!closed && in.start_heading && fixed == 1 && n > 2) {
+      auto* f = new StartCost{node(0),
+                              node(1),
+                              node(2),
+                              *in.start_heading,
+                              pen,
+                              in.start_kappa.value_or(0.0),
+                              in.start_kappa_slack,
+                              in.start_kappa ? pen : nullptr};
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<StartCost, 2, 1, 1>(f), nullptr, par(1), par(2));
+    }
+    for (const Pair& pr : candidates) {
+      const int i = pr.i;
+      const Obstacle& o = in.obstacles[pr.o];
+      const bool has_prev = closed || i > 0, has_next = closed || i < n - 1;
+      const double keep =
+          soft + reach_in + (stage == 0 ? std::max(std::abs(in.lo[idx(i)]), std::abs(in.hi[idx(i)])) : 0);
+      if (has_prev && has_next && body_clearance(node_pose(i), o, body_) < keep) {
+        auto* f =
+            new NodeClearanceCost{node(i - 1), node(i), node(i + 1), o, &body_, c.clearance, soft, pen, sqrt_soft};
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeClearanceCost, 2, 1, 1, 1>(f), nullptr, par(i - 1),
+                                 par(i), par(i + 1));
+      }
+      if (has_next && body_clearance(chord_pose(i), o, body_) < keep) {
+        auto* f = new ChordClearanceCost{node(i), node(i + 1), 0.5, o, &body_, c.clearance, soft, pen, sqrt_soft};
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ChordClearanceCost, 2, 1, 1>(f), nullptr, par(i),
+                                 par(i + 1));
+      }
+    }
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     out.converged = out.converged && summary.termination_type == ceres::CONVERGENCE;

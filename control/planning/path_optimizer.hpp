@@ -30,7 +30,7 @@ struct PathOptimizerConfig {
   double lock_margin = 0.005;      // share of the lock's curvature never planned (the lock itself, less a hair)
   double lock_margin_soft = 0.08;  // share below the lock where curvature starts to cost
   double w_lock_soft = 200.0;      // per m, on the excess² (1/m²)
-  double kappa_rate_max = 0.4;     // 1/m²: steepest change of curvature along the path
+  double kappa_rate_max = 1.5;     // 1/m²: steepest change of curvature along the path (the steering at 0.5 m/s)
   double clearance = 0.02;         // m asked between the body and every cone's base (the check accepts less)
   double clearance_soft = 0.3;     // m below which the clearance costs
   double w_clearance_soft = 20.0;  // per m, on the shortfall² (1/m²)
@@ -39,15 +39,16 @@ struct PathOptimizerConfig {
 };
 
 struct OptimizerInput {
-  std::vector<Vec2> reference;  // nodes of the reference line, about evenly spaced
-  std::vector<Vec2> normals;    // unit normals to its left, one per node
-  std::vector<double> lo, hi;   // bounds of each node's offset α along its normal (lo ≤ 0 ≤ hi expected)
-  bool closed = false;          // a lap: the last node joins the first
-  int fixed = 0;                // open: the first nodes stay on the reference (node 0: the car's position)
+  std::vector<Vec2> reference;          // nodes of the reference line, about evenly spaced
+  std::vector<Vec2> normals;            // unit normals to its left, one per node
+  std::vector<double> lo, hi;           // bounds of each node's offset α along its normal (lo ≤ 0 ≤ hi expected)
+  bool closed = false;                  // a lap: the last node joins the first
+  int fixed = 0;                        // open: the first nodes stay on the reference (node 0: the car's position)
   std::optional<double> start_heading;  // open: the path leaves node 0 this way (rad, the reference's frame)
-  std::optional<double> start_kappa;    // open: with the curvature the car drives now
-  double free_from = 0;         // m: no clearance asked before this far along (the car stands where it is)
-  double rate_free_until = 0;   // m: no limit on dκ/ds before this far along (a car at standstill steers in place)
+  std::optional<double> start_kappa;    // open: with the curvature the car drives now,
+  double start_kappa_slack = 0;         // ... give or take what its steering can change by the first node
+  double free_from = 0;                 // m: no clearance asked before this far along (the car stands where it is)
+  double rate_free_until = 0;  // m: no limit on dκ/ds before this far along (a car at standstill steers in place)
   std::vector<Obstacle> obstacles;
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "control/planning/arc_path.hpp"
 #include "control/planning/reference_line.hpp"
@@ -40,15 +41,16 @@ std::string describe_short(const SweepResult& s, const std::vector<Obstacle>& ob
   const Vec2 at = s.first_short_obstacle >= 0
                       ? pose.transform(obstacles[static_cast<std::size_t>(s.first_short_obstacle)].p)
                       : Vec2(pose.x, pose.y);
-  std::snprintf(buf, sizeof buf, "no room for the car %.1f m ahead: its body would come within %.2f m of the cone at "
-                "(%.2f, %.2f)", s.first_short_s, std::max(0.0, s.min_clearance), at.x(), at.y());
+  std::snprintf(buf, sizeof buf,
+                "no room for the car %.1f m ahead: its body would come within %.2f m of the cone at "
+                "(%.2f, %.2f)",
+                s.first_short_s, std::max(0.0, s.min_clearance), at.x(), at.y());
   return buf;
 }
 
 }  // namespace
 
-RealtimePlanner::RealtimePlanner(PlannerConfig config, PathConfig path, ColourConvention convention,
-                                 SpeedLimits limits)
+RealtimePlanner::RealtimePlanner(PlannerConfig config, PathConfig path, ColourConvention convention, SpeedLimits limits)
     : config_(config), path_(path), convention_(std::move(convention)), speed_(limits) {}
 
 void RealtimePlanner::set_config(const PlannerConfig& c, const PathConfig& path) {
@@ -56,7 +58,8 @@ void RealtimePlanner::set_config(const PlannerConfig& c, const PathConfig& path)
   path_ = path;
 }
 
-PlanResult RealtimePlanner::plan(const std::vector<Cone>& cones, const VehicleState& state) const {
+PlanResult RealtimePlanner::plan(const std::vector<Cone>& cones, const VehicleState& state,
+                                 const Path* previous) const {
   PlanResult result;
   const Pose2& pose = state.pose;
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
@@ -133,27 +136,51 @@ PlanResult RealtimePlanner::plan(const std::vector<Cone>& cones, const VehicleSt
   in.hi = room.hi;
   in.fixed = 1;
   in.start_heading = 0.0;
-  // Moving, the path starts on the curvature the wheels give now and turns no faster than the steering can; at a
+  // Moving, the path starts on the curvature the car drives now, give or take what its steering can change by the
+  // first node at this speed (a car crawling at the lock can unwind in a few centimetres, one at speed cannot); at a
   // standstill the wheels turn before the car moves.
   constexpr double kSteersInPlace = 0.5;  // m/s
   const PathOptimizer optimizer(path_.optimizer, body, path_.kappa_lock());
-  if (state.speed() >= kSteersInPlace && std::isfinite(state.steering) && path_.wheelbase > 0)
-    in.start_kappa = std::clamp(std::tan(state.steering) / path_.wheelbase, -optimizer.kappa_max(),
-                                optimizer.kappa_max());
-  else
+  // The curvature the car drives is its yaw rate over its speed (at speed it understeers: less than the wheels'
+  // angle would give).
+  if (state.speed() >= kSteersInPlace && std::isfinite(state.yaw_rate)) {
+    in.start_kappa = std::clamp(state.yaw_rate / state.speed(), -optimizer.kappa_max(), optimizer.kappa_max());
+    in.start_kappa_slack = speed_.limits().kappa_rate_max * path_.node_spacing / state.speed();
+  } else
     in.rate_free_until = config_.free_from;
   in.free_from = config_.free_from;
   in.obstacles = obstacles;
-  const OptimizerOutput opt = optimizer.solve(in);
-  result.iterations = opt.iterations;
-  if (opt.points.size() < 2) {
+  // Solved from the previous plan where there is one, from the midline where not (or when that did not come out
+  // clear): the first clear one, else the one that stays clear the farthest.
+  std::vector<std::optional<std::vector<double>>> starts;
+  if (previous && previous->points.size() >= 2) {
+    std::vector<Vec2> before;
+    for (const auto& q : previous->points) before.push_back(pose.inverse_transform(q.p));
+    starts.emplace_back(offsets_of(ref, before, 3.0));
+  }
+  starts.emplace_back(std::nullopt);
+  Path p;
+  SweepResult sweep;
+  double beyond_lock = 0;
+  for (const auto& start : starts) {
+    const OptimizerOutput opt = optimizer.solve(in, start ? &*start : nullptr);
+    result.iterations += opt.iterations;
+    if (opt.points.size() < 2) continue;
+    Path candidate = arc_path(opt.points, false);
+    // The body along the result: the path ends before it would come too near a cone or pass the lock.
+    const SweepResult s = sweep_body(candidate, obstacles, body, path_.accept_clearance, 0.05, config_.free_from);
+    const double lock = path_.first_beyond_lock(candidate);
+    if (p.empty() || std::min(s.first_short_s, lock) > std::min(sweep.first_short_s, beyond_lock)) {
+      p = std::move(candidate);
+      sweep = s;
+      beyond_lock = lock;
+    }
+    if (!std::isfinite(sweep.first_short_s) && !std::isfinite(beyond_lock)) break;
+  }
+  if (p.empty()) {
     result.reason = "path optimizer had nothing to work on";
     return result;
   }
-  Path p = arc_path(opt.points, false);
-  // The body along the result: the path ends before it would come too near a cone.
-  const SweepResult sweep = sweep_body(p, obstacles, body, path_.accept_clearance, 0.05, config_.free_from);
-  const double beyond_lock = path_.first_beyond_lock(p);
   if (std::isfinite(sweep.first_short_s) && sweep.first_short_s <= beyond_lock) {
     result.cut_short = true;
     result.reason = describe_short(sweep, obstacles, pose);

@@ -11,8 +11,8 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
-#include "control/planning/path.hpp"
 #include "control/planning/corridor_walk.hpp"
+#include "control/planning/path.hpp"
 #include "control/planning/path_config.hpp"
 #include "control/planning/speed_profile.hpp"
 
@@ -42,8 +42,8 @@ struct PlanResult {
   double clearance = 0;          // m: the least clearance of the body along the path kept
   int cones_used = 0;
   int triangles = 0;
-  int iterations = 0;             // of the optimizer
-  std::vector<Vec2> midpoints;    // the walk's gate midpoints, map frame (for display)
+  int iterations = 0;           // of the optimizer
+  std::vector<Vec2> midpoints;  // the walk's gate midpoints, map frame (for display)
 };
 
 class RealtimePlanner {
@@ -51,7 +51,11 @@ class RealtimePlanner {
   RealtimePlanner(PlannerConfig config, PathConfig path, ColourConvention convention, SpeedLimits limits);
 
   // Plans from `state` (map frame; steering = the measured wheel angle) through `cones` (map frame, any colour).
-  PlanResult plan(const std::vector<Cone>& cones, const VehicleState& state) const;
+  // `previous`: the plan made last (map frame), which the optimizer starts from where it still lies ahead: a plan
+  // again a tenth of a second on is nearly the same, and starting there keeps consecutive plans in one family and
+  // the solve short. The optimizer also starts from the corridor's midline alone when that one does not come out
+  // clear, and the clear one (or the one clear the farthest) is kept.
+  PlanResult plan(const std::vector<Cone>& cones, const VehicleState& state, const Path* previous = nullptr) const;
 
   const PlannerConfig& config() const { return config_; }
   void set_config(const PlannerConfig& c, const PathConfig& path);

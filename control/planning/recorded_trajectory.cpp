@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <limits>
 
-#include "control/planning/corridor.hpp"
 #include "control/planning/arc_path.hpp"
+#include "control/planning/corridor.hpp"
 #include "control/planning/path_optimizer.hpp"
 #include "control/planning/reference_line.hpp"
 #include "control/planning/smoothing.hpp"
@@ -73,8 +73,9 @@ double recentre_on_cones(Path& path, const std::vector<Cone>& cones, const Colou
 
 namespace {
 // The centre line's kinks at the boundaries' corner cones are smoothed over this before it is the optimizer's
-// reference (the optimizer then finds the line; the reference only carries the normals).
-constexpr double kReferenceWavelength = 3.0;  // m
+// reference (the optimizer then finds the line; the reference only carries the normals), and over the others in turn
+// when the line it gives is not clear.
+constexpr double kReferenceWavelengths[] = {3.0, 6.0, 1.5};  // m
 // How far off the centre line the "min_curvature" line may go for a metre's worth of curvature cost: the centre
 // weight it uses instead of control.path.w_centre.
 constexpr double kMinCurvatureCentreWeight = 0.01;
@@ -136,40 +137,60 @@ Path RecordedTrajectory::line_through(const Path& centre, const std::vector<Cone
   const PathConfig& pc = config_.path;
   std::vector<Vec2> centre_points;
   for (const auto& q : centre.points) centre_points.push_back(q.p);
-  const ReferenceLine ref = make_reference(centre_points, true, pc.node_spacing, kReferenceWavelength);
   const Corridor corridor = corridor_along(centre, map_cones, convention, config_.recentre_reach);
   const Body& body = pc.body;
-  const Room room = room_between(ref, points_of(corridor.left), points_of(corridor.right), true,
-                                 body.half_width + pc.cone_radius, config_.recentre_reach, 1.5);
-  OptimizerInput in;
-  in.reference = ref.nodes;
-  in.normals = ref.normals;
-  in.lo = room.lo;
-  in.hi = room.hi;
-  in.closed = true;
-  in.obstacles = obstacles_of(map_cones, pc.cone_radius, pc.big_cone_radius);
+  const std::vector<Obstacle> obstacles = obstacles_of(map_cones, pc.cone_radius, pc.big_cone_radius);
   PathOptimizerConfig oc = pc.optimizer;
   if (config_.line == "min_curvature") oc.w_centre = kMinCurvatureCentreWeight;
-  const OptimizerOutput opt = PathOptimizer(oc, body, pc.kappa_lock()).solve(in);
-  r.iterations = opt.iterations;
-  if (opt.points.size() < 4) {
-    r.reason = "lap line: too few nodes (" + std::to_string(opt.points.size()) + ")";
-    return centre;
-  }
-  for (const double a : opt.alpha) r.max_offset = std::max(r.max_offset, std::abs(a));
-  Path line = arc_path(opt.points, true);
-  const SweepResult sweep = sweep_body(line, in.obstacles, body, pc.accept_clearance, 0.05);
-  r.clearance = sweep.min_clearance;
-  if (std::isfinite(sweep.first_short_s)) {
+  const PathOptimizer optimizer(oc, body, pc.kappa_lock());
+  // The optimizer is a local method: a reference smoothed otherwise starts it elsewhere. The first line that comes
+  // out clear of the cones is kept; none clear, the lap is refused.
+  Path best;
+  SweepResult best_sweep;
+  for (const double wavelength : kReferenceWavelengths) {
+    const ReferenceLine ref = make_reference(centre_points, true, pc.node_spacing, wavelength);
+    const Room room = room_between(ref, points_of(corridor.left), points_of(corridor.right), true,
+                                   body.half_width + pc.cone_radius, config_.recentre_reach, 1.5);
+    OptimizerInput in;
+    in.reference = ref.nodes;
+    in.normals = ref.normals;
+    in.lo = room.lo;
+    in.hi = room.hi;
+    in.closed = true;
+    in.obstacles = obstacles;
+    const OptimizerOutput opt = optimizer.solve(in);
+    r.iterations += opt.iterations;
+    if (opt.points.size() < 4) continue;
+    Path line = arc_path(opt.points, true);
+    const SweepResult sweep = sweep_body(line, obstacles, body, pc.accept_clearance, 0.05);
+    const bool clear = !std::isfinite(sweep.first_short_s) && !std::isfinite(pc.first_beyond_lock(line));
+    if (best.empty() || clear) {
+      best = std::move(line);
+      best_sweep = sweep;
+      r.max_offset = 0;
+      for (const double a : opt.alpha) r.max_offset = std::max(r.max_offset, std::abs(a));
+    }
+    if (clear) {
+      r.reason.clear();
+      r.clearance = sweep.min_clearance;
+      return best;
+    }
     char buf[200];
-    const Vec2 at = in.obstacles[static_cast<std::size_t>(sweep.first_short_obstacle)].p;
-    std::snprintf(buf, sizeof buf,
-                  "lap line not clear of the cones: the body comes within %.2f m of the cone at (%.2f, %.2f), "
-                  "%.1f m round the lap",
-                  sweep.min_clearance, at.x(), at.y(), sweep.first_short_s);
+    if (std::isfinite(sweep.first_short_s)) {
+      const Vec2 at = obstacles[static_cast<std::size_t>(sweep.first_short_obstacle)].p;
+      std::snprintf(buf, sizeof buf,
+                    "lap line not clear of the cones: the body comes within %.2f m of the cone at (%.2f, %.2f), "
+                    "%.1f m round the lap",
+                    sweep.min_clearance, at.x(), at.y(), sweep.first_short_s);
+    } else {
+      std::snprintf(buf, sizeof buf, "lap line beyond the steering's lock %.1f m round the lap",
+                    pc.first_beyond_lock(line));
+    }
     r.reason = buf;
   }
-  return line;
+  if (best.empty()) r.reason = "lap line: too few nodes";
+  r.clearance = best_sweep.min_clearance;
+  return best.empty() ? centre : best;
 }
 
 }  // namespace fsd

@@ -68,6 +68,16 @@ double ray_to_polyline(const Vec2& o, const Vec2& d, const std::vector<Vec2>& li
 
 }  // namespace
 
+std::vector<double> offsets_of(const ReferenceLine& ref, const std::vector<Vec2>& line, double reach) {
+  std::vector<double> out(ref.nodes.size(), 0.0);
+  for (std::size_t i = 0; i < ref.nodes.size(); ++i) {
+    const double left = ray_to_polyline(ref.nodes[i], ref.normals[i], line, false, reach);
+    const double right = ray_to_polyline(ref.nodes[i], -ref.normals[i], line, false, reach);
+    if (std::isfinite(left) || std::isfinite(right)) out[i] = left <= right ? left : -right;
+  }
+  return out;
+}
+
 Room room_between(const ReferenceLine& ref, const std::vector<Vec2>& left, const std::vector<Vec2>& right,
                   bool boundaries_closed, double inset, double reach, double fallback) {
   Room room;

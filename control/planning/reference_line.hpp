@@ -33,4 +33,8 @@ struct Room {
 Room room_between(const ReferenceLine& ref, const std::vector<Vec2>& left, const std::vector<Vec2>& right,
                   bool boundaries_closed, double inset, double reach, double fallback);
 
+// Where a line crosses each node's normal: the offset along it (the nearest crossing within `reach` either way), for
+// starting the optimizer from a path planned before; nodes whose normal the line does not cross get 0.
+std::vector<double> offsets_of(const ReferenceLine& ref, const std::vector<Vec2>& line, double reach);
+
 }  // namespace fsd

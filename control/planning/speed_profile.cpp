@@ -56,6 +56,33 @@ void cap_by_curvature_rate(const SpeedProfile& profile, Path& path) {
   }
 }
 
+// Caps every point's speed by the steering's reach on the sharpest curvature within steer_window either side.
+void cap_by_steering(const SpeedProfile& profile, Path& path) {
+  const SpeedLimits& l = profile.limits();
+  auto& pts = path.points;
+  const std::size_t n = pts.size();
+  if (l.understeer <= 0 || n == 0) return;
+  const double len = path.length();
+  // Distance along the path from point i to point j going `dir` (+1 ahead, −1 back), wrapping round a lap.
+  auto along = [&](std::size_t i, std::size_t j, int dir) {
+    const double d = dir > 0 ? pts[j].s - pts[i].s : pts[i].s - pts[j].s;
+    return d >= 0 ? d : d + len;
+  };
+  std::vector<double> sharpest(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    double k = std::abs(pts[i].kappa);
+    for (const int dir : {-1, 1})
+      for (std::size_t step = 1; step < n; ++step) {
+        if (!path.closed && (dir > 0 ? i + step >= n : step > i)) break;
+        const std::size_t j = dir > 0 ? (i + step) % n : (i + n - step) % n;
+        if (along(i, j, dir) > l.steer_window) break;
+        k = std::max(k, std::abs(pts[j].kappa));
+      }
+    sharpest[i] = k;
+  }
+  for (std::size_t i = 0; i < n; ++i) pts[i].v = std::min(pts[i].v, profile.steering_limit(sharpest[i]));
+}
+
 // Longitudinal grip left by the lateral acceleration v²κ on the friction circle.
 double friction_left(const SpeedLimits& l, double v, double kappa) {
   const double total = l.mu * l.g;
@@ -85,7 +112,8 @@ void SpeedProfile::apply(Path& path, double v_start, double v_end, const std::ve
   auto& pts = path.points;
   const std::size_t n = pts.size();
   if (n == 0) return;
-  for (auto& p : pts) p.v = std::min(curvature_limit(p.kappa), steering_limit(p.kappa));
+  for (auto& p : pts) p.v = curvature_limit(p.kappa);
+  cap_by_steering(*this, path);
   cap_by_curvature_rate(*this, path);
   if (!path.closed && v_end <= 0) {
     const double len = path.length();

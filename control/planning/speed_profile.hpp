@@ -27,11 +27,13 @@ struct SpeedLimits {
   // Steering: a car that understeers needs δ = atan(L·κ) + K·v²·κ (K rad per m/s² of lateral acceleration); each
   // point is driven no faster than keeps δ within the lock less `steer_reserve` (left for the follower to correct
   // with). understeer = 0: no such limit.
-  double understeer = 0.0;     // K, rad per m/s²
-  double wheelbase = 1.53;     // m
-  double max_steer = 0.5;      // rad
-  double steer_reserve = 0.01; // rad
-  double v_min = 1.0;          // m/s: the floor of that limit (a curvature the lock itself barely reaches)
+  double understeer = 0.0;      // K, rad per m/s²
+  double wheelbase = 1.53;      // m
+  double max_steer = 0.5;       // rad
+  double steer_reserve = 0.01;  // rad
+  double v_min = 1.0;           // m/s: the floor of that limit (a curvature the lock itself barely reaches)
+  double steer_window = 1.0;    // m either side: the limit of the sharpest curvature within it (a path's curvature
+                                // wavers a little between nodes; the car's speed cannot follow such ripples)
   // Stopping (open paths that end in a stop): at every point the car stops `stop_margin` short of the end even when
   // its braking begins `stop_latency` later: v ≤ −a·t + √((a·t)² + 2·a·d), a the service brakes.
   double stop_latency = 0.3;  // s

@@ -45,8 +45,12 @@ GuardResult ContactGuard::check(const Path& path, PathFollower follower, const V
     // Understeer: the curvature the wheels give at this speed, κ from δ = atan(L·κ) + K·v²·κ (solved by iteration).
     double kappa = std::tan(delta) / wheelbase;
     for (int it = 0; it < 3; ++it) kappa = std::tan(delta - config_.understeer * v * v * kappa) / wheelbase;
-    const double eff = std::atan(wheelbase * kappa);
-    s.pose = predict_bicycle(s.pose, v, eff, wheelbase, config_.dt);
+    // The rear axle slips by the angle the follower expects (it steers the car's nose that much into the turn).
+    const double slip = follower.config().type == "lqr" ? follower.config().lqr_sideslip_gain * v * v * kappa : 0.0;
+    const double yaw_mid = s.pose.yaw + 0.5 * v * kappa * config_.dt - slip;
+    s.pose.x += v * config_.dt * std::cos(yaw_mid);
+    s.pose.y += v * config_.dt * std::sin(yaw_mid);
+    s.pose.yaw = wrap_angle(s.pose.yaw + v * kappa * config_.dt);
     s.steering = delta;
     s.stamp = state.stamp + t;
     travelled += v * config_.dt;

@@ -1,17 +1,17 @@
 #pragma once
 // The last check before a command goes out (DESIGN.md §5c): the car's motion over the next second is predicted —
 // the follower's law steering a kinematic bicycle whose wheels turn at the steering's rate after its dead time and
-// whose path widens with the understeer, at the speeds the follower asks (reached at the car's acceleration and
-// braking) — and its body swept against the mapped cones. A
+// whose path widens with the understeer and whose rear axle slips as the follower expects, at the speeds the
+// follower asks (reached at the car's acceleration and braking) — and its body swept against the mapped cones. A
 // predicted contact caps the speed to what stops the car, braking after the latency, before it happens; as the car
 // slows the prediction is made again, so a contact that came from speed goes away and the cap with it.
 #include <optional>
 #include <vector>
 
 #include "common/types.hpp"
-#include "control/tracking/follower.hpp"
-#include "control/planning/path.hpp"
 #include "control/planning/footprint.hpp"
+#include "control/planning/path.hpp"
+#include "control/tracking/follower.hpp"
 
 namespace fsd {
 
@@ -30,11 +30,11 @@ struct ContactGuardConfig {
 };
 
 struct GuardResult {
-  bool contact = false;            // a contact is predicted within the horizon
-  double speed_cap = 1e9;          // m/s (1e9: no cap)
-  double distance = 0;             // m driven to the predicted contact
-  Vec2 cone = Vec2::Zero();        // the cone it would touch (map frame)
-  std::vector<Pose2> predicted;    // the predicted poses, for display
+  bool contact = false;          // a contact is predicted within the horizon
+  double speed_cap = 1e9;        // m/s (1e9: no cap)
+  double distance = 0;           // m driven to the predicted contact
+  Vec2 cone = Vec2::Zero();      // the cone it would touch (map frame)
+  std::vector<Pose2> predicted;  // the predicted poses, for display
 };
 
 class ContactGuard {

@@ -230,7 +230,10 @@ TEST_P(AllTracks, CompletesItsMission) {
       ASSERT_EQ(laps.size(), 1u);
       // From a standing start ≤ 5 m before the line at a = µg ≈ 11.8 m/s², 75 m take at least 2.6 s.
       EXPECT_GT(laps[0]["time_s"].get<double>(), 2.6);
-      EXPECT_LT(laps[0]["time_s"].get<double>(), 6.0);
+      // Not slower than its sight allows: it never drives faster than it stops within the lane it has mapped
+      // (20 m of sight less up to a 5 m cone spacing, the 2.4 m rear axle to nose and the 1 m margin, braking
+      // at 8 m/s² after 0.3 s: 11-14 m/s), which takes 75 m in 5.4-6.8 s, plus the start's build-up.
+      EXPECT_LT(laps[0]["time_s"].get<double>(), 7.5);
       break;
     case Kind::Skidpad:
       ASSERT_EQ(laps.size(), 4u);
@@ -262,14 +265,16 @@ TEST_P(AllTracks, CompletesItsMission) {
   // Much faster than the friction limit would mean the reference or the timing is wrong.
   EXPECT_GE(l2["time_s"].get<double>(), 0.85 * reference);
 
-  // The minimum-curvature option: the same two laps clean, lap 2 at least 1 % faster than on the centre line.
+  // The minimum-curvature option: the same two laps clean, lap 2 faster than on the centre line.
   const Drive race = drive(c.name, "trackdrive", 2, racing_config());
   expect_clean_finish(race);
   ASSERT_EQ(race.report["laps"].size(), 2u);
   const double race2 = race.report["laps"][1]["time_s"].get<double>();
   std::printf("%s: lap 2 on the min-curvature line %.3f s (%+.1f %% on the centre line's)\n", c.name, race2,
               100.0 * (race2 / l2["time_s"].get<double>() - 1.0));
-  EXPECT_LE(race2, 0.99 * l2["time_s"].get<double>());
+  // At least 1 % faster, unless the centre line's lap is already within a per cent or two of its friction limit:
+  // then the line alone has no such margin left, and it need only reach that limit.
+  EXPECT_LE(race2, std::max(0.99 * l2["time_s"].get<double>(), 1.01 * reference));
 }
 
 std::string case_name(const ::testing::TestParamInfo<TrackCase>& info) { return info.param.name; }

@@ -1,11 +1,14 @@
 // Control on layouts it has never seen: generated layouts (`fsd track generate`) driven end to end by the fsd
 // binary (headless lockstep, truth perception, LiDAR and camera off), judged by the scorecard against the virtual
-// car's truth. Trackdrive 2 laps, autocross 1, acceleration, skid pad.
-//   GeneratedTracks.CiSubset     the CI subset: 40 layouts of every kind, two at a time; >= 95 % must be clean
+// car's truth. Trackdrive 2 laps, autocross 1, acceleration, skid pad. Odd seeds are the rules' layouts, even seeds
+// have the classes of public layouts mixed in (`--irregular`: hairpin chains, a whole lap round one 9 m turn,
+// hand-placed cones, an inside cone out of its ring, a lane narrowed below 3 m, a braking zone closed 25 m after the
+// finish; docs/track-generator.md).
+//   GeneratedTracks.CiSubset     the CI subset: 40 layouts of every kind, two at a time; >= 99.5 % must be clean
 //                                (finished, no cone hit, stopped in the zone); every other one is listed
 //   GeneratedTracksSweep.DISABLED_Full   the whole sweep, by hand (docs/control.md "Generated layouts"):
 //       build/tests/test_daemon --gtest_also_run_disabled_tests --gtest_filter='GeneratedTracksSweep.*'
-//     seeds 1–200 of trackdrive and autocross, 1–50 of acceleration and skid pad (FSD_SWEEP_SEEDS=N for
+//     seeds 1–200 of trackdrive and autocross, 1–100 of acceleration and skid pad (FSD_SWEEP_SEEDS=N for
 //     1–N of every kind, FSD_SWEEP_JOBS=J runs, 2 by default); prints every failure with its seed, kind and
 //     reason, then a summary table and the lap-2 figures.
 #include <gtest/gtest.h>
@@ -75,7 +78,8 @@ Outcome drive(const Case& c) {
   const std::string stem = "gen_" + c.kind + "_" + std::to_string(c.seed);
   const std::string track = scratch_path(stem + ".csv"), report = scratch_path(stem + ".json");
   std::string log;
-  const std::string gen = "track generate --kind " + c.kind + " --seed " + std::to_string(c.seed);
+  const std::string gen = "track generate --kind " + c.kind + " --seed " + std::to_string(c.seed) +
+                          (c.seed % 2 == 0 ? " --irregular" : "");
   if (run_fsd(gen + " --out " + track, &log) != 0) {
     o.reason = "generator failed: " + log;
     return o;
@@ -168,7 +172,7 @@ std::vector<Case> ci_cases() {
 }
 
 // The subset as one test, two layouts at a time: every failure is listed with its seed and how to reproduce it.
-// Held to the target over the whole sweep, >= 99 % clean (of 40: every one; the runs are deterministic);
+// Held to the target over the whole sweep, >= 99.5 % clean (of 40: every one; the runs are deterministic);
 // docs/control.md "Generated layouts" has the whole sweep's figures.
 TEST(GeneratedTracks, CiSubset) {
   const std::vector<Case> cases = ci_cases();
@@ -186,8 +190,8 @@ TEST(GeneratedTracks, CiSubset) {
     }
   }
   std::printf("clean %d of %zu\n", clean, out.size());
-  EXPECT_GE(clean, static_cast<int>(std::ceil(0.99 * static_cast<double>(out.size()))))
-      << "more than 1 % of the CI subset is not clean (listed above)";
+  EXPECT_GE(clean, static_cast<int>(std::ceil(0.995 * static_cast<double>(out.size()))))
+      << "more than 0.5 % of the CI subset is not clean (listed above)";
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -195,7 +199,7 @@ TEST(GeneratedTracks, CiSubset) {
 TEST(GeneratedTracksSweep, DISABLED_Full) {
   const char* seeds_env = std::getenv("FSD_SWEEP_SEEDS");
   const char* jobs_env = std::getenv("FSD_SWEEP_JOBS");
-  const int loops = seeds_env ? std::atoi(seeds_env) : 200, events = seeds_env ? loops : 50;
+  const int loops = seeds_env ? std::atoi(seeds_env) : 200, events = seeds_env ? loops : 100;
   const int jobs = std::max(1, jobs_env ? std::atoi(jobs_env) : 2);
   std::vector<Case> cases;
   for (int s = 1; s <= loops; ++s) cases.push_back({"trackdrive", s});
@@ -241,7 +245,7 @@ TEST(GeneratedTracksSweep, DISABLED_Full) {
                 100.0 * ratio.back());
   }
   std::printf("\nclean %d of %d (%.1f %%)\n", clean, all, 100.0 * clean / std::max(1, all));
-  EXPECT_GE(clean, 0.99 * all) << "the issue's target: ≥ 99 % clean";
+  EXPECT_GE(clean, 0.995 * all) << "the issue's target: ≥ 99.5 % clean";
 }
 
 }  // namespace

@@ -219,11 +219,21 @@ TEST(Recording, ACutOffRecordingReplaysUpToItsLastCompleteChunk) {
 TEST(Recording, ADamagedChunkIsReportedWithItsOffset) {
   const auto& rec = acceleration();
   ASSERT_EQ(rec.rc, 0) << rec.log;
+  // Flip a byte in the middle of a chunk in the middle of the file (the summary's chunk index says where).
+  std::uint64_t flip_at = 0;
+  {
+    const mcap::MappedFile mapped(rec.file);
+    std::string why;
+    const auto summary = mcap::read_summary(mapped.bytes(), {}, &why);
+    ASSERT_TRUE(summary && summary->chunk_indexes.size() >= 3) << why;
+    const auto& c = summary->chunk_indexes[summary->chunk_indexes.size() / 2];
+    flip_at = c.chunk_start_offset + c.chunk_length / 2;
+  }
   const auto bad = test::scratch_path("acc_flipped.mcap");
   std::filesystem::copy_file(rec.file, bad, std::filesystem::copy_options::overwrite_existing);
   {
     std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(static_cast<std::streamoff>(std::filesystem::file_size(bad) / 3));
+    f.seekp(static_cast<std::streamoff>(flip_at));
     char c = 0;
     f.read(&c, 1);
     f.seekp(-1, std::ios::cur);

@@ -149,7 +149,10 @@ TEST(SimRun, AccelerationRunsAndStopsInTheBrakingZone) {
     // The car starts ~4.4 m before the start line: at the traction limit a = µg ≈ 13.7 m/s² it crosses it at
     // ≤ 11 m/s, and 75 m then take at least t with 75 = 11 t + 6.87 t², t ≈ 2.6 s. Nothing can be faster.
     EXPECT_GT(r["laps"][0]["time_s"].get<double>(), 2.6);
-    EXPECT_LT(r["laps"][0]["time_s"].get<double>(), 6.0);
+    // Not slower than its sight allows: it never drives faster than it stops within the lane it has mapped
+    // (20 m of sight less up to a 5 m cone spacing, the 2.4 m rear axle to nose and the 1 m margin, braking
+    // at 8 m/s² after 0.3 s: 11-14 m/s), which takes 75 m in 5.4-6.8 s, plus the start's build-up.
+    EXPECT_LT(r["laps"][0]["time_s"].get<double>(), 7.5);
   }
 }
 

@@ -524,8 +524,8 @@ struct CircleFigures {
   Ring inner, outer;   // least-squares fits
   int inner_cones = 0, outer_cones = 0;
   double inner_max = 0, outer_min = 0;  // farthest inner cone from the outer ring's centre, nearest outer one
-  double start_radius = 0;              // car_start from the centre
-  double start_heading_error = 0;       // rad between its heading and the circle's tangent
+  double start_radius = 0;              // the car's body's middle (1 m ahead of car_start) from the centre
+  double start_heading_error = 0;       // rad between the car's heading and the circle's tangent there
   int direction = 0;                    // +1 counter-clockwise (a left turn)
   bool colours_as_driven = false;       // the inner ring blue when counter-clockwise, yellow when clockwise
   double gap_max = 0;                   // neighbouring cones of a ring, in the order listed
@@ -548,7 +548,9 @@ inline CircleFigures measure_circle(const LayoutRows& l) {
   for (const V2& p : inner) f.inner_max = std::max(f.inner_max, (p - c).norm());
   f.outer_min = std::numeric_limits<double>::infinity();
   for (const V2& p : outer) f.outer_min = std::min(f.outer_min, (p - c).norm());
-  const V2 radial = l.start - c, heading(std::cos(l.yaw), std::sin(l.yaw));
+  // The car's body's middle: car_start is its rear axle, 2.5 m behind the nose and 0.5 m ahead of the tail.
+  const V2 heading(std::cos(l.yaw), std::sin(l.yaw));
+  const V2 radial = l.start + 1.0 * heading - c;
   f.start_radius = radial.norm();
   f.direction = cross2(radial, heading) > 0 ? 1 : -1;
   const V2 tangent = f.direction * V2(-radial.y(), radial.x()).normalized();

@@ -435,7 +435,7 @@ TEST(TrackGenerator, CircleIsOneMinimumTurnWithTheCarInside) {
       EXPECT_LE(c.outer_cones, 12);
       EXPECT_TRUE(l.big_orange.empty());
       EXPECT_LE(c.gap_max, 5.0);
-      // The car inside, on the centre circle, heading along it; blue on its left.
+      // The car inside, its body's middle on the centre circle, heading along it; blue on its left.
       EXPECT_EQ(l.car_starts, 1);
       EXPECT_NEAR(c.start_radius, 3.0, 0.002);
       EXPECT_LT(c.start_heading_error, 1e-3);
