@@ -1,5 +1,5 @@
 #pragma once
-// Skid pad: a straight entry lane from the start pose until the circles are fitted (control/skidpad.hpp), then
+// Skid pad: a straight entry lane from the start pose until the circles are fitted (control/missions/skidpad.hpp), then
 // the figure of eight (right circle twice, left circle twice, exit), refitted while the car is still on the entry
 // lane. A lap is one circle, timed crossing to crossing; the fourth ends the mission. The figure of eight is driven
 // only as far as it is known to be free: it stops before the first place the body would come near a mapped cone
