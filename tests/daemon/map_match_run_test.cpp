@@ -3,7 +3,8 @@
 // truth perception, the virtual VLP-16, the default configuration: at most 10 m/s on this source
 // (localization.lidar_odometry.max_speed; above that the odometry loses track: docs/localization.md).
 // With the matching the car drives both laps clean on a pose within a few decimetres of the truth; without it the
-// odometry drifts again within lap 2 and the car hits cones. Judged by the scorecard against the virtual car's truth.
+// odometry drifts again within lap 2 (whether that costs cones depends on how much room the line leaves: the
+// figure compared is the pose's error). Judged by the scorecard against the virtual car's truth.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -34,7 +35,6 @@ TEST(MapMatchRun, TheLidarAloneDrivesTwoCleanLapsOnAPoseMatchedToTheConeMap) {
   const double ate_on = on["odometry"]["ate_m"].get<double>(), ate_off = off["odometry"]["ate_m"].get<double>();
   EXPECT_LT(ate_on, 0.3) << on["odometry"].dump();
   EXPECT_LT(ate_on, 0.5 * ate_off) << on["odometry"].dump() << off["odometry"].dump();
-  EXPECT_GT(off["cones_hit"].get<int>(), 0) << "without the matching the drift within lap 2 should show";
   for (const auto& lap : on["laps"]) EXPECT_LE(lap["v_max_m_s"].get<double>(), 10.5) << lap.dump();  // the cap
   // The loop still closes once per lap, and the odometry's own drift is reported uncorrected.
   EXPECT_EQ(on["odometry"]["loop_closures"].size(), 2u) << on["odometry"]["loop_closures"].dump();
