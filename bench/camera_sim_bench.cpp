@@ -1,4 +1,4 @@
-// Speed of the virtual car's camera (drivers/sim/camera_model.hpp) on epfl_track_1 at the default configuration
+// Speed of the virtual car's camera (drivers/sim/sensors/camera_model.hpp) on epfl_track_1 at the default configuration
 // (640×480, 20 Hz, noise, blur, shadows, distractors), on one core: OpenCV's own threads are switched off.
 //   build/bench/camera_sim_bench
 // items_per_second is frames per second of CPU time; x_realtime divides it by the 20 Hz frame rate.
@@ -12,7 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "common/track.hpp"
-#include "drivers/sim/camera_model.hpp"
+#include "drivers/sim/sensors/camera_model.hpp"
 
 namespace {
 

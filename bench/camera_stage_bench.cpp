@@ -13,8 +13,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/objdetect.hpp>
 
-#include "daemon/cone_classifier_file.hpp"
-#include "daemon/rendered_camera_scenes.hpp"
+#include "daemon/cli/rendered_camera_scenes.hpp"
+#include "daemon/stack/cone_classifier_file.hpp"
 
 namespace {
 

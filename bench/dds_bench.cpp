@@ -25,8 +25,8 @@
 #include "daemon/dds/ros_messages.hpp"
 #include "daemon/dds/ros_time.hpp"
 #include "daemon/dds/topics.hpp"
-#include "daemon/settings.hpp"
-#include "daemon/sim_run.hpp"
+#include "daemon/feeders/sim_run.hpp"
+#include "daemon/stack/settings.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 

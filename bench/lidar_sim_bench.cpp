@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "common/track.hpp"
-#include "drivers/sim/lidar_model.hpp"
-#include "drivers/sim/world.hpp"
+#include "drivers/sim/sensors/lidar_model.hpp"
+#include "drivers/sim/world/world.hpp"
 
 namespace {
 

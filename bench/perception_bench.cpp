@@ -30,7 +30,7 @@
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
-#include "daemon/cloud_detect.hpp"
+#include "daemon/cli/cloud_detect.hpp"
 #include "perception/lidar_cone_detector.hpp"
 #include "tests/perception/sim_lidar_drive.hpp"
 

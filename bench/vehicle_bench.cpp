@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "drivers/sim/vehicle_model.hpp"
+#include "drivers/sim/vehicle/vehicle_model.hpp"
 
 namespace {
 

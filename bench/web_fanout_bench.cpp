@@ -25,7 +25,7 @@
 #include "common/clock.hpp"
 #include "common/config.hpp"
 #include "common/params.hpp"
-#include "daemon/telemetry_channels.hpp"
+#include "daemon/telemetry/telemetry_channels.hpp"
 #include "web/channels.hpp"
 #include "web/config.hpp"
 #include "web/server.hpp"

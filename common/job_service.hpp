@@ -1,7 +1,7 @@
 #pragma once
 // Where a slow, once-a-lap job runs (lap 2's build, the loop closure's solve: tens to hundreds of ms) for a caller
 // that must not wait for it, the control thread: it hands the job over and polls for the result each step. The
-// daemon's Stack owns the workers (daemon/job_thread.hpp); without one the caller runs the job itself, as headless
+// daemon's Stack owns the workers (daemon/stack/job_thread.hpp); without one the caller runs the job itself, as headless
 // runs and replay do to stay repeatable.
 #include <functional>
 #include <optional>

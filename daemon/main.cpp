@@ -1,3 +1,3 @@
-#include "daemon/cli.hpp"
+#include "daemon/cli/cli.hpp"
 
 int main(int argc, char** argv) { return fsd::run_cli(argc, argv); }

@@ -1,7 +1,7 @@
 #pragma once
 // The telemetry channels of the dashboard and of Foxglove Studio: topic names, JSON schemas, and builders that turn
 // common/ types into the JSON payloads. Which channel has which schema, rate and builder is declared once, in the
-// daemon's channel table (daemon/telemetry_channels.cpp); see docs/dashboard.md.
+// daemon's channel table (daemon/telemetry/telemetry_channels.cpp); see docs/dashboard.md.
 // Everything 3D is in the map frame ("map"), so no transforms are needed to view it.
 #include <cstdint>
 #include <map>
@@ -48,7 +48,7 @@ struct ChannelSpec {
 };
 
 // The JSON schemas the channels use (web/channel_schemas.cpp). Which channel carries which is declared in one
-// table, the daemon's (daemon/telemetry_channels.cpp).
+// table, the daemon's (daemon/telemetry/telemetry_channels.cpp).
 enum class Schema {
   SceneUpdate,        // foxglove.SceneUpdate
   PointCloud,         // foxglove.PointCloud

@@ -43,7 +43,7 @@ inline constexpr std::string_view kRawSchemaNmea = "fsd.raw.nmea";              
 inline constexpr std::string_view kRawSchemaJpeg = "fsd.raw.jpeg";                     // one JPEG frame
 inline constexpr std::string_view kRawSchemaVcuRx = "fsd.raw.vcu_rx";                  // bytes from the VCU
 inline constexpr std::string_view kRawSchemaVcuTx = "fsd.raw.vcu_tx";                  // bytes to the VCU
-// The simulator's ground truth, raw frames too (daemon/truth_frames.hpp).
+// The simulator's ground truth, raw frames too (daemon/feeders/truth_frames.hpp).
 inline constexpr std::string_view kRawSchemaTruthState = "fsd.raw.truth_state";
 inline constexpr std::string_view kRawSchemaTruthCones = "fsd.raw.truth_cones";
 inline constexpr std::string_view kRawSchemaTruthScan = "fsd.raw.truth_scan";

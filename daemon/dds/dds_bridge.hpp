@@ -18,7 +18,7 @@
 #include <string>
 
 #include "daemon/dds/dds_settings.hpp"
-#include "daemon/raw_frame.hpp"
+#include "daemon/stack/raw_frame.hpp"
 
 namespace fsd {
 class Stack;

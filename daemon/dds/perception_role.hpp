@@ -18,7 +18,7 @@
 #include <memory>
 
 #include "common/config.hpp"
-#include "daemon/run_options.hpp"
+#include "daemon/cli/run_options.hpp"
 
 namespace fsd::dds {
 

@@ -12,8 +12,8 @@
 #include "common/logging.hpp"
 #include "daemon/dds/dds_bridge.hpp"
 #include "daemon/dds/remote_perception.hpp"
-#include "daemon/settings.hpp"
-#include "daemon/stack.hpp"
+#include "daemon/stack/settings.hpp"
+#include "daemon/stack/stack.hpp"
 
 namespace fsd::dds {
 

@@ -23,7 +23,7 @@
 
 #include "common/config.hpp"
 #include "common/track.hpp"
-#include "drivers/sim/timing_gates.hpp"
+#include "drivers/sim/world/timing_gates.hpp"
 
 namespace fsd::sim {
 

@@ -19,8 +19,8 @@
 #include "common/config.hpp"
 #include "common/types.hpp"
 #include "common/wire/vcu_protocol.hpp"
-#include "drivers/sim/sink.hpp"
-#include "drivers/sim/vehicle_truth.hpp"
+#include "drivers/sim/sensors/sink.hpp"
+#include "drivers/sim/vehicle/vehicle_truth.hpp"
 
 namespace fsd::sim {
 

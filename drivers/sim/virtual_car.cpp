@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "common/logging.hpp"
-#include "drivers/sim/model_mismatch.hpp"
+#include "drivers/sim/vehicle/model_mismatch.hpp"
 
 namespace fsd::sim {
 

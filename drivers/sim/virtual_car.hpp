@@ -10,14 +10,14 @@
 #include "common/config.hpp"
 #include "common/track.hpp"
 #include "common/types.hpp"
-#include "drivers/sim/camera_model.hpp"
 #include "drivers/sim/fault_schedule.hpp"
-#include "drivers/sim/gnss_model.hpp"
-#include "drivers/sim/lidar_model.hpp"
-#include "drivers/sim/sink.hpp"
+#include "drivers/sim/sensors/camera_model.hpp"
+#include "drivers/sim/sensors/gnss_model.hpp"
+#include "drivers/sim/sensors/lidar_model.hpp"
+#include "drivers/sim/sensors/sink.hpp"
 #include "drivers/sim/vcu_standin.hpp"
-#include "drivers/sim/vehicle_model.hpp"
-#include "drivers/sim/world.hpp"
+#include "drivers/sim/vehicle/vehicle_model.hpp"
+#include "drivers/sim/world/world.hpp"
 
 namespace fsd::sim {
 

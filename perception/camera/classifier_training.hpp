@@ -3,7 +3,7 @@
 // model using OpenCV tools"): HOG features of labelled ROIs, a linear C-SVM from cv::ml::SVM, and the confusion of a
 // model on held-back samples. Deterministic: the same samples in the same order give the same model.
 // Where the samples come from (the virtual car's camera, a folder of real crops) is the daemon's business
-// (daemon/classifier_training_set.hpp, `fsd train-classifier`).
+// (daemon/cli/classifier_training_set.hpp, `fsd train-classifier`).
 #include <cstddef>
 #include <string>
 #include <vector>

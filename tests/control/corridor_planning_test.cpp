@@ -1,5 +1,5 @@
 // Lap 1's planner on hand-made corridors that sit at the rules' limits, each judged by the simulator's own contact
-// test (the car's rectangle as the virtual car draws it, against each cone's disc: drivers/sim/cone_geometry.hpp)
+// test (the car's rectangle as the virtual car draws it, against each cone's disc: drivers/sim/world/cone_geometry.hpp)
 // and by the steering's reach, computed here from the path's points:
 //   - a constant turn at the rules' 9 m outside diameter, 3 m lane, the car starting inside it;
 //   - an S of two such hairpins with no straight between them;
@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "control/planning/realtime_planner.hpp"
-#include "drivers/sim/cone_geometry.hpp"
+#include "drivers/sim/world/cone_geometry.hpp"
 
 namespace fsd {
 namespace {
@@ -123,8 +123,8 @@ TEST(CorridorPlanning, AnSOfTwoHairpinsAtTheRulesTightestWithNoStraightBetween) 
     cones.push_back(cone({x, 1.5}, left));
     cones.push_back(cone({x, -1.5}, right));
   }
-  ring(cones, {0, 3}, 1.5, -kPi / 2, kPi / 2, 1.2, left);     // inside of the left hairpin
-  ring(cones, {0, 3}, 4.5, -kPi / 2, kPi / 2, 1.8, right);    // its outside
+  ring(cones, {0, 3}, 1.5, -kPi / 2, kPi / 2, 1.2, left);        // inside of the left hairpin
+  ring(cones, {0, 3}, 4.5, -kPi / 2, kPi / 2, 1.8, right);       // its outside
   ring(cones, {0, 9}, 1.5, -kPi / 2, -3 * kPi / 2, 1.2, right);  // the right hairpin, round the other way
   ring(cones, {0, 9}, 4.5, -kPi / 2, -3 * kPi / 2, 1.8, left);
   for (double x = 0.0; x <= 12.0; x += 4.0) {

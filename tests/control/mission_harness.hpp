@@ -1,5 +1,5 @@
 #pragma once
-// A closed loop for the control tests: the daemon's own Stack (daemon/stack.hpp) driving the bicycle car of
+// A closed loop for the control tests: the daemon's own Stack (daemon/stack/stack.hpp) driving the bicycle car of
 // bicycle_sim.hpp, fed as the virtual car feeds it but without its cost: the true state and the true cones as truth
 // frames (the truth sources: an ideal detector with the harness's sensor range and no noise, at 10 Hz), NMEA epochs
 // at 50 Hz whose fix quality follows gnss_good(t), and a VCU stand-in with the Formula Student AS state machine
@@ -17,10 +17,10 @@
 #include "common/wire/nmea.hpp"
 #include "common/wire/vcu_protocol.hpp"
 #include "control/autopilot.hpp"
-#include "daemon/settings.hpp"
-#include "daemon/stack.hpp"
-#include "daemon/truth_frames.hpp"
-#include "drivers/sim/reference_line.hpp"
+#include "daemon/feeders/truth_frames.hpp"
+#include "daemon/stack/settings.hpp"
+#include "daemon/stack/stack.hpp"
+#include "drivers/sim/world/reference_line.hpp"
 #include "tests/control/bicycle_sim.hpp"
 #include "tests/control/track_truth.hpp"
 

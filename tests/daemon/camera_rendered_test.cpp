@@ -9,9 +9,9 @@
 #include <map>
 #include <string>
 
-#include "daemon/classifier_training_set.hpp"
-#include "daemon/cone_classifier_file.hpp"
-#include "daemon/rendered_camera_scenes.hpp"
+#include "daemon/cli/classifier_training_set.hpp"
+#include "daemon/cli/rendered_camera_scenes.hpp"
+#include "daemon/stack/cone_classifier_file.hpp"
 
 namespace fsd {
 namespace {

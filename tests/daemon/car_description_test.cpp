@@ -6,7 +6,7 @@
 
 #include "common/car.hpp"
 #include "control/control_config.hpp"
-#include "daemon/settings.hpp"
+#include "daemon/stack/settings.hpp"
 #include "drivers/gnss/gnss_config.hpp"
 #include "drivers/sim/virtual_car.hpp"
 #include "drivers/vlp16/config.hpp"

@@ -2,7 +2,7 @@
 // driven lines, checked against hand-made control cycles.
 #include <gtest/gtest.h>
 
-#include "daemon/dashboard_view.hpp"
+#include "daemon/telemetry/dashboard_view.hpp"
 
 namespace fsd {
 namespace {

@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drivers/sim/lidar_model.hpp"
-#include "drivers/sim/pcap_writer.hpp"
+#include "drivers/sim/sensors/lidar_model.hpp"
+#include "drivers/sim/sensors/pcap_writer.hpp"
 #include "drivers/vlp16/pcap_dump.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"

@@ -29,13 +29,13 @@
 #include <opencv2/videoio.hpp>
 
 #include "common/wire/vcu_protocol.hpp"
-#include "daemon/gnss_state.hpp"
-#include "daemon/hardware_run.hpp"
-#include "daemon/hardware_stats.hpp"
+#include "daemon/feeders/hardware_run.hpp"
+#include "daemon/feeders/hardware_stats.hpp"
+#include "daemon/stack/gnss_state.hpp"
 #include "drivers/serial/pseudo_terminal.hpp"
-#include "drivers/sim/gnss_model.hpp"
+#include "drivers/sim/sensors/gnss_model.hpp"
 #include "drivers/sim/vcu_standin.hpp"
-#include "drivers/sim/vehicle_truth.hpp"
+#include "drivers/sim/vehicle/vehicle_truth.hpp"
 #include "drivers/vlp16/pcap_reader.hpp"
 #include "tests/daemon/dashboard_client.hpp"
 #include "tests/daemon/fsd_child.hpp"

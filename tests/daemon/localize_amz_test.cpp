@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "daemon/localize_replay.hpp"
+#include "daemon/cli/localize_replay.hpp"
 
 namespace fsd {
 namespace {

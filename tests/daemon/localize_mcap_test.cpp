@@ -10,8 +10,8 @@
 #include <string>
 
 #include "common/mcap/byte_io.hpp"
-#include "daemon/recording_reader.hpp"
-#include "daemon/truth_frames.hpp"
+#include "daemon/feeders/truth_frames.hpp"
+#include "daemon/recording/recording_reader.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
 

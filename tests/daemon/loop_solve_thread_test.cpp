@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "daemon/loop_solve_thread.hpp"
+#include "daemon/stack/loop_solve_thread.hpp"
 #include "tests/wait_until.hpp"
 
 namespace fsd {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/track.hpp"
-#include "daemon/map_export.hpp"
+#include "daemon/scoring/map_export.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/map_score.hpp"
+#include "daemon/scoring/map_score.hpp"
 #include "tests/cone_at.hpp"
 
 namespace fsd {

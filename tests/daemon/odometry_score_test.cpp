@@ -1,6 +1,6 @@
 // The scorecard's "odometry" section against hand-computed figures: a scale error shows as drift per distance, a
 // constant offset or a rotated start frame does not drift, and the pose pairs are thinned by distance.
-#include "daemon/odometry_score.hpp"
+#include "daemon/scoring/odometry_score.hpp"
 
 #include <gtest/gtest.h>
 

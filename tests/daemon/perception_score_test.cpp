@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/perception_score.hpp"
+#include "daemon/scoring/perception_score.hpp"
 #include "tests/cone_at.hpp"
 
 namespace fsd {

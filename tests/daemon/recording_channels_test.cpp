@@ -1,4 +1,4 @@
-// The derived channels of a recording (daemon/derived_channels.hpp): what the Stack made of its frames, the log and
+// The derived channels of a recording (daemon/recording/derived_channels.hpp): what the Stack made of its frames, the log and
 // the parameter changes, JSON-encoded with the dashboard's schemas so that Foxglove Studio shows them. Read back
 // with the MCAP reader and compared with what went in, or with the simulator's truth.
 #include <gtest/gtest.h>
@@ -13,8 +13,8 @@
 
 #include "common/mcap/linear_reader.hpp"
 #include "common/params.hpp"
-#include "daemon/recorder.hpp"
-#include "daemon/telemetry.hpp"
+#include "daemon/recording/recorder.hpp"
+#include "daemon/telemetry/telemetry.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -1,11 +1,11 @@
-// The recorder's own messages (daemon/recording_format.hpp) against bytes worked out by hand from the layout, and
+// The recorder's own messages (daemon/recording/recording_format.hpp) against bytes worked out by hand from the layout, and
 // the decoders' refusals of anything malformed.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/recorder.hpp"
-#include "daemon/recording_format.hpp"
+#include "daemon/recording/recorder.hpp"
+#include "daemon/recording/recording_format.hpp"
 
 namespace fsd {
 namespace {

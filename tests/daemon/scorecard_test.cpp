@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/scorecard.hpp"
+#include "daemon/scoring/scorecard.hpp"
 
 namespace fsd {
 namespace {

@@ -7,9 +7,9 @@
 
 #include "common/params.hpp"
 #include "control/control_config.hpp"
-#include "daemon/settings.hpp"
-#include "daemon/stack.hpp"
-#include "daemon/truth_frames.hpp"
+#include "daemon/feeders/truth_frames.hpp"
+#include "daemon/stack/settings.hpp"
+#include "daemon/stack/stack.hpp"
 #include "tests/control/mission_harness.hpp"
 
 namespace fsd {

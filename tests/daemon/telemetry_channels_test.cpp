@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/derived_channels.hpp"
-#include "daemon/telemetry_channels.hpp"
+#include "daemon/recording/derived_channels.hpp"
+#include "daemon/telemetry/telemetry_channels.hpp"
 
 namespace fsd {
 namespace {

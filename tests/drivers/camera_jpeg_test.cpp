@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "drivers/camera/jpeg_frame.hpp"
-#include "drivers/sim/camera_model.hpp"
+#include "drivers/sim/sensors/camera_model.hpp"
 
 namespace fsd {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "tests/scratch_dir.hpp"
 
-#include "drivers/sim/pcap_writer.hpp"
+#include "drivers/sim/sensors/pcap_writer.hpp"
 #include "drivers/vlp16/pcap_dump.hpp"
 #include "drivers/vlp16/pcap_reader.hpp"
 #include "drivers/vlp16/pcap_revolution.hpp"

@@ -15,7 +15,7 @@
 #include "common/mcap/linear_reader.hpp"
 #include "common/mcap/recover.hpp"
 #include "common/mcap/summary_reader.hpp"
-#include "daemon/recording_reader.hpp"
+#include "daemon/recording/recording_reader.hpp"
 
 namespace {
 

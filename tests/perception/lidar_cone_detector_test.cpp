@@ -18,7 +18,7 @@ using test::SceneObject;
 
 const Pose3 kMount = pose_zyx(Vec3(2.0, 0.0, 0.35), 0, 0, 0);
 
-// FSG paint as the virtual car models it (drivers/sim/cone_geometry.cpp): blue 22 with a white stripe 95, yellow
+// FSG paint as the virtual car models it (drivers/sim/world/cone_geometry.cpp): blue 22 with a white stripe 95, yellow
 // 70 with a black stripe 8, stripe over 0.38-0.62 of the height.
 SceneObject painted(SceneObject o, double body, double stripe) {
   o.reflectivity = body, o.stripe_reflectivity = stripe, o.stripe_low = 0.38, o.stripe_high = 0.62;

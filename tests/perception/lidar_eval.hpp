@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/types.hpp"
 #include "common/cone_pairing.hpp"
-#include "daemon/perception_score.hpp"
+#include "common/types.hpp"
+#include "daemon/scoring/perception_score.hpp"
 
 namespace fsd::test {
 

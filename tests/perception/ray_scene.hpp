@@ -12,7 +12,7 @@
 
 #include "common/rotation.hpp"
 #include "common/types.hpp"
-#include "drivers/sim/cone_geometry.hpp"
+#include "drivers/sim/world/cone_geometry.hpp"
 
 namespace fsd::test {
 

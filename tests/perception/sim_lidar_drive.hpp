@@ -11,9 +11,9 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
-#include "drivers/sim/lidar_model.hpp"
-#include "drivers/sim/reference_line.hpp"
-#include "drivers/sim/world.hpp"
+#include "drivers/sim/sensors/lidar_model.hpp"
+#include "drivers/sim/world/reference_line.hpp"
+#include "drivers/sim/world/world.hpp"
 #include "drivers/vlp16/config.hpp"
 #include "drivers/vlp16/scan_builder.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drivers/sim/camera_model_config.hpp"
+#include "drivers/sim/sensors/camera_model_config.hpp"
 
 namespace fsd::sim {
 namespace {

@@ -4,7 +4,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "drivers/sim/camera_model.hpp"
+#include "drivers/sim/sensors/camera_model.hpp"
 
 namespace fsd::sim::test {
 

@@ -8,7 +8,7 @@
 #include "common/wire/nmea.hpp"
 #include "drivers/gnss/gnss_driver.hpp"
 #include "drivers/gnss/nmea_sentences.hpp"
-#include "drivers/sim/gnss_model.hpp"
+#include "drivers/sim/sensors/gnss_model.hpp"
 
 namespace fsd::sim {
 namespace {

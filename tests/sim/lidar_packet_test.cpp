@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/wire/vlp16_format.hpp"
-#include "drivers/sim/lidar_model.hpp"
+#include "drivers/sim/sensors/lidar_model.hpp"
 #include "tests/sim/world_test_util.hpp"
 
 namespace fsd::sim {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "drivers/sim/lidar_model.hpp"
-#include "drivers/sim/pcap_writer.hpp"
+#include "drivers/sim/sensors/lidar_model.hpp"
+#include "drivers/sim/sensors/pcap_writer.hpp"
 #include "tests/scratch_dir.hpp"
 #include "tests/sim/world_test_util.hpp"
 

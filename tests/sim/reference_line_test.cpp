@@ -5,8 +5,8 @@
 #include <limits>
 #include <numbers>
 
-#include "drivers/sim/reference_line.hpp"
-#include "drivers/sim/track_generator.hpp"
+#include "drivers/sim/track_generator/track_generator.hpp"
+#include "drivers/sim/world/reference_line.hpp"
 
 namespace fsd::sim {
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "drivers/sim/timing_gates.hpp"
+#include "drivers/sim/world/timing_gates.hpp"
 
 namespace fsd::sim {
 namespace {

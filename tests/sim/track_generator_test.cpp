@@ -12,7 +12,7 @@
 #include <string>
 
 #include "common/track.hpp"
-#include "drivers/sim/track_generator.hpp"
+#include "drivers/sim/track_generator/track_generator.hpp"
 #include "tests/scratch_dir.hpp"
 #include "tests/sim/layout_rules.hpp"
 

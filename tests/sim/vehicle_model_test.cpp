@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drivers/sim/vehicle_model.hpp"
+#include "drivers/sim/vehicle/vehicle_model.hpp"
 #include "tests/sim/vehicle_test_helpers.hpp"
 
 namespace fsd::sim {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "drivers/sim/vehicle_model.hpp"
+#include "drivers/sim/vehicle/vehicle_model.hpp"
 #include "tests/sim/vehicle_test_helpers.hpp"
 
 namespace fsd::sim {

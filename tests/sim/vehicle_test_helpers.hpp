@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "drivers/sim/vehicle_model.hpp"
+#include "drivers/sim/vehicle/vehicle_model.hpp"
 
 namespace fsd::sim::test {
 

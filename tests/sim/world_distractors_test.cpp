@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "drivers/sim/world.hpp"
+#include "drivers/sim/world/world.hpp"
 
 namespace fsd::sim {
 namespace {

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "drivers/sim/world.hpp"
+#include "drivers/sim/world/world.hpp"
 #include "tests/sim/world_test_util.hpp"
 
 namespace fsd::sim {

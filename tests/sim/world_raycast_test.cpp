@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "drivers/sim/world.hpp"
-#include "drivers/sim/world_random.hpp"
+#include "drivers/sim/world/world.hpp"
+#include "drivers/sim/world/world_random.hpp"
 #include "tests/sim/world_test_util.hpp"
 
 namespace fsd::sim {

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "common/track.hpp"
-#include "drivers/sim/world.hpp"
+#include "drivers/sim/world/world.hpp"
 
 namespace fsd::sim::test {
 

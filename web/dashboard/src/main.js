@@ -10,7 +10,7 @@ import { ParamPanel } from './params.js';
 const $ = (id) => document.getElementById(id);
 const RAD2DEG = 180 / Math.PI;
 
-// The page subscribes to what the daemon advertises (its channel table, daemon/telemetry_channels.cpp) and shows
+// The page subscribes to what the daemon advertises (its channel table, daemon/telemetry/telemetry_channels.cpp) and shows
 // each message by its schema, so a new channel of a known schema needs no change here. The simulator's ground
 // truth (/truth/*, sim runs only) is subscribed while the truth overlay is on.
 const isTruth = (topic) => topic.startsWith('/truth/');

@@ -1,0 +1,72 @@
+#include "daemon/stack/fused_localization.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fsd {
+
+FusedLocalization::FusedLocalization(const Config& cfg) {
+  const auto fc = fusion::read_fusion_config(cfg);
+  filter_ = fusion::make_fusion_filter(fc.common.filter, fc);
+  lidar_odometry_ = fc.common.lidar_odometry;
+}
+
+void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu,
+                            const std::optional<fusion::OdometryIncrement>& odometry) {
+  std::vector<fusion::Measurement> ms;
+  if (odometry && lidar_odometry_) {
+    // A scan is complete only when the next one's first packet arrives, so its last firing can be a few ms older
+    // than what the filter has taken (dropped as out of order). The mean velocity over the scan is what the
+    // increment says: it is applied at the filter's time, its interval kept.
+    fusion::OdometryIncrement o = *odometry;
+    const double late = newest_ - o.t1;
+    if (late > 0) o.t0 += late, o.t1 += late;
+    ms.emplace_back(o);
+  }
+  for (const auto& s : gnss) {
+    if (s.yaw_rate_valid && std::isfinite(s.yaw_rate))
+      ms.emplace_back(fusion::ImuSample{s.stamp, Vec3(0, 0, s.yaw_rate), Vec3::Zero()});
+    fusion::GnssFix f;
+    f.t = s.stamp;
+    f.position = s.enu.head<2>();
+    f.fix_quality = s.fix_quality;
+    f.age_s = s.age_s;
+    f.heading_valid = s.heading_valid;
+    f.heading = s.heading;
+    // Speed and course: the velocity over ground (a course is only given when moving).
+    f.velocity_valid = s.velocity_valid && s.speed > 0.5 && std::isfinite(s.speed) && std::isfinite(s.course);
+    if (f.velocity_valid) f.velocity = s.speed * Vec2(std::cos(s.course), std::sin(s.course));
+    ms.emplace_back(f);
+  }
+  if (vcu && vcu->stamp > last_vcu_) {
+    last_vcu_ = vcu->stamp;
+    fusion::BodySpeed b;
+    b.t = vcu->stamp;
+    b.source = fusion::BodySpeed::Source::Wheels;
+    b.vx = vcu->rear_axle_speed();  // the reference point's speed
+    b.has_vy = false;
+    ms.emplace_back(b);
+  }
+  std::stable_sort(ms.begin(), ms.end(), [](const fusion::Measurement& a, const fusion::Measurement& b) {
+    return fusion::stamp_of(a) < fusion::stamp_of(b);
+  });
+  for (const auto& m : ms) {
+    newest_ = std::max(newest_, fusion::stamp_of(m));
+    filter_->add(m);
+  }
+}
+
+std::optional<VehicleState> FusedLocalization::state(double steering_measured) const {
+  const auto e = filter_->state();
+  if (!e.initialised) return std::nullopt;
+  VehicleState v;
+  v.stamp = e.stamp;
+  v.pose = e.pose;
+  v.vx = e.vx;
+  v.vy = e.vy;
+  v.yaw_rate = e.yaw_rate;
+  v.steering = std::isfinite(steering_measured) ? steering_measured : 0.0;
+  return v;
+}
+
+}  // namespace fsd

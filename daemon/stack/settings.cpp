@@ -1,0 +1,92 @@
+#include "daemon/stack/settings.hpp"
+
+#include "common/car.hpp"
+
+#include "control/control_config.hpp"
+#include "daemon/dds/dds_settings.hpp"
+#include "daemon/recording/recorder.hpp"
+#include "daemon/service/service_settings.hpp"
+#include "daemon/stack/lidar_localization.hpp"
+#include "drivers/camera/camera_source.hpp"
+#include "drivers/gnss/gnss_config.hpp"
+#include "drivers/sim/virtual_car.hpp"
+#include "drivers/vcu/vcu_config.hpp"
+#include "drivers/vlp16/config.hpp"
+#include "localization/cone_map.hpp"
+#include "localization/fusion/fusion_config.hpp"
+#include "localization/loop_closure/loop_closure_config.hpp"
+#include "localization/map_match.hpp"
+#include "perception/camera/camera_stage.hpp"
+#include "perception/lidar_cone_detector.hpp"
+#include "perception/truth_perception.hpp"
+#include "web/config.hpp"
+
+namespace fsd {
+
+const ConfigSection<DaemonSettings>& daemon_section() {
+  static const auto s = ConfigSection<DaemonSettings>("daemon").string(
+      "log_level", &DaemonSettings::log_level, {"trace", "debug", "info", "warn", "error", "critical", "off"},
+      "Log level of every component (stderr).");
+  return s;
+}
+
+const ConfigSection<RunSettings>& run_section() {
+  static const auto s =
+      ConfigSection<RunSettings>("run")
+          .string("track", &RunSettings::track, {},
+                  "Track file (EUFS/FSDS CSV) for the virtual car, relative to the working directory.")
+          .string("mission", &RunSettings::mission,
+                  {"trackdrive", "autocross", "acceleration", "skidpad", "inspection", "ebs_test"},
+                  "Mission selected at start.")
+          .integer("laps", &RunSettings::laps, 1, 100, "laps", "Laps of trackdrive (FSAC 2017: 2, FSG: 10).")
+          .integer("seed", &RunSettings::seed, 0, 1000000000, "", "Seed of every random process of the virtual car.")
+          .string("colours", &RunSettings::colours, {"fsg", "fsac"},
+                  "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
+          .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera", "dds"},
+                  "Where cone detections come from: truth = the virtual car's cones within sensor range (on the car, "
+                  "which has no truth: lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the "
+                  "LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
+                  "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
+                  "drivers.camera.calibration on the car); dds = the frames of a perception process (fsd run --role "
+                  "perception) over DDS (split mode, docs/dds.md).")
+          .string("localization_source", &RunSettings::localization_source,
+                  {"truth", "gnss", "fused", "lidar_odometry"},
+                  "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
+                  "gnss = the GNSS-INS pose as reported; fused = GNSS-INS and the VCU's wheel speeds through the "
+                  "fusion filter (localization.fusion.*), bridging bad or missing fixes; lidar_odometry = the "
+                  "LiDAR odometry alone (localization.lidar_odometry.*), integrated from localization.start.*.")
+          .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
+                  "Headless runs give up after this much simulated time.")
+          .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",
+                  "On the car: period of the log line with every driver's rates and error counters.");
+  return s;
+}
+
+std::shared_ptr<const ConfigSchema> config_schema() {
+  auto schema = std::make_shared<ConfigSchema>();
+  daemon_section().describe(*schema);
+  run_section().describe(*schema);
+  describe_car(*schema);
+  record_section().describe(*schema);
+  truth_perception_section().describe(*schema);
+  cone_map_section().describe(*schema);
+  map_match_section().describe(*schema);
+  fusion::describe_fusion_config(*schema);
+  start_pose_section().describe(*schema);
+  lidar_odometry::describe_lidar_odometry_config(*schema);
+  loop_closure::describe_loop_closure_config(*schema);
+  describe_camera_stage(*schema);
+  describe_lidar_detector_config(*schema);
+  sim::describe_virtual_car_config(*schema);
+  describe_control(*schema);
+  web::web_section().describe(*schema);
+  vcu_section().describe(*schema);
+  gnss_section().describe(*schema);
+  vlp16_section().describe(*schema);
+  camera_driver_section().describe(*schema);
+  dds::dds_section().describe(*schema);
+  service_section().describe(*schema);
+  return schema;
+}
+
+}  // namespace fsd
