@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "control/planning/smoothing.hpp"
@@ -29,26 +30,49 @@ std::optional<Vec2> kasa_centre(const std::vector<Vec2>& pts) {
 }
 
 // Two concentric rings: the split into inner and outer by distance from the current centre, then one linear
-// fit of the shared centre and both radii; a few rounds settle the split.
+// fit of the shared centre and both radii; a few rounds settle the split. A cone that is not on either ring (a
+// ghost, a cone of the entry or exit lane, one whose colour was misread so that it counts on the wrong side) would
+// pull a least-squares fit by metres: each round leaves out the cones farther from their ring than three times the
+// median distance (at least `kRingTolerance`), and the fit is refused when fewer than three stay on a ring.
+constexpr double kRingTolerance = 0.5;                    // m
+constexpr double kMaxUnseenArc = 0.6 * std::numbers::pi;  // rad of a circle with no cone kept on it
+
 std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
   auto centre = kasa_centre(pts);
   if (!centre || pts.size() < 6) return std::nullopt;
   SkidpadCircle c;
-  for (int round = 0; round < 5; ++round) {
+  std::vector<bool> use(pts.size(), true);
+  bool fitted = false;
+  for (int round = 0; round < 8; ++round) {
     std::vector<double> d;
     for (const auto& p : pts) d.push_back((p - *centre).norm());
-    const auto [mn, mx] = std::minmax_element(d.begin(), d.end());
-    const double split = 0.5 * (*mn + *mx);
+    // First between the quartiles of the distances (a stray cone at the centre or far out does not move it), then
+    // between the fitted radii.
+    std::vector<double> sorted = d;
+    std::sort(sorted.begin(), sorted.end());
+    const double quartiles = 0.5 * (sorted[sorted.size() / 4] + sorted[sorted.size() * 3 / 4]);
+    const double split = fitted ? 0.5 * (c.inner_radius + c.outer_radius) : quartiles;
+    if (fitted) {  // leave out what lies off both rings, the bound shrinking as the fit settles
+      std::vector<double> res(pts.size()), kept;
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        res[i] = std::abs(d[i] - (d[i] < split ? c.inner_radius : c.outer_radius));
+        if (use[i]) kept.push_back(res[i]);
+      }
+      std::nth_element(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2), kept.end());
+      const double bound = std::max(kRingTolerance, 3.0 * kept[kept.size() / 2]);
+      for (std::size_t i = 0; i < pts.size(); ++i) use[i] = res[i] <= bound;
+    }
     Eigen::MatrixXd A(static_cast<Eigen::Index>(pts.size()), 4);
     Eigen::VectorXd b(static_cast<Eigen::Index>(pts.size()));
     int inner = 0, outer = 0;
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const auto k = static_cast<Eigen::Index>(i);
       const bool in = d[i] < split;
-      inner += in;
-      outer += !in;
-      A.row(k) << 2 * pts[i].x(), 2 * pts[i].y(), in ? 1.0 : 0.0, in ? 0.0 : 1.0;
-      b(k) = pts[i].squaredNorm();
+      const double w = use[i] ? 1.0 : 0.0;
+      inner += use[i] && in;
+      outer += use[i] && !in;
+      A.row(k) << w * 2 * pts[i].x(), w * 2 * pts[i].y(), w * (in ? 1.0 : 0.0), w * (in ? 0.0 : 1.0);
+      b(k) = w * pts[i].squaredNorm();
     }
     if (inner < 3 || outer < 3) return std::nullopt;
     const Eigen::Vector4d x = A.colPivHouseholderQr().solve(b);
@@ -58,9 +82,18 @@ std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
     if (r2_in <= 0 || r2_out <= 0) return std::nullopt;
     c.inner_radius = std::sqrt(r2_in);
     c.outer_radius = std::sqrt(r2_out);
+    fitted = true;
   }
+  // Rings fitted to a short arc can have any size and centre: the cones kept must go at least half way round.
+  std::vector<double> angles;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (use[i]) angles.push_back(std::atan2(pts[i].y() - centre->y(), pts[i].x() - centre->x()));
+  std::sort(angles.begin(), angles.end());
+  double widest_gap = angles.front() + 2 * std::numbers::pi - angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i) widest_gap = std::max(widest_gap, angles[i] - angles[i - 1]);
+  if (widest_gap > kMaxUnseenArc) return std::nullopt;
   c.centre = *centre;
-  c.cones = static_cast<int>(pts.size());
+  c.cones = static_cast<int>(angles.size());
   return c;
 }
 
@@ -92,11 +125,14 @@ std::optional<SkidpadGeometry> fit_skidpad(const std::vector<Cone>& cones, const
   g.crossing = 0.5 * (r->centre + l->centre);
   const Vec2 across = l->centre - r->centre;  // right → left
   const double d = across.norm();
-  if (d < 10.0 || d > 30.0) return fail("circle centres " + std::to_string(d) + " m apart (expected ~18.25 m)");
+  // The rules fix the skid pad (centres 18.25 m apart, a 3 m lane between rings of 15.25 and 21.25 m diameter): a
+  // fit far from that is of too little of the rings (from the entry lane the near arcs fit rings of any size), and
+  // is refused until more of them is seen.
+  if (std::abs(d - 18.25) > 2.0) return fail("circle centres " + std::to_string(d) + " m apart (expected ~18.25 m)");
   g.forward = Vec2(across.y(), -across.x()) / d;
   if (g.forward.dot(Vec2(std::cos(start.yaw), std::sin(start.yaw))) < 0) g.forward = -g.forward;
   for (const auto* c : {&g.right, &g.left})
-    if (c->inner_radius >= c->outer_radius || c->outer_radius - c->inner_radius > 6.0)
+    if (std::abs(c->outer_radius - c->inner_radius - 3.0) > 1.0)
       return fail("ring radii implausible (" + std::to_string(c->inner_radius) + ", " +
                   std::to_string(c->outer_radius) + ")");
   return g;

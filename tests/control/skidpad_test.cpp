@@ -12,7 +12,6 @@
 namespace fsd {
 namespace {
 
-
 TEST(Skidpad, EpflCirclesMatchTheRules) {
   const Track t = test::shared_track("epfl_skidpad");
   std::string why;
@@ -47,6 +46,52 @@ TEST(Skidpad, EverySharedSkidpadGivesTheRuleRadius) {
     // The right circle is on the right of the start heading.
     EXPECT_LT(t.start.inverse_transform(g->right.centre).y(), 0);
   }
+}
+
+// Cones on neither ring (ghosts, a cone of the exit lane seen on a circle's side, one put down by hand a metre
+// off) must not pull the fit: epfl_skidpad's true geometry with four such cones added, two on each side.
+TEST(Skidpad, StrayConesDoNotMoveTheCircles) {
+  const Track t = test::shared_track("epfl_skidpad");
+  std::vector<Cone> cones = cones_of(t);
+  for (const Vec2& p : {Vec2(9.125, 15.0), Vec2(4.0, 9.0), Vec2(-9.125 + 2.0, 15.0 - 1.0), Vec2(-3.0, 22.0)}) {
+    Cone c;
+    c.position = Vec3(p.x(), p.y(), 0.0);
+    c.colour = ConeColour::Blue;
+    cones.push_back(c);
+  }
+  std::string why;
+  const auto g = fit_skidpad(cones, t.start, t.convention, &why);
+  ASSERT_TRUE(g) << why;
+  EXPECT_NEAR(g->right.centre.x(), 9.125, 0.05);
+  EXPECT_NEAR(g->right.centre.y(), 15.0, 0.05);
+  EXPECT_NEAR(g->left.centre.x(), -9.125, 0.05);
+  EXPECT_NEAR(g->left.centre.y(), 15.0, 0.05);
+  for (const auto* c : {&g->right, &g->left}) EXPECT_NEAR(c->centre_line_radius(), 9.125, 0.05);
+}
+
+// From the start, the LiDAR sees the near arcs of the rings first. Two rings fitted to a short arc can have any size:
+// such a fit is refused, never taken for the skid pad (the fit from every cone within reach, as the car drives up
+// the entry lane, is either refused or within 0.3 m of the true centres).
+TEST(Skidpad, APartialViewIsRefusedOrRight) {
+  const Track t = test::shared_track("amz_fssim_skidpad");
+  const auto truth = fit_skidpad(cones_of(t), t.start, t.convention);
+  ASSERT_TRUE(truth);
+  int refused = 0, fitted = 0;
+  for (double reach = 8.0; reach <= 30.0; reach += 1.0) {
+    std::vector<Cone> seen;
+    for (const Cone& c : cones_of(t))
+      if ((c.position.head<2>() - t.start.position()).norm() <= reach) seen.push_back(c);
+    const auto g = fit_skidpad(seen, t.start, t.convention);
+    if (!g) {
+      ++refused;
+      continue;
+    }
+    ++fitted;
+    EXPECT_LT((g->right.centre - truth->right.centre).norm(), 0.3) << "reach " << reach;
+    EXPECT_LT((g->left.centre - truth->left.centre).norm(), 0.3) << "reach " << reach;
+  }
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(fitted, 0);
 }
 
 TEST(Skidpad, FigureOfEightPath) {
