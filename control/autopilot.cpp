@@ -193,7 +193,7 @@ ControlOutput Autopilot::step(Stamp now) {
 
   // The mission's path: the real-time plan (plan()), the recorded lap, a lane, a skid pad's figure of eight.
   const MissionPath mission_path = run_->update_path(in);
-  if (mission_path.replaced) follower_.reset();
+  if (mission_path.replaced) follower_.reset(mission_path.resume_s);
   // The mission's own paths count as plans for the watchdog while they exist.
   if (mission_path.fixed) supervisor_.heartbeat(InputStream::Plan, now);
   report(now, mission_path.faults);

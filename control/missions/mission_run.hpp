@@ -65,6 +65,7 @@ struct MissionPath {
   bool fixed = false;     // a path of the mission's own exists (lane, figure of eight, run-out): it counts as a
                           // plan for the supervisor's watchdog
   bool replaced = false;  // the mission's own path was replaced: the follower starts afresh
+  std::optional<double> resume_s;  // ... near this far along the new path, when the mission knows
   std::vector<MissionFault> faults;
 };
 

@@ -30,6 +30,9 @@ MissionPath SkidpadMission::update_path(const MissionInput& in) {
         plan_speed_ = std::max(0.0, in.state->speed());
         SpeedProfile(limits()).apply(plan.path, plan_speed_, 0.0);
         plan.path.stamp = in.cones_stamp;
+        // The car is on the entry (before the first crossing): its place on the new figure is looked for there.
+        if (const auto at = project(plan.path, in.state->pose.position(), 0.0, 0.0, plan.crossing_s[0]))
+          out.resume_s = at->s;
         geometry_ = g;
         plan_ = std::move(plan);
         out.replaced = true;

@@ -67,7 +67,9 @@ FollowResult PathFollower::follow(const Path& path, const VehicleState& state, S
   const bool same_path =
       hint_ && hint_->stamp == path.stamp && hint_->size == path.points.size() && hint_->length == path.length();
   const auto proj = same_path ? project(path, pose.position(), hint_->s, config_.search_window, config_.search_window)
+                    : near_s_ ? project(path, pose.position(), *near_s_, config_.search_window, config_.search_window)
                               : project(path, pose.position());
+  near_s_.reset();
   if (!proj) return r;
   hint_ = Hint{path.stamp, path.points.size(), path.length(), proj->s};
   r.s = proj->s;

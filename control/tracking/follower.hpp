@@ -50,7 +50,7 @@ struct FollowerConfig {
   // Not a configuration key: the car's understeer gradient (control.speed.understeer), whose steer K·v²·κ the LQR
   // adds to its curvature feed-forward (a car that understeers needs more lock at speed than atan(L·κ)).
   double understeer = 0.0;  // rad per m/s²
-  double max_offset = 4.0;       // m: farther from the path is "off path" (result not ok)
+  double max_offset = 4.0;  // m: farther from the path is "off path" (result not ok)
 };
 
 struct FollowResult {
@@ -71,8 +71,12 @@ class PathFollower {
 
   // One control cycle. speed_cap bounds the target speed (mission or supervisor limits).
   FollowResult follow(const Path& path, const VehicleState& state, Stamp now, double speed_cap);
-  // Forgets the projection hint (a new mission path).
-  void reset() { hint_.reset(); }
+  // Forgets the projection hint (a new mission path). `near_s`: where along the next path the car is known to be
+  // (a figure of eight passes its crossing five times: a search over the whole path may pick the wrong pass).
+  void reset(std::optional<double> near_s = std::nullopt) {
+    hint_.reset();
+    near_s_ = near_s;
+  }
 
   const FollowerConfig& config() const { return config_; }
   void set_config(const FollowerConfig& c);  // unknown type strings keep the current law
@@ -91,6 +95,7 @@ class PathFollower {
     double s;
   };
   std::optional<Hint> hint_;
+  std::optional<double> near_s_;
 };
 
 }  // namespace fsd

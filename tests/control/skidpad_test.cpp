@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "control/missions/skidpad.hpp"
+#include "control/tracking/follower.hpp"
 #include "tests/control/track_truth.hpp"
 
 namespace fsd {
@@ -142,6 +143,28 @@ TEST(Skidpad, TooFewConesIsReported) {
   std::string why;
   EXPECT_FALSE(fit_skidpad(few, t.start, t.convention, &why));
   EXPECT_FALSE(why.empty());
+}
+
+// At the crossing the figure of eight passes the same place five times. A follower that starts afresh on a new
+// figure (a refit while the car is on the entry) is told where along it the car is, and its projection stays on
+// that pass; told the third pass, it takes the third.
+TEST(Skidpad, AFollowerToldWhereItIsStaysOnThatPass) {
+  const Track t = test::shared_track("amz_fssim_skidpad");
+  const auto g = fit_skidpad(cones_of(t), t.start, t.convention);
+  ASSERT_TRUE(g);
+  SkidpadPlan plan = skidpad_path(*g, t.start, 25.0, 0.25);
+  for (auto& q : plan.path.points) q.v = 4.0;
+  VehicleState at_crossing;
+  at_crossing.pose = Pose2{g->crossing.x() - 0.2 * g->forward.x(), g->crossing.y() - 0.2 * g->forward.y(),
+                           std::atan2(g->forward.y(), g->forward.x())};
+  at_crossing.vx = 4.0;
+  for (const int pass : {0, 2}) {
+    SCOPED_TRACE(pass);
+    PathFollower follower;
+    follower.reset(plan.crossing_s[static_cast<std::size_t>(pass)] - 0.2);
+    const FollowResult r = follower.follow(plan.path, at_crossing, 0.0, 10.0);
+    EXPECT_NEAR(r.s, plan.crossing_s[static_cast<std::size_t>(pass)], 1.0);
+  }
 }
 
 }  // namespace
