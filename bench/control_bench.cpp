@@ -11,9 +11,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <vector>
 
+#include "common/thread_cpu.hpp"
 #include "common/track.hpp"
 #include "control/planning/realtime_planner.hpp"
 #include "control/planning/recorded_trajectory.hpp"
@@ -61,11 +61,7 @@ const Fixture& fixture() {
 }
 
 // CPU time of this thread, µs: what a plan costs, without the time the thread waited for a core.
-double thread_cpu_us() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
-}
+double thread_cpu_us() { return 1e6 * thread_cpu_seconds(); }
 
 void report(benchmark::State& state, std::vector<double>& us) {
   if (us.empty()) return;

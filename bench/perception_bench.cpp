@@ -30,6 +30,7 @@
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
+#include "common/thread_cpu.hpp"
 #include "daemon/cli/cloud_detect.hpp"
 #include "perception/lidar_cone_detector.hpp"
 #include "tests/perception/sim_lidar_drive.hpp"
@@ -37,11 +38,7 @@
 namespace fsd {
 namespace {
 
-double cpu_ms() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+double cpu_ms() { return 1e3 * thread_cpu_seconds(); }
 
 enum FrameSet { kOpen = 0, kFenced = 1, kReal = 2 };
 const char* name_of(int set) { return set == kOpen ? "open" : set == kFenced ? "fenced" : "real"; }

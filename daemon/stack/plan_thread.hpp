@@ -4,9 +4,9 @@
 // planning figures (the control thread only hands the job over). The destructor waits for a plan under way.
 #include <atomic>
 #include <chrono>
-#include <ctime>
 #include <functional>
 
+#include "common/thread_cpu.hpp"
 #include "control/planning/plan_service.hpp"
 #include "daemon/stack/job_thread.hpp"
 
@@ -18,9 +18,9 @@ class PlanThread final : public PlanService {
 
   bool submit(Job job) override {
     const bool taken = worker_.submit([this, job = std::move(job)] {
-      const double c0 = thread_cpu();
+      const double c0 = thread_cpu_seconds();
       PlanResult r = job();
-      cpu_s_.store(thread_cpu() - c0);
+      cpu_s_.store(thread_cpu_seconds() - c0);
       return r;
     });
     if (taken && run_clock_) {
@@ -52,11 +52,6 @@ class PlanThread final : public PlanService {
     PlanResult r;
     r.reason = std::string("planner failed: ") + e.what();
     return r;
-  }
-  static double thread_cpu() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
   }
 
   std::atomic<double> cpu_s_{0.0};

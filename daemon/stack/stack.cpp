@@ -14,6 +14,7 @@
 #include "common/bounded_queue.hpp"
 #include "common/logging.hpp"
 #include "common/params.hpp"
+#include "common/thread_cpu.hpp"
 #include "common/track.hpp"
 #include "control/control_config.hpp"
 #include "daemon/dds/dds_settings.hpp"
@@ -50,12 +51,6 @@ constexpr std::size_t kRemoteFramesKept = 8;  // dds: perception frames between 
 
 double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/thread_cpu.hpp"
 #include "tests/daemon/dashboard_client.hpp"
 #include "tests/daemon/fsd_child.hpp"
 #include "tests/scratch_dir.hpp"
@@ -29,12 +30,6 @@ namespace {
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 // One busy-looping thread per core, at the daemon's own priority, until stopped or `limit` has passed (so that
 // it ends even if the test does not); reports the CPU time the hog got.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/thread_cpu.hpp"
 #include "localization/lidar_odometry/lidar_odometry.hpp"
 #include "tests/perception/sim_lidar_drive.hpp"
 
@@ -36,11 +37,7 @@ struct OdometryLapResult {
   }
 };
 
-inline double thread_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
-}
+inline double thread_cpu_ms() { return 1e3 * thread_cpu_seconds(); }
 
 // Drives one lap of `track` at `speed` and integrates the odometry from the true starting pose. `trace`: one line per
 // scan on stdout (true and estimated increment, their difference, the diagnostics). The car already drives at the
