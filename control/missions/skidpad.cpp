@@ -42,17 +42,16 @@ std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
   if (!centre || pts.size() < 6) return std::nullopt;
   SkidpadCircle c;
   std::vector<bool> use(pts.size(), true);
-  bool fitted = false;
+  double split = 0;
   for (int round = 0; round < 8; ++round) {
     std::vector<double> d;
     for (const auto& p : pts) d.push_back((p - *centre).norm());
-    // First between the quartiles of the distances (a stray cone at the centre or far out does not move it), then
-    // between the fitted radii.
-    std::vector<double> sorted = d;
-    std::sort(sorted.begin(), sorted.end());
-    const double quartiles = 0.5 * (sorted[sorted.size() / 4] + sorted[sorted.size() * 3 / 4]);
-    const double split = fitted ? 0.5 * (c.inner_radius + c.outer_radius) : quartiles;
-    if (fitted) {  // leave out what lies off both rings, the bound shrinking as the fit settles
+    if (round == 0) {  // between the quartiles of the distances: a stray cone at the centre or far out does not move it
+      std::vector<double> sorted = d;
+      std::sort(sorted.begin(), sorted.end());
+      split = 0.5 * (sorted[sorted.size() / 4] + sorted[sorted.size() * 3 / 4]);
+    } else {  // between the fitted radii; and what lies off both rings is left out, the bound shrinking as it settles
+      split = 0.5 * (c.inner_radius + c.outer_radius);
       std::vector<double> res(pts.size()), kept;
       for (std::size_t i = 0; i < pts.size(); ++i) {
         res[i] = std::abs(d[i] - (d[i] < split ? c.inner_radius : c.outer_radius));
@@ -82,9 +81,8 @@ std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
     if (r2_in <= 0 || r2_out <= 0) return std::nullopt;
     c.inner_radius = std::sqrt(r2_in);
     c.outer_radius = std::sqrt(r2_out);
-    fitted = true;
   }
-  // Rings fitted to a short arc can have any size and centre: the cones kept must go at least half way round.
+  // Rings fitted to a short arc can have any size and centre: no arc wider than kMaxUnseenArc may be without a cone.
   std::vector<double> angles;
   for (std::size_t i = 0; i < pts.size(); ++i)
     if (use[i]) angles.push_back(std::atan2(pts[i].y() - centre->y(), pts[i].x() - centre->x()));

@@ -163,7 +163,8 @@ Path RecordedTrajectory::line_through(const Path& centre, const std::vector<Cone
     if (opt.points.size() < 4) continue;
     Path line = arc_path(opt.points, true);
     const SweepResult sweep = sweep_body(line, obstacles, body, pc.accept_clearance, 0.05);
-    const bool clear = !std::isfinite(sweep.first_short_s) && !std::isfinite(pc.first_beyond_lock(line));
+    const double beyond_lock = pc.first_beyond_lock(line);
+    const bool clear = !std::isfinite(sweep.first_short_s) && !std::isfinite(beyond_lock);
     if (best.empty() || clear) {
       best = std::move(line);
       best_sweep = sweep;
@@ -183,8 +184,7 @@ Path RecordedTrajectory::line_through(const Path& centre, const std::vector<Cone
                     "%.1f m round the lap",
                     sweep.min_clearance, at.x(), at.y(), sweep.first_short_s);
     } else {
-      std::snprintf(buf, sizeof buf, "lap line beyond the steering's lock %.1f m round the lap",
-                    pc.first_beyond_lock(line));
+      std::snprintf(buf, sizeof buf, "lap line beyond the steering's lock %.1f m round the lap", beyond_lock);
     }
     r.reason = buf;
   }

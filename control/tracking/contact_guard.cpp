@@ -46,7 +46,7 @@ GuardResult ContactGuard::check(const Path& path, PathFollower follower, const V
     double kappa = std::tan(delta) / wheelbase;
     for (int it = 0; it < 3; ++it) kappa = std::tan(delta - config_.understeer * v * v * kappa) / wheelbase;
     // The rear axle slips by the angle the follower expects (it steers the car's nose that much into the turn).
-    const double slip = follower.config().type == "lqr" ? follower.config().lqr_sideslip_gain * v * v * kappa : 0.0;
+    const double slip = follower.expected_sideslip(v, kappa);
     const double yaw_mid = s.pose.yaw + 0.5 * v * kappa * config_.dt - slip;
     s.pose.x += v * config_.dt * std::cos(yaw_mid);
     s.pose.y += v * config_.dt * std::sin(yaw_mid);

@@ -79,6 +79,11 @@ class PathFollower {
   }
 
   const FollowerConfig& config() const { return config_; }
+  // The rear axle's slip angle this law steers for at speed v on curvature kappa: the LQR's sideslip feed-forward
+  // (lqr_sideslip_gain × v²κ); the geometric laws assume none.
+  double expected_sideslip(double v, double kappa) const {
+    return type_ == FollowerType::Lqr ? config_.lqr_sideslip_gain * v * v * kappa : 0.0;
+  }
   void set_config(const FollowerConfig& c);  // unknown type strings keep the current law
 
  private:

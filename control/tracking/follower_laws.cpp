@@ -70,7 +70,7 @@ double PathFollower::lqr(const Path& path, const PathProjection& proj, const Pos
   // Cornering, the rear tyres run at a slip angle: the rear axle moves along the path while the car points
   // into the corner by that angle. Regulating the heading error to zero would push the car wide; its steady
   // value (slip per lateral acceleration × v²κ) is taken off first (Kapania & Gerdes' sideslip feed-forward).
-  const double heading_ss = config_.lqr_sideslip_gain * v * v * proj.kappa;
+  const double heading_ss = expected_sideslip(v, proj.kappa);
   const Eigen::Vector2d x(proj.lateral, wrap_angle(pose.yaw - proj.yaw - heading_ss));
   return std::atan(L * kappa_ff) + config_.understeer * v * v * kappa_ff - K.dot(x);
 }
