@@ -22,6 +22,7 @@
 #include "daemon/feeders/sim_run.hpp"
 #include "daemon/recording/recording_reader.hpp"
 #include "daemon/scoring/map_export.hpp"
+#include "daemon/scoring/vs_truth.hpp"
 #include "daemon/service/journal_log.hpp"
 #include "daemon/service/recordings_folder.hpp"
 #include "daemon/service/resource_paths.hpp"
@@ -98,6 +99,20 @@ void export_map(const std::string& path, const Stack& stack) {
                       m.without_role ? " (" + std::to_string(m.without_role) + " without a colour left out)" : "");
 }
 
+// --vs-truth: the same layout and seed once more, headless, on the truth sources; "vs_truth" of the report.
+nlohmann::json drive_on_truth(const Config& cfg, const RunOptions& o, const nlohmann::json& estimated) {
+  RunOptions ref = o;
+  ref.headless = true;
+  ref.workers = false;
+  ref.record.clear();
+  ref.report.clear();
+  ref.map_out.clear();
+  logger("run")->info("--vs-truth: driving the same layout and seed on the truth sources");
+  SimRun truth_run(truth_reference_config(cfg), ref);
+  truth_run.run(g_stop);
+  return vs_truth(estimated, truth_run.scorecard().to_json());
+}
+
 int run_command(const RunOptions& given) {
   RunOptions o = given;
   if (!o.role.empty() && (o.sim || !o.replay.empty() || !o.record.empty()))
@@ -108,6 +123,8 @@ int run_command(const RunOptions& given) {
     throw std::invalid_argument(
         "--replay takes the run from the recording: --sim, --record, --track, --mission, "
         "--laps and --seed do not apply (a --config file overrides recorded keys)");
+  if (o.vs_truth && !o.sim)
+    throw std::invalid_argument("--vs-truth drives the virtual car a second time on the truth sources: it needs --sim");
   if (!(o.rate > 0.0 && o.rate <= 1000.0)) throw std::invalid_argument("--rate must be in (0, 1000]");
   require_writable("--report", o.report);
   require_writable("--map-out", o.map_out);
@@ -190,7 +207,11 @@ int run_command(const RunOptions& given) {
     return drive(run, false, [](const HardwareRun& r) { return r.report(); });
   }
   SimRun run(cfg, o);
-  return drive(run, true, [](const SimRun& r) { return r.scorecard().to_json(); });
+  return drive(run, true, [&](const SimRun& r) {
+    nlohmann::json report = r.scorecard().to_json();
+    if (o.vs_truth && !g_stop) report["vs_truth"] = drive_on_truth(cfg, o, report);
+    return report;
+  });
 }
 
 }  // namespace
@@ -219,6 +240,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--report", o.report, "write the scorecard (JSON) here at the end");
   cmd->add_option("--map-out", o.map_out,
                   "write the cone map here at the end, as a track file (EUFS CSV: drive it with --sim --track)");
+  cmd->add_flag("--vs-truth", o.vs_truth,
+                "with --sim: also drive the same layout and seed on the truth sources; the report gains vs_truth "
+                "(lap times and cross-track errors side by side: what the estimates cost)");
   cmd->add_option("--role", o.role,
                   "split mode: perception = the LiDAR and camera stages here, their frames over DDS "
                   "to the daemon that drives (run.perception_source = dds; docs/dds.md)")

@@ -22,6 +22,7 @@ struct RunOptions {
   std::string report;  // scorecard JSON path, empty: none
   std::string
       map_out;       // --map-out: the cone map at the end as a track CSV (daemon/scoring/map_export.hpp), empty: none
+  bool vs_truth = false;  // --vs-truth: with --sim, the same layout and seed on the truth sources too (daemon/scoring/vs_truth.hpp)
   std::string role;  // --role perception: split mode's perception process (daemon/dds/perception_role.hpp)
 };
 
