@@ -101,13 +101,15 @@ class Autopilot {
   void set_plan_service(PlanService* service) { plan_service_ = service; }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
+  // Faults found outside control that change no decision here (a lost camera: the LiDAR stages carry on alone):
+  // into the supervisor's log, once at each onset while `active` stays true.
+  void report(Stamp now, const std::vector<MissionFault>& faults);
 
  private:
   // The one place that tells the missions apart: the mission's class, and the typed views of two of them.
   std::unique_ptr<MissionRun> make_run(Mission mission, const ColourConvention& convention);
   MissionInput mission_input(Stamp now, bool plan_ok) const;
   void take_plan(Stamp now, PlanResult r);
-  void report(Stamp now, const std::vector<MissionFault>& faults);
 
   AutopilotConfig config_;
   Mission mission_;

@@ -60,7 +60,7 @@ void AsSupervisor::report(Stamp t, const std::string& source, const std::string&
   if (active)
     raise(t, source, what, action);
   else
-    clear(source, what);
+    clear(t, source, what);
 }
 
 bool AsSupervisor::stale(InputStream s, Stamp now, double timeout) const {
@@ -73,12 +73,19 @@ void AsSupervisor::raise(Stamp t, const std::string& source, const std::string& 
   const auto key = std::make_pair(source, what);
   if (std::find(active_.begin(), active_.end(), key) != active_.end()) return;
   active_.push_back(key);
-  if (static_cast<int>(faults_.size()) < config_.max_faults) faults_.push_back({t, source, what, action});
+  if (static_cast<int>(faults_.size()) < config_.max_faults) faults_.push_back({t, source, what, action, std::nullopt});
 }
 
-void AsSupervisor::clear(const std::string& source, const std::string& what) {
+void AsSupervisor::clear(Stamp t, const std::string& source, const std::string& what) {
   const auto key = std::make_pair(source, what);
-  active_.erase(std::remove(active_.begin(), active_.end(), key), active_.end());
+  const auto it = std::find(active_.begin(), active_.end(), key);
+  if (it == active_.end()) return;
+  active_.erase(it);
+  for (auto f = faults_.rbegin(); f != faults_.rend(); ++f)
+    if (f->source == source && f->what == what) {
+      if (!f->cleared) f->cleared = t;
+      break;
+    }
 }
 
 void AsSupervisor::stop(Stamp t, const std::string& source, const std::string& what) {
@@ -125,7 +132,7 @@ Supervision AsSupervisor::evaluate(Stamp now, double speed, bool finished) {
     raise(now, "lidar", "detections stale", "slow down to " + with_unit(config_.degraded_speed, "m/s"));
     cap = config_.degraded_speed;
   } else {
-    clear("lidar", "detections stale");
+    clear(now, "lidar", "detections stale");
   }
   if (required_[idx(InputStream::Plan)] && !finished) {
     const auto& last = last_[idx(InputStream::Plan)];

@@ -27,6 +27,7 @@ struct Fault {
   std::string source;  // "lidar", "pose", "gnss", "vcu", "planning", "mission", ...
   std::string what;
   std::string action;
+  std::optional<Stamp> cleared;  // when the condition ended (a sensor came back); empty: it lasted
 };
 
 struct SupervisorConfig {
@@ -83,7 +84,7 @@ class AsSupervisor {
  private:
   bool stale(InputStream s, Stamp now, double timeout) const;
   void raise(Stamp t, const std::string& source, const std::string& what, const std::string& action);
-  void clear(const std::string& source, const std::string& what);
+  void clear(Stamp t, const std::string& source, const std::string& what);
   void stop(Stamp t, const std::string& source, const std::string& what);
   std::string plan_why() const { return plan_why_.empty() ? "" : ": " + plan_why_; }
 

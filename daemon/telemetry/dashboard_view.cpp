@@ -67,7 +67,7 @@ TelemetrySnapshot DashboardView::snapshot(Stamp now, AsState as, const ControlOu
     s.as.res_emergency = vcu->res_emergency;
     s.as.ebs_active = vcu->ebs_active;
   }
-  for (const auto& f : autopilot.faults()) s.faults.push_back({f.t, f.source, f.what, f.action, true});
+  for (const auto& f : autopilot.faults()) s.faults.push_back({f.t, f.source, f.what, f.action, !f.cleared});
   return s;
 }
 

@@ -15,6 +15,8 @@ std::string_view to_string(FaultKind k) {
       return "vcu_link";
     case FaultKind::PlannerStall:
       return "planner_stall";
+    case FaultKind::Camera:
+      return "camera";
   }
   return "?";
 }
@@ -54,6 +56,11 @@ const ConfigSection<FaultTrigger>& planner_stall_fault_section() {
   return s;
 }
 
+const ConfigSection<FaultTrigger>& camera_fault_section() {
+  static const auto s = trigger_section<FaultTrigger>("camera", "the camera outage (no frames)", 0.0);
+  return s;
+}
+
 }  // namespace
 
 const FaultTrigger& FaultScheduleConfig::trigger(FaultKind k) const {
@@ -66,6 +73,8 @@ const FaultTrigger& FaultScheduleConfig::trigger(FaultKind k) const {
       return vcu_link;
     case FaultKind::PlannerStall:
       return planner_stall;
+    case FaultKind::Camera:
+      return camera;
   }
   return gnss;
 }
@@ -75,6 +84,7 @@ void describe_fault_schedule(ConfigSchema& schema) {
   lidar_fault_section().describe(schema);
   vcu_link_fault_section().describe(schema);
   planner_stall_fault_section().describe(schema);
+  camera_fault_section().describe(schema);
 }
 
 FaultScheduleConfig read_fault_schedule(const Config& cfg) {
@@ -83,6 +93,7 @@ FaultScheduleConfig read_fault_schedule(const Config& cfg) {
   c.lidar = lidar_fault_section().read(cfg);
   c.vcu_link = vcu_link_fault_section().read(cfg);
   c.planner_stall = planner_stall_fault_section().read(cfg);
+  c.camera = camera_fault_section().read(cfg);
   return c;
 }
 

@@ -10,6 +10,7 @@
 //                  `silent` (no sentences at all)
 //   lidar          the VLP-16 sends no packets (without a simulated LiDAR, the daemon's truth perception sees
 //                  nothing instead)
+//   camera         the camera sends no frames
 //   vcu_link       the serial link between the daemon and the VCU is cut both ways: Commands no longer reach the
 //                  stand-in (its heartbeat watchdog fires the EBS), Status frames no longer reach the daemon
 //   planner_stall  the stack's real-time planner produces nothing (applied by the daemon: the car has no planner)
@@ -27,9 +28,9 @@
 
 namespace fsd::sim {
 
-enum class FaultKind : std::uint8_t { Gnss = 0, Lidar, VcuLink, PlannerStall };
-inline constexpr std::array<FaultKind, 4> kFaultKinds{FaultKind::Gnss, FaultKind::Lidar, FaultKind::VcuLink,
-                                                      FaultKind::PlannerStall};
+enum class FaultKind : std::uint8_t { Gnss = 0, Lidar, VcuLink, PlannerStall, Camera };
+inline constexpr std::array<FaultKind, 5> kFaultKinds{FaultKind::Gnss, FaultKind::Lidar, FaultKind::VcuLink,
+                                                      FaultKind::PlannerStall, FaultKind::Camera};
 std::string_view to_string(FaultKind k);
 
 struct FaultTrigger {
@@ -45,7 +46,7 @@ struct GnssFaultTrigger : FaultTrigger {
 
 struct FaultScheduleConfig {
   GnssFaultTrigger gnss;
-  FaultTrigger lidar, vcu_link, planner_stall;
+  FaultTrigger lidar, vcu_link, planner_stall, camera;
   const FaultTrigger& trigger(FaultKind k) const;
 };
 void describe_fault_schedule(ConfigSchema& schema);

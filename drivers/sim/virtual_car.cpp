@@ -75,6 +75,12 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
       if (!faults_.active(FaultKind::Lidar, t)) out(t, b);
     };
   }
+  // A camera outage: the frames are rendered on the camera's clock but never sent.
+  if (sinks_.camera) {
+    sinks_.camera = [this, out = sinks_.camera](Stamp t, std::span<const std::uint8_t> b) {
+      if (!faults_.active(FaultKind::Camera, t)) out(t, b);
+    };
+  }
 }
 
 void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) {

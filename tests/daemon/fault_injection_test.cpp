@@ -16,66 +16,18 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/daemon/fsd_process.hpp"
-#include "tests/scratch_dir.hpp"
+#include "tests/daemon/fault_run.hpp"
 
 namespace fsd {
 namespace {
 
 using nlohmann::json;
-
-struct FsdRun {
-  int rc = -1;
-  std::string log;
-  json report;
-};
-
-using test::scratch_path;
-
-// Runs fsd on epfl_track_1 with `faults` as the sim.faults section; `lidar`: simulate the VLP-16 (slower);
-// `max_sim_time` > 0 ends the run early (the mission is then not finished).
-FsdRun run_with_faults(const std::string& name, const json& faults, bool lidar = false, double max_sim_time = 0) {
-  const std::string config = scratch_path(name + ".json"), out = scratch_path(name + "_report.json");
-  json cfg = {{"sim", {{"enable_camera", false}, {"enable_lidar", lidar}}}};
-  if (!faults.is_null()) cfg["sim"]["faults"] = faults;
-  if (max_sim_time > 0) cfg["run"] = {{"max_sim_time", max_sim_time}};
-  std::ofstream(config) << cfg.dump();
-  const std::string args =
-      "run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv"
-      " --laps 2 --config " +
-      config + " --report " + out;
-  FsdRun r;
-  r.rc = test::run_fsd(args, &r.log);
-  std::ifstream f(out);
-  if (f) r.report = json::parse(f);
-  return r;
-}
-
-// The scorecard's record of the one injected fault, with its window opened.
-const json& injected(const FsdRun& r, const std::string& fault) {
-  static const json none;
-  for (const auto& f : r.report["injected_faults"])
-    if (f["fault"] == fault && !f["start_s"].is_null()) return f;
-  ADD_FAILURE() << "no opened window for " << fault << " in " << r.report["injected_faults"].dump();
-  return none;
-}
-
-// The stack's faults of one source.
-std::vector<json> faults_of(const FsdRun& r, const std::string& source) {
-  std::vector<json> out;
-  for (const auto& f : r.report["faults"])
-    if (f["source"] == source) out.push_back(f);
-  return out;
-}
-
-// Truth speed at the first trace sample at or after t.
-double speed_at(const json& fault, double t) {
-  const auto& ts = fault["trace"]["t_s"];
-  for (std::size_t i = 0; i < ts.size(); ++i)
-    if (ts[i].get<double>() >= t - 1e-6) return fault["trace"]["speed_m_s"][i].get<double>();
-  ADD_FAILURE() << "trace ends before " << t;
-  return -1;
-}
+using test::faults_of;
+using test::FsdRun;
+using test::injected;
+using test::run_with_faults;
+using test::expect_slowed_and_recovered;
+using test::speed_at;
 
 TEST(FaultInjection, WithoutFaultsTheRunHasNone) {
   const FsdRun r = run_with_faults("none", nullptr);
@@ -119,39 +71,6 @@ TEST(FaultInjection, GnssLostOnLapTwoRealtimePlanningTakesOverAndTheLapCompletes
   }
 }
 
-// The reaction to a LiDAR lost for 1 s on lap 1, from the scorecard of a run.
-void expect_slowed_and_recovered(const FsdRun& r) {
-  const json& rep = r.report;
-  EXPECT_EQ(rep["cones_hit"], 0);
-  const json& inj = injected(r, "lidar");
-  const double start = inj["start_s"].get<double>(), end = inj["end_s"].get<double>();
-  // The supervisor (control.supervisor.lidar_timeout 0.3 s) capped the speed to 3 m/s and did not stop.
-  const auto lidar = faults_of(r, "lidar");
-  ASSERT_EQ(lidar.size(), 1u) << rep["faults"].dump();
-  EXPECT_EQ(lidar[0]["what"], "detections stale");
-  EXPECT_EQ(lidar[0]["action"], "slow down to 3.00 m/s");
-  // Last detections at most one perception period (0.1 s) before the start; stale 0.3 s later.
-  EXPECT_GE(lidar[0]["t"].get<double>(), start + 0.3 - 0.1);
-  EXPECT_LE(lidar[0]["t"].get<double>(), start + 0.3 + 0.02);
-  EXPECT_EQ(rep["faults"].size(), 1u) << rep["faults"].dump();
-  // From the truth: the car was well above the cap, slowed down by more than 3 m/s within the outage, and sped
-  // up again once cones came back.
-  const double v0 = inj["speed_at_start_m_s"].get<double>();
-  EXPECT_GT(v0, 6.0);
-  double v_min = 1e9, v_after = 0;
-  const auto& ts = inj["trace"]["t_s"];
-  const auto& vs = inj["trace"]["speed_m_s"];
-  for (std::size_t i = 0; i < ts.size(); ++i) {
-    const double t = ts[i].get<double>(), v = vs[i].get<double>();
-    if (t >= start && t <= end + 0.1) v_min = std::min(v_min, v);
-    if (t >= end + 0.1) v_after = std::max(v_after, v);
-  }
-  EXPECT_LT(v_min, v0 - 3.0);
-  EXPECT_GT(v_min, 1.0);  // slowed, not stopped
-  EXPECT_GT(v_after, v_min + 2.0);
-  EXPECT_TRUE(inj["stopped_at_s"].is_null());
-}
-
 TEST(FaultInjection, LidarLostForOneSecondTheCarSlowsAndRecovers) {
   // Without the VLP-16 model the outage starves the truth perception feed.
   const FsdRun r = run_with_faults("lidar", {{"lidar", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 1.0}}}});
@@ -166,7 +85,8 @@ TEST(FaultInjection, SilentVlp16StarvesPerceptionThroughTheScanBuilder) {
   // With the VLP-16 simulated, perception runs on complete scans: the silent sensor itself starves it. Lap 1 only
   // (22 s of simulated time: the window is at ~17.4 s) to keep the slower run short.
   const FsdRun r =
-      run_with_faults("lidar_on", {{"lidar", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 1.0}}}}, true, 22.0);
+      run_with_faults("lidar_on", {{"lidar", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 1.0}}}},
+                      test::Sources::TruthWithLidar, 22.0);
   ASSERT_FALSE(r.report.is_null()) << r.log;
   expect_slowed_and_recovered(r);
 }

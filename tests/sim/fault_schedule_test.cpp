@@ -81,13 +81,13 @@ TEST(FaultSchedule, LapTriggerWaitsForThatLapByTheGates) {
 
 // A virtual car on epfl_track_1 with byte counters on its sinks.
 struct CarBench {
-  std::vector<Stamp> lidar_packets, gnss_bytes, statuses;
+  std::vector<Stamp> lidar_packets, gnss_bytes, statuses, camera_frames;
   std::vector<int> gga_quality;
   std::unique_ptr<VirtualCar> car;
 
   explicit CarBench(VirtualCarSettings s) {
-    s.run.camera = false;
     SensorSinks sinks;
+    sinks.camera = [this](Stamp t, std::span<const std::uint8_t>) { camera_frames.push_back(t); };
     sinks.lidar = [this](Stamp t, std::span<const std::uint8_t>) { lidar_packets.push_back(t); };
     sinks.gnss = [this](Stamp t, std::span<const std::uint8_t> b) {
       gnss_bytes.push_back(t);
@@ -112,6 +112,7 @@ struct CarBench {
 TEST(FaultSchedule, LidarOutageSilencesTheVlp16AndOnlyIt) {
   VirtualCarSettings s;
   s.run.lidar = true;
+  s.run.camera = false;
   s.faults.lidar = {0, 0.5, 0.4};
   CarBench b(s);
   b.car->advance_to(1.3);
@@ -122,10 +123,25 @@ TEST(FaultSchedule, LidarOutageSilencesTheVlp16AndOnlyIt) {
   EXPECT_GT(CarBench::count(b.gnss_bytes, 0.5, 0.9), 0u);  // the GNSS-INS is not affected
 }
 
+TEST(FaultSchedule, CameraOutageSilencesTheCameraAndOnlyIt) {
+  VirtualCarSettings s;
+  s.run.lidar = true;
+  s.run.camera = true;
+  s.faults.camera = {0, 0.5, 0.4};
+  CarBench b(s);
+  b.car->advance_to(1.3);
+  // 20 frames/s: 6 in each 0.3 s before and after, none sent in the window; the LiDAR goes on.
+  EXPECT_EQ(CarBench::count(b.camera_frames, 0.1, 0.4), 6u);
+  EXPECT_EQ(CarBench::count(b.camera_frames, 0.5, 0.9), 0u);
+  EXPECT_EQ(CarBench::count(b.camera_frames, 0.95, 1.25), 6u);
+  EXPECT_NEAR(static_cast<double>(CarBench::count(b.lidar_packets, 0.5, 0.9)), 302.0, 2.0);
+}
+
 TEST(FaultSchedule, GnssOutageReportsNoFixOrNothing) {
   for (const std::string mode : {"no_fix", "silent"}) {
     SCOPED_TRACE(mode);
     VirtualCarSettings s;
+    s.run.camera = false;
     s.run.lidar = false;
     s.faults.gnss.at_s = 1.0;
     s.faults.gnss.duration_s = 1.0;
@@ -157,6 +173,7 @@ TEST(FaultSchedule, GnssOutageReportsNoFixOrNothing) {
 
 TEST(FaultSchedule, VcuLinkCutFiresTheStandinsEbsWithin100ms) {
   VirtualCarSettings s;
+  s.run.camera = false;
   s.run.lidar = false;
   s.vcu.ready_to_drive_s = 0.0;
   s.vcu.res_go_at_s = 0.0;  // go as soon as Ready

@@ -1,0 +1,75 @@
+// Faults on the real stack (the defaults: the LiDAR and camera stages, GNSS-INS fused with the wheels and the LiDAR
+// odometry), as docs/faults.md says each ends. Each run is `fsd run --sim` on epfl_track_1, two laps, with one
+// injected fault (sim.faults.*); the outcome and the cones hit come from the simulator's truth.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/daemon/fault_run.hpp"
+
+namespace fsd {
+namespace {
+
+using nlohmann::json;
+using test::faults_of;
+using test::FsdRun;
+using test::injected;
+using test::run_with_faults;
+using test::Sources;
+
+void expect_clean_two_laps(const FsdRun& r) {
+  ASSERT_EQ(r.rc, 0) << r.log;
+  EXPECT_TRUE(r.report["finished"]);
+  EXPECT_TRUE(r.report["stopped_after_finish"]);
+  EXPECT_EQ(r.report["as_state"], "Finished");
+  EXPECT_EQ(r.report["cones_hit"], 0);
+  EXPECT_EQ(r.report["laps"].size(), 2u);
+  EXPECT_EQ(r.report["perception"]["source"], "lidar_camera");
+  EXPECT_EQ(r.report["odometry"]["source"], "fused");
+}
+
+TEST(RealStackFaults, CameraLostForGoodTheLidarStagesFinishBothLaps) {
+  const FsdRun r = run_with_faults("real_camera_lost", {{"camera", {{"lap", 1}, {"at_s", 10.0}}}}, Sources::Real);
+  expect_clean_two_laps(r);
+  const json& inj = injected(r, "camera");
+  const double start = inj["start_s"].get<double>();
+  EXPECT_TRUE(inj["end_s"].is_null());
+  // The stack notices 0.5 s after the last frame (20 Hz: the last one came at most 0.05 s before the window).
+  const auto cam = faults_of(r, "camera");
+  ASSERT_EQ(cam.size(), 1u) << r.report["faults"].dump();
+  EXPECT_EQ(cam[0]["action"], "LiDAR-only detections, colour from reflectivity");
+  EXPECT_GE(cam[0]["t"].get<double>(), start + 0.5 - 0.06);
+  EXPECT_LE(cam[0]["t"].get<double>(), start + 0.5 + 0.02);
+  EXPECT_FALSE(cam[0].contains("cleared_t"));  // never came back
+  // Not a stop: no other fault.
+  EXPECT_EQ(r.report["faults"].size(), 1u) << r.report["faults"].dump();
+}
+
+TEST(RealStackFaults, ACameraThatComesBackMidLapIsUsedAgain) {
+  const FsdRun r = run_with_faults("real_camera_back", {{"camera", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 5.0}}}},
+                                   Sources::Real);
+  expect_clean_two_laps(r);
+  const json& inj = injected(r, "camera");
+  const double end = inj["end_s"].get<double>();
+  const auto cam = faults_of(r, "camera");
+  ASSERT_EQ(cam.size(), 1u) << r.report["faults"].dump();
+  // Cleared with the first frame sent after the window (20 Hz), which the virtual car hands over at its capture,
+  // up to the camera's latency before it is stamped as sent.
+  ASSERT_TRUE(cam[0].contains("cleared_t")) << cam[0].dump();
+  EXPECT_GE(cam[0]["cleared_t"].get<double>(), end - 0.1);
+  EXPECT_LE(cam[0]["cleared_t"].get<double>(), end + 0.05 + 0.02);
+  // Colour from the camera again: the map the car drove on is coloured as on a run without the fault.
+  EXPECT_GE(r.report["map"]["colour_accuracy"].get<double>(), 0.98) << r.report["map"].dump();
+}
+
+TEST(RealStackFaults, LidarLostForOneSecondTheCarSlowsThenCarriesOn) {
+  const FsdRun r = run_with_faults("real_lidar", {{"lidar", {{"lap", 1}, {"at_s", 10.0}, {"duration_s", 1.0}}}},
+                                   Sources::Real);
+  expect_clean_two_laps(r);
+  test::expect_slowed_and_recovered(r);
+}
+
+}  // namespace
+}  // namespace fsd
