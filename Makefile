@@ -3,7 +3,7 @@
 BUILD ?= build
 JOBS ?= 2
 CMAKE_FLAGS ?=
-RUN_ARGS ?= run --sim --config deploy/config/virtual-car.json
+RUN_ARGS ?= run --sim
 
 # ccache, when installed (deploy/install-deps.sh adds it, so it is looked for when configuring, after deps), makes
 # rebuilds fast; paths are hashed relative to the checkout, so another checkout of the tree reuses the same cache.
@@ -22,8 +22,8 @@ $(BUILD)/build.ninja:
 build: deps $(BUILD)/build.ninja
 	@cmake --build $(BUILD) -j $(JOBS)
 
-# The virtual car on a shared track with the full stack and the dashboard, driving on its own perception
-# (deploy/config/virtual-car.json: the LiDAR and camera stages instead of the simulator's cones).
+# The virtual car on a shared track with the full stack and the dashboard, driving on what it sees (the defaults:
+# the LiDAR and camera stages, GNSS-INS fused with the wheel speeds and the LiDAR odometry).
 run: build
 	@$(BUILD)/daemon/fsd $(RUN_ARGS)
 

@@ -43,15 +43,17 @@ const ConfigSection<RunSettings>& run_section() {
           .string("colours", &RunSettings::colours, {"fsg", "fsac"},
                   "Cone colour convention: fsg = blue left/yellow right, fsac = red left/blue right/yellow timing.")
           .string("perception_source", &RunSettings::perception_source, {"truth", "lidar", "lidar_camera", "dds"},
-                  "Where cone detections come from: truth = the virtual car's cones within sensor range (on the car, "
-                  "which has no truth: lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the "
+                  "Where cone detections come from (default: the car's own perception): truth = the virtual car's cones "
+                  "within sensor range, for control work and as the reference (on the car, which has no truth: "
+                  "lidar_camera when drivers.camera.calibration is set, else lidar); lidar = the "
                   "LiDAR stages on each VLP-16 scan (colour from reflectivity near the car); "
-                  "lidar_camera = the LiDAR stages verified and coloured by the camera stage (needs "
-                  "drivers.camera.calibration on the car); dds = the frames of a perception process (fsd run --role "
+                  "lidar_camera = the LiDAR stages verified and coloured by the camera stage (on the car without "
+                  "drivers.camera.calibration: the LiDAR stages alone, with a warning); dds = the frames of a perception process (fsd run --role "
                   "perception) over DDS (split mode, docs/dds.md).")
           .string("localization_source", &RunSettings::localization_source,
                   {"truth", "gnss", "fused", "lidar_odometry"},
-                  "Where the pose comes from: truth = the virtual car's true pose (on the car: the GNSS-INS pose); "
+                  "Where the pose comes from (default: fused, with the LiDAR odometry in the fusion): truth = the "
+                  "virtual car's true pose, for control work and as the reference (on the car: the GNSS-INS pose); "
                   "gnss = the GNSS-INS pose as reported; fused = GNSS-INS and the VCU's wheel speeds through the "
                   "fusion filter (localization.fusion.*), bridging bad or missing fixes; lidar_odometry = the "
                   "LiDAR odometry alone (localization.lidar_odometry.*), integrated from localization.start.*.")

@@ -17,10 +17,11 @@ struct RunSettings {
   int laps = 2;
   int seed = 1;
   std::string colours = "fsg";
-  // "truth" runs on the virtual car's ground truth (control work, the reference); lidar / lidar_camera run the
-  // perception stages on the sensors' bytes.
-  std::string perception_source = "truth";
-  std::string localization_source = "truth";
+  // The real loop by default: the perception stages on the sensors' bytes, the pose from GNSS-INS fused with the
+  // wheel speeds and the LiDAR odometry. "truth" (the virtual car's ground truth) stays for control work and as the
+  // reference (--vs-truth).
+  std::string perception_source = "lidar_camera";
+  std::string localization_source = "fused";
   double max_sim_time = 600.0;
   double stats_period = 5.0;  // s between the per-driver rate lines of `fsd run` on the car
 };

@@ -46,6 +46,7 @@ constexpr int kTelemetryEvery = 4;            // control cycles between dashboar
 constexpr std::size_t kMaxLinkFaults = 256;   // VCU link events kept for the report
 constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
 constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
+constexpr double kCameraLost = 0.5;           // s without a frame (ten at 20 Hz): the camera is lost
 constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
 constexpr std::size_t kRemoteFramesKept = 8;  // dds: perception frames between two cycles (10 Hz: one)
 
@@ -85,6 +86,7 @@ struct Stack::Impl {
   };
   std::deque<CameraJpeg> camera_recent;  // bounded by kCameraFramesKept
   std::uint64_t camera_frames = 0, camera_decode_failures = 0;
+  std::optional<Stamp> last_camera_frame;  // arrival of the newest frame
 
   // The simulator's truth (truth sources).
   std::optional<TruthStateFrame> truth;
@@ -193,6 +195,13 @@ struct Stack::Impl {
       perception_source = opt.camera ? "lidar_camera" : "lidar";
       log->info("no ground truth on the car: run.perception_source = truth runs the {} stages", perception_source);
     }
+    // The default on a car without a calibrated camera: the LiDAR stages alone, said loudly (not a refusal, so a car
+    // whose camera is not fitted yet still starts).
+    if (perception_source == "lidar_camera" && !opt.camera) {
+      perception_source = "lidar";
+      log->warn("run.perception_source = lidar_camera without the camera's calibration (drivers.camera.calibration): "
+                "LiDAR-only detections, colour from reflectivity");
+    }
     if (perception_source == "lidar" || perception_source == "lidar_camera") detector = make_detector(cfg);
     if (perception_source == "dds") {
       remote_max_age = dds::dds_section().read(cfg).max_detection_age;
@@ -234,10 +243,6 @@ struct Stack::Impl {
   std::unique_ptr<LidarCameraDetector> make_detector(const Config& cfg) {
     std::unique_ptr<CameraStage> camera;
     if (perception_source == "lidar_camera") {
-      if (!opt.camera)
-        throw std::invalid_argument(
-            "run.perception_source = lidar_camera needs the camera's calibration: set drivers.camera.calibration "
-            "(or run.perception_source = lidar)");
       const CameraStageConfig cc = read_camera_stage_config(cfg);
       camera =
           std::make_unique<CameraStage>(opt.camera->calibration, load_cone_classifier_model(cc.classifier.model), cc);
@@ -259,7 +264,7 @@ struct Stack::Impl {
         break;
     }
     std::lock_guard lock(link_m);
-    if (link_faults.size() < kMaxLinkFaults) link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog"});
+    if (link_faults.size() < kMaxLinkFaults) link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog", std::nullopt});
   }
 
   void decode(const RawFrame& f) {
@@ -279,6 +284,7 @@ struct Stack::Impl {
         // Kept as the camera sent it (JPEG) for the dashboard; the camera stages decode what they use.
         last_jpeg = std::make_shared<const std::vector<std::uint8_t>>(f.bytes.begin(), f.bytes.end());
         ++camera_frames;
+        last_camera_frame = f.t;
         if (detector && detector->has_camera()) {
           if (camera_recent.size() == kCameraFramesKept) camera_recent.pop_front();
           camera_recent.push_back({f.t - opt.camera->latency, last_jpeg});
@@ -481,6 +487,14 @@ struct Stack::Impl {
     return any;
   }
 
+  // A camera that stopped sending: the LiDAR stages carry on alone (colour from reflectivity near the car; the map
+  // keeps the colours voted before). Not a stop: a fault while it lasts, so the log and the scorecard say so.
+  void report_camera(Stamp now) {
+    if (!detector || !detector->has_camera() || !last_camera_frame) return;
+    const bool lost = now - *last_camera_frame > kCameraLost;
+    autopilot->report(now, {{"camera", "no frames for 0.5 s", "LiDAR-only detections, colour from reflectivity", lost}});
+  }
+
   // The camera frame taken nearest `t`, decoded; empty without a camera stage, a frame, or a frame that decodes.
   std::optional<CameraImage> camera_image_near(Stamp t) {
     if (camera_recent.empty()) return std::nullopt;
@@ -582,6 +596,7 @@ struct Stack::Impl {
     localize(now);  // first: the sensor sources place this cycle's scan by the newest pose
     if (state && !first_pose) first_pose = state->pose;
     cycle.perceived = perceive(now);
+    report_camera(now);
     apply_param_changes(now);
 
     const double w0 = wall(), c0 = cpu();
@@ -682,7 +697,7 @@ struct Stack::Impl {
       std::lock_guard lock(link_m);
       all = link_faults;
     }
-    for (const auto& f : autopilot->faults()) all.push_back({f.t, f.source, f.what, f.action});
+    for (const auto& f : autopilot->faults()) all.push_back({f.t, f.source, f.what, f.action, f.cleared});
     return all;
   }
 

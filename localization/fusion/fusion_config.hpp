@@ -17,7 +17,7 @@ struct FusionCommonConfig {
   double good_sigma_m = 0.5;            // ... and a position σ below this
   double lost_sigma_m = 5.0;            // position σ beyond this: lost
   double motion_timeout_s = 0.5;        // no IMU or speed sample for this long: lost
-  bool lidar_odometry = false;          // the daemon's fused source also takes the LiDAR odometry's increments
+  bool lidar_odometry = true;           // the daemon's fused source also takes the LiDAR odometry's increments
 };
 const ConfigSection<FusionCommonConfig>& fusion_common_section();
 

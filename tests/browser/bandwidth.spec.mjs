@@ -27,9 +27,8 @@ if (!fs.existsSync(process.env.FSD_BINARY ?? path.join(root, 'build/daemon/fsd')
 
 const SECONDS = Number(process.env.FSD_BANDWIDTH_SECONDS ?? 20);
 const TRACK = '../shared/tracks/epfl_track_1.csv';
-// The stack's default sources (the simulator's cones and pose) with the virtual LiDAR and camera on, so the cloud
-// and the picture flow; loopback only.
-// FSD_BANDWIDTH_PERCEPTION=lidar_camera measures what `make run` drives on (deploy/config/virtual-car.json).
+// What `make run` drives on (the stack's default sources: the LiDAR and camera stages, the fused pose), with the
+// cloud and the picture flowing; loopback only. FSD_BANDWIDTH_PERCEPTION=truth measures on the simulator's cones.
 const CONFIG = { web: { bind: '127.0.0.1' }, run: { track: TRACK } };
 if (process.env.FSD_BANDWIDTH_PERCEPTION) CONFIG.run.perception_source = process.env.FSD_BANDWIDTH_PERCEPTION;
 const isTruth = (t) => t.startsWith('/truth/');

@@ -27,6 +27,7 @@ before(async () => {
     web: { bind: '127.0.0.1' },
     sim: { enable_camera: false, enable_lidar: false, faults: { planner_stall: { at_s: STALL_AT_S } } },
     control: { planner: { time_budget: 0.5 } },
+    run: { perception_source: 'truth', localization_source: 'truth' },
   });
   browser = await chromium.launch({ executablePath: chromiumPath, args: chromiumArgs });
   noWebGl = await chromium.launch({ executablePath: chromiumPath, args: [...chromiumArgs, '--disable-3d-apis'] });

@@ -199,6 +199,9 @@ class MissionHarness {
 
   static Config stack_config(const Track& track, const HarnessOptions& o) {
     Config c(config_schema());
+    // The harness feeds the truth frames a simulator would: the truth sources, whatever the defaults.
+    c.set("run.perception_source", std::string("truth"), "harness");
+    c.set("run.localization_source", std::string("truth"), "harness");
     c.set("run.colours", track.convention.name, "harness");
     c.set("run.truth_perception.range", o.sensor_range, "harness");
     c.set("run.truth_perception.position_noise", 0.0, "harness");

@@ -105,14 +105,14 @@ using test::TrueCones;
 
 std::string fast_config() {
   const std::string path = scratch_path("fsd_fast_all.json");
-  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
+  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
   return path;
 }
 
 // The same with lap 2 on the minimum-curvature line (control.trajectory.line).
 std::string racing_config() {
   const std::string path = scratch_path("fsd_racing_all.json");
-  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false},
+  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
                              "control": {"trajectory": {"line": "min_curvature"}}})";
   return path;
 }

@@ -20,7 +20,8 @@ namespace {
 TEST(FusedSource, TrackdriveTwoLapsOnTheFusedPose) {
   const std::string cfg = test::scratch_path("fused.json");
   std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false},
-                           "run": {"localization_source": "fused"}})";
+                           "run": {"perception_source": "truth", "localization_source": "fused"},
+                           "localization": {"fusion": {"lidar_odometry": false}}})";
   const std::string out = test::scratch_path("fused_report.json");
   std::string log;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --config " + cfg +

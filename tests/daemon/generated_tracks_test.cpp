@@ -58,7 +58,7 @@ struct Outcome {
 std::string fast_config() {
   const std::string path = scratch_path("fsd_fast_generated.json");
   if (!std::filesystem::exists(path))
-    std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
+    std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
   return path;
 }
 

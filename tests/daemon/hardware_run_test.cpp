@@ -249,7 +249,7 @@ TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
   const std::string hit = sim.wait_for(std::regex("LiDAR packets in \\S+ s, (\\d+) cone\\(s\\) hit"), 20s);
   EXPECT_EQ(sim.wait(20s), 0);
   ASSERT_EQ(rc, 0) << log;
-  EXPECT_NE(log.find("run.perception_source = truth runs the lidar stages"), std::string::npos) << log;
+  EXPECT_NE(log.find("run.perception_source = lidar_camera without the camera's calibration"), std::string::npos) << log;
   const auto r = nlohmann::json::parse(slurp(report_path));
   EXPECT_EQ(r["as_state"], "Finished");
   EXPECT_TRUE(r["mission_succeeded"]);
@@ -551,7 +551,7 @@ TEST(HardwareRun, SigtermWhileDrivingEndsWithSafeStopCommands) {
   EXPECT_NE(out.find("stopping (signal)"), std::string::npos) << out;
   EXPECT_NE(out.find("VCU link stopped after 3 safe commands"), std::string::npos) << out;
   // No ground truth on the car: the default truth source runs the perception stages (no camera calibration here).
-  EXPECT_NE(out.find("run.perception_source = truth runs the lidar stages"), std::string::npos) << out;
+  EXPECT_NE(out.find("run.perception_source = lidar_camera without the camera's calibration"), std::string::npos) << out;
 
   // Without --until-finished a signal is a normal end; the camera delivered its frames at about 20 fps.
   const auto r = nlohmann::json::parse(slurp(report_path));

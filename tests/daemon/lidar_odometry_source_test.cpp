@@ -66,7 +66,7 @@ TEST(LidarOdometrySource, FusedWithTheLidarOdometryDrivesTwoCleanLaps) {
 TEST(LidarOdometrySource, WithoutTheVirtualLidarTheRunIsRefusedAtOnce) {
   const std::string cfg = test::scratch_path("lidar_odometry_no_lidar.json");
   std::ofstream(cfg) << R"({"sim": {"enable_lidar": false, "enable_camera": false},
-                           "run": {"localization_source": "lidar_odometry"}})";
+                           "run": {"perception_source": "truth", "localization_source": "lidar_odometry"}})";
   std::string log;
   EXPECT_EQ(
       test::run_fsd("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --config " + cfg,

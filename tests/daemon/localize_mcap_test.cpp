@@ -20,7 +20,7 @@ namespace {
 
 TEST(LocalizeMcap, TheFusedTrajectoryOfARecordingFollowsItsTruth) {
   const auto cfg = test::scratch_path("loc_mcap_cfg.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
+  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
   const auto rec = test::scratch_path("loc_mcap.mcap");
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "

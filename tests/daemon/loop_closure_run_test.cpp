@@ -24,7 +24,7 @@ json lidar_odometry_run(const std::string& name, const std::string& track, bool 
   return test::sim_report(
       name,
       {{"sim", {{"enable_camera", false}}},
-       {"run", {{"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
+       {"run", {{"perception_source", "truth"}, {"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
        {"localization", {{"loop_closure", {{"enabled", loop_closure}}}, {"map_match", {{"enabled", false}}}}}},
       "--laps 2 --track ../shared/tracks/" + track + ".csv " + args, /*must_pass=*/false);
 }

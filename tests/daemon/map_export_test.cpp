@@ -36,7 +36,7 @@ TEST(MapExport, ConesWithoutABoundaryColourAreCountedNotWritten) {
 TEST(MapExport, ALapOneMapIsTheLayoutDrivenAndDrivesAgain) {
   const std::string track = "../shared/tracks/epfl_track_1.csv";
   const auto cfg = test::scratch_path("map_out_cfg.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
+  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
   const auto map_csv = test::scratch_path("lap1_map.csv");
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --laps 1 --config " + cfg + " --track " + track +

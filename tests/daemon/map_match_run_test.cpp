@@ -19,7 +19,7 @@ using nlohmann::json;
 json lidar_alone(const std::string& name, bool map_match) {
   return test::sim_report(name,
                           {{"sim", {{"enable_camera", false}}},
-                           {"run", {{"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
+                           {"run", {{"perception_source", "truth"}, {"localization_source", "lidar_odometry"}, {"max_sim_time", 150.0}}},
                            {"localization", {{"map_match", {{"enabled", map_match}}}}}},
                           "--laps 2 --track ../shared/tracks/epfl_track_5.csv", /*must_pass=*/false);
 }

@@ -17,8 +17,10 @@ namespace {
 
 using nlohmann::json;
 
+// On the true pose, so that what is measured is perception's alone.
 json drive(const std::string& source, const std::string& track) {
-  return test::sim_report("perception_loop_" + source, {{"run", {{"perception_source", source}}}},
+  return test::sim_report("perception_loop_" + source,
+                          {{"run", {{"perception_source", source}, {"localization_source", "truth"}}}},
                           "--laps 2 --track ../shared/tracks/" + track + ".csv");
 }
 

@@ -15,7 +15,7 @@
 namespace fsd {
 namespace {
 
-const std::string kFast = R"({"sim": {"enable_camera": false, "enable_lidar": false}})";
+const std::string kFast = R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
 
 std::string write(const std::string& name, const std::string& text) {
   const auto p = test::scratch_path(name);
@@ -78,7 +78,7 @@ TEST(RunRefusals, ARefusedRunLeavesNoReportFileBehind) {
 TEST(RunRefusals, TheVerdictNamesWhyARunFailed) {
   // Time runs out on lap 1: not finished, no stop, AS still Driving.
   const auto cfg = write("short.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-                                          "run": {"max_sim_time": 12}})");
+                                          "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 12}})");
   const auto report = test::scratch_path("short_report.json");
   std::string out;
   EXPECT_EQ(test::run_fsd("run --sim --headless --until-finished --config " + cfg + " --report " + report, &out), 1)

@@ -62,6 +62,8 @@ TEST(Stack, TheLapBuiltOnItsWorkerDrivesTheSameCleanLaps) {
 
 TEST(Stack, ALiveParameterChangeReachesTheAutopilotAtTheNextCycle) {
   Config cfg(config_schema());
+  cfg.set("run.perception_source", std::string("truth"), "test");  // the test feeds truth frames
+  cfg.set("run.localization_source", std::string("truth"), "test");
   StackOptions so;
   so.simulator = true;
   Stack stack(cfg, so);
@@ -94,6 +96,8 @@ struct WatchingTap final : StackTap {
 
 TEST(Stack, TapsSeeEachParameterChangeInTheCycleThatAppliedItAndEveryFourthCycle) {
   Config cfg(config_schema());
+  cfg.set("run.perception_source", std::string("truth"), "test");  // the test feeds truth frames
+  cfg.set("run.localization_source", std::string("truth"), "test");
   StackOptions so;
   so.simulator = true;
   Stack stack(cfg, so);
@@ -119,6 +123,8 @@ TEST(Stack, TapsSeeEachParameterChangeInTheCycleThatAppliedItAndEveryFourthCycle
 
 TEST(Stack, MalformedTruthFramesAreCountedAndIgnored) {
   Config cfg(config_schema());
+  cfg.set("run.perception_source", std::string("truth"), "test");  // the test feeds truth frames
+  cfg.set("run.localization_source", std::string("truth"), "test");
   StackOptions so;
   so.simulator = true;
   Stack stack(cfg, so);

@@ -42,6 +42,8 @@ struct LiveRun {
   explicit LiveRun(double sim_seconds) : cfg(config_schema()) {
     cfg.set("sim.enable_lidar", false, "test");
     cfg.set("sim.enable_camera", false, "test");
+    cfg.set("run.perception_source", std::string("truth"), "test");
+    cfg.set("run.localization_source", std::string("truth"), "test");
     cfg.set("run.track", kTrack, "test");
     cfg.set("run.max_sim_time", sim_seconds, "test");
     cfg.set("web.bind", "127.0.0.1", "test");

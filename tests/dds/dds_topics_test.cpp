@@ -254,7 +254,8 @@ TEST(DdsTopics, CycloneReadsTheLapsAndTheFaults) {
   const auto report = test::scratch_path("events_report.json");
   const auto cfg = write_config("dds_events.json", "{" + dds_json(domain) + R"(,
       "sim": {"enable_camera": false, "enable_lidar": false,
-              "faults": {"lidar": {"at_s": 7.0, "duration_s": 0.6}}}})");
+              "faults": {"lidar": {"at_s": 7.0, "duration_s": 0.6}}},
+      "run": {"perception_source": "truth", "localization_source": "truth"}})");
   test::Fsd fsd({"run", "--sim", "--port", "0", "--until-finished", "--mission", "acceleration", "--config", cfg,
                  "--track", track, "--report", report},
                 test::scratch_path("events.log"));

@@ -38,7 +38,7 @@ TEST(ServiceFiles, UnderTheJournalEachLineCarriesItsPriority) {
   ASSERT_EQ(::stat(log.c_str(), &st), 0);
   const std::string stream = std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
   const auto cfg = config("journal.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-                                             "run": {"max_sim_time": 1}})");
+                                             "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 1}})");
   ::setenv("JOURNAL_STREAM", stream.c_str(), 1);
   test::Fsd fsd({"run", "--sim", "--headless", "--track", kTrack, "--config", cfg}, log);
   ::unsetenv("JOURNAL_STREAM");
@@ -82,7 +82,7 @@ TEST(ServiceFiles, RecordingsGoToTheFolderUnderItsCap) {
   }
   std::ofstream(dir / "notes.txt") << "not a recording";
   const auto cfg = config("rec.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-      "run": {"max_sim_time": 2}, "service": {"recordings_dir": ")" +
+      "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 2}, "service": {"recordings_dir": ")" +
                                           dir.string() + R"(", "recordings_max_mb": 2.5}})");
   test::Fsd fsd({"run", "--sim", "--headless", "--track", kTrack, "--config", cfg}, test::scratch_path("rec.log"));
   ASSERT_EQ(fsd.wait(60s), 0) << fsd.output();
