@@ -101,6 +101,7 @@ struct LocalizationState {
   double gnss_nis = 0;                   // its normalised innovation squared (0 when not computed)
   Stamp last_gnss_accepted = -1;         // < 0: never
   GnssCounters gnss_counters;
+  std::uint64_t odometry_rejected = 0;  // LiDAR odometry increments the innovation gate turned away
 
   double position_sigma() const;  // m: √ of the larger eigenvalue of the position covariance
 };

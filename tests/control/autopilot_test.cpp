@@ -9,7 +9,7 @@
 
 #include "control/planning/smoothing.hpp"
 #include "tests/control/mission_harness.hpp"
-#include "tests/daemon/friction_limited_lap.hpp"
+#include "tests/daemon/layouts/friction_limited_lap.hpp"
 
 namespace fsd {
 namespace {

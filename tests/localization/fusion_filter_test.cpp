@@ -195,6 +195,41 @@ TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {
   EXPECT_LE(position_error(s, d), 0.007 * driven);
 }
 
+TEST(FusionEkf, ASlippedRegistrationIsGatedAwayNotFused) {
+  // As above, but every 25th increment is a registration that slipped: 0.15 rad of turn and 0.5 m sideways in
+  // 0.1 s, with the small covariance of a good one. The gyro denies it; the gate must turn each away.
+  SyntheticDrive d;
+  d.gnss_filter = [](GnssFix& f) { return !(f.t > 1090.0 && f.t < 1110.0); };
+  d.generate();
+  std::vector<Measurement> ms;
+  for (const auto& m : d.measurements)
+    if (!std::holds_alternative<BodySpeed>(m)) ms.push_back(m);
+  std::vector<Measurement> merged;
+  std::size_t k = 0, slipped = 0, n = 0;
+  for (double t = 1000.1; t < 1110.0; t += 0.1) {
+    const auto& a = d.at(t - 0.1);
+    const auto& b = d.at(t);
+    OdometryIncrement o;
+    o.t0 = a.t;
+    o.t1 = b.t;
+    o.delta = a.pose.inverse() * b.pose;
+    if (++n % 25 == 0) {
+      o.delta.yaw += 0.15;
+      o.delta.y += 0.5;
+      ++slipped;
+    }
+    o.covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();
+    while (k < ms.size() && stamp_of(ms[k]) <= o.t1) merged.push_back(ms[k++]);
+    merged.emplace_back(o);
+  }
+  auto f = make_fusion_filter("ekf");
+  for (const auto& m : merged) f->add(m);
+  const auto s = f->state();
+  EXPECT_EQ(s.odometry_rejected, slipped);
+  const double driven = d.at(s.stamp).travelled - d.at(1090.0).travelled;
+  EXPECT_LE(position_error(s, d), 0.007 * driven);
+}
+
 TEST(FusionFilters, RejectInvalidAndStaleFixes) {
   auto f = make_fusion_filter("ekf");
   GnssFix good;

@@ -23,7 +23,7 @@ using sim::LayoutKind;
 using sim::TrackGeneratorOptions;
 using test::V2;
 
-constexpr int kSeeds = 40;  // per kind; the sweep (tests/daemon/generated_tracks_test.cpp) drives more
+constexpr int kSeeds = 40;  // per kind; the sweep (tests/daemon/layouts/generated_tracks_test.cpp) drives more
 
 // The layout written to a file as `fsd track generate --out` writes it, reloaded by the project's loader (it
 // must accept it) and read by the checker's own CSV reader.

@@ -18,7 +18,7 @@
 #include "daemon/stack/stack.hpp"
 #include "daemon/telemetry/run_metrics.hpp"
 #include "daemon/telemetry/telemetry.hpp"
-#include "tests/daemon/dashboard_client.hpp"
+#include "tests/daemon/telemetry/dashboard_client.hpp"
 #include "tests/daemon/track_csv.hpp"
 #include "tests/web/test_client.hpp"
 #include "web/config.hpp"

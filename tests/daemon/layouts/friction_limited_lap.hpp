@@ -1,7 +1,7 @@
 #pragma once
 // The friction-limited lap time of a track's true centre line, computed from the track file alone (no fsd code),
 // and the plain 2D geometry it is built from (boundary ordering, resampling). The yardstick of lap 2 in the
-// shared-layout and generated-layout sweeps (tests/daemon/all_tracks_test.cpp, generated_tracks_test.cpp).
+// shared-layout and generated-layout sweeps (tests/daemon/layouts/all_tracks_test.cpp, generated_tracks_test.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>

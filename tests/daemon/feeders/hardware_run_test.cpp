@@ -37,7 +37,7 @@
 #include "drivers/sim/vcu_standin.hpp"
 #include "drivers/sim/vehicle/vehicle_truth.hpp"
 #include "drivers/vlp16/pcap_reader.hpp"
-#include "tests/daemon/dashboard_client.hpp"
+#include "tests/daemon/telemetry/dashboard_client.hpp"
 #include "tests/daemon/fsd_child.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"

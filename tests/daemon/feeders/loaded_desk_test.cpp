@@ -21,7 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/thread_cpu.hpp"
-#include "tests/daemon/dashboard_client.hpp"
+#include "tests/daemon/telemetry/dashboard_client.hpp"
 #include "tests/daemon/fsd_child.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/daemon/fault_run.hpp"
+#include "tests/daemon/faults/fault_run.hpp"
 
 namespace fsd {
 namespace {

@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/daemon/friction_limited_lap.hpp"
+#include "tests/daemon/layouts/friction_limited_lap.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
 
