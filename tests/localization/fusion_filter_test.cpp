@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
+#include <vector>
 
 #include "localization/fusion/fusion_filter.hpp"
 #include "tests/localization/fusion_synthetic.hpp"
@@ -167,9 +169,10 @@ TEST(FusionEkf, MovesTheOpticalSpeedToTheReferencePointByTheLeverArm) {
   EXPECT_NEAR(s.yaw_rate, 0.5, 0.01);
 }
 
-TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {
-  // No speed sensor: 10 Hz relative poses from the truth (as LiDAR odometry would give them) and the gyro.
-  SyntheticDrive d;
+// No speed sensor: 10 Hz relative poses from the truth (as LiDAR odometry would give them) and the gyro, GNSS lost
+// from 1090 s. Every `slip_every`-th increment (0: none) is a registration that slipped: 0.15 rad of turn and 0.5 m
+// sideways in 0.1 s, with the small covariance of a good one; `slipped` counts them.
+std::vector<Measurement> odometry_drive(SyntheticDrive& d, int slip_every, std::uint64_t* slipped) {
   d.gnss_filter = [](GnssFix& f) { return !(f.t > 1090.0 && f.t < 1110.0); };
   d.generate();
   std::vector<Measurement> ms;
@@ -177,6 +180,7 @@ TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {
     if (!std::holds_alternative<BodySpeed>(m)) ms.push_back(m);
   std::vector<Measurement> merged;
   std::size_t k = 0;
+  int n = 0;
   for (double t = 1000.1; t < 1110.0; t += 0.1) {
     const auto& a = d.at(t - 0.1);
     const auto& b = d.at(t);
@@ -184,48 +188,37 @@ TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {
     o.t0 = a.t;
     o.t1 = b.t;
     o.delta = a.pose.inverse() * b.pose;
+    if (slip_every > 0 && ++n % slip_every == 0) {
+      o.delta.yaw += 0.15;
+      o.delta.y += 0.5;
+      ++*slipped;
+    }
     o.covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();
     while (k < ms.size() && stamp_of(ms[k]) <= o.t1) merged.push_back(ms[k++]);
     merged.emplace_back(o);
   }
+  return merged;
+}
+
+TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {
+  SyntheticDrive d;
+  std::uint64_t slipped = 0;
   auto f = make_fusion_filter("ekf");
-  for (const auto& m : merged) f->add(m);
+  for (const auto& m : odometry_drive(d, 0, &slipped)) f->add(m);
   const auto s = f->state();
   const double driven = d.at(s.stamp).travelled - d.at(1090.0).travelled;
   EXPECT_LE(position_error(s, d), 0.007 * driven);
 }
 
 TEST(FusionEkf, ASlippedRegistrationIsGatedAwayNotFused) {
-  // As above, but every 25th increment is a registration that slipped: 0.15 rad of turn and 0.5 m sideways in
-  // 0.1 s, with the small covariance of a good one. The gyro denies it; the gate must turn each away.
+  // Every 25th increment slipped. The gyro denies it; the gate must turn each away.
   SyntheticDrive d;
-  d.gnss_filter = [](GnssFix& f) { return !(f.t > 1090.0 && f.t < 1110.0); };
-  d.generate();
-  std::vector<Measurement> ms;
-  for (const auto& m : d.measurements)
-    if (!std::holds_alternative<BodySpeed>(m)) ms.push_back(m);
-  std::vector<Measurement> merged;
-  std::size_t k = 0, slipped = 0, n = 0;
-  for (double t = 1000.1; t < 1110.0; t += 0.1) {
-    const auto& a = d.at(t - 0.1);
-    const auto& b = d.at(t);
-    OdometryIncrement o;
-    o.t0 = a.t;
-    o.t1 = b.t;
-    o.delta = a.pose.inverse() * b.pose;
-    if (++n % 25 == 0) {
-      o.delta.yaw += 0.15;
-      o.delta.y += 0.5;
-      ++slipped;
-    }
-    o.covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();
-    while (k < ms.size() && stamp_of(ms[k]) <= o.t1) merged.push_back(ms[k++]);
-    merged.emplace_back(o);
-  }
+  std::uint64_t slipped = 0;
   auto f = make_fusion_filter("ekf");
-  for (const auto& m : merged) f->add(m);
+  for (const auto& m : odometry_drive(d, 25, &slipped)) f->add(m);
   const auto s = f->state();
   EXPECT_EQ(s.odometry_rejected, slipped);
+  EXPECT_GT(slipped, 0u);
   const double driven = d.at(s.stamp).travelled - d.at(1090.0).travelled;
   EXPECT_LE(position_error(s, d), 0.007 * driven);
 }

@@ -15,6 +15,14 @@
 namespace fsd {
 namespace {
 
+// The defaults with the truth sources: these tests feed the Stack truth frames, as the virtual car does.
+Config truth_fed_config() {
+  Config cfg(config_schema());
+  cfg.set("run.perception_source", std::string("truth"), "test");
+  cfg.set("run.localization_source", std::string("truth"), "test");
+  return cfg;
+}
+
 TEST(Stack, ALatePlanIsCountedAndUsedNotAStop) {
   // Every interval the Stack times costs 80 ms of CPU: every plan is over its 25 ms budget.
   double fake_wall = 0, fake_cpu = 0;
@@ -61,9 +69,7 @@ TEST(Stack, TheLapBuiltOnItsWorkerDrivesTheSameCleanLaps) {
 }
 
 TEST(Stack, ALiveParameterChangeReachesTheAutopilotAtTheNextCycle) {
-  Config cfg(config_schema());
-  cfg.set("run.perception_source", std::string("truth"), "test");  // the test feeds truth frames
-  cfg.set("run.localization_source", std::string("truth"), "test");
+  Config cfg = truth_fed_config();
   StackOptions so;
   so.simulator = true;
   Stack stack(cfg, so);
@@ -95,9 +101,7 @@ struct WatchingTap final : StackTap {
 };
 
 TEST(Stack, TapsSeeEachParameterChangeInTheCycleThatAppliedItAndEveryFourthCycle) {
-  Config cfg(config_schema());
-  cfg.set("run.perception_source", std::string("truth"), "test");  // the test feeds truth frames
-  cfg.set("run.localization_source", std::string("truth"), "test");
+  Config cfg = truth_fed_config();
   StackOptions so;
   so.simulator = true;
   Stack stack(cfg, so);
@@ -122,9 +126,7 @@ TEST(Stack, TapsSeeEachParameterChangeInTheCycleThatAppliedItAndEveryFourthCycle
 }
 
 TEST(Stack, MalformedTruthFramesAreCountedAndIgnored) {
-  Config cfg(config_schema());
-  cfg.set("run.perception_source", std::string("truth"), "test");  // the test feeds truth frames
-  cfg.set("run.localization_source", std::string("truth"), "test");
+  Config cfg = truth_fed_config();
   StackOptions so;
   so.simulator = true;
   Stack stack(cfg, so);
