@@ -82,6 +82,9 @@ struct VehicleState {
   double steering = 0;    // front wheel angle, rad (left positive)
   double speed() const;
   double sideslip() const;  // β = atan2(vy, vx), 0 at standstill
+  // The lateral acceleration the estimated motion implies where no sensor measures it: vx·r (the rate of vy is small
+  // beside it while the tyres grip).
+  double kinematic_ay() const { return vx * yaw_rate; }
 };
 
 // What the stack asks of the VCU.

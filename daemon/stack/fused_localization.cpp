@@ -65,6 +65,7 @@ std::optional<VehicleState> FusedLocalization::state(double steering_measured) c
   v.vx = e.vx;
   v.vy = e.vy;
   v.yaw_rate = e.yaw_rate;
+  v.ay = v.kinematic_ay();
   v.steering = std::isfinite(steering_measured) ? steering_measured : 0.0;
   return v;
 }

@@ -20,6 +20,7 @@ VehicleState state_from_gnss(const GnssSample& s, double steering_measured) {
     v.vy = s.speed * std::sin(beta);
   }
   if (s.yaw_rate_valid && std::isfinite(s.yaw_rate)) v.yaw_rate = s.yaw_rate;
+  v.ay = v.kinematic_ay();
   v.steering = std::isfinite(steering_measured) ? steering_measured : 0.0;
   return v;
 }

@@ -92,6 +92,7 @@ std::optional<VehicleState> LidarLocalization::state(Stamp now, double steering)
   s.vx = vx;
   s.vy = vy;
   s.yaw_rate = r;
+  s.ay = s.kinematic_ay();
   s.steering = std::isfinite(steering) ? steering : 0.0;
   return s;
 }
