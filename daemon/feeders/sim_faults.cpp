@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "daemon/scoring/scorecard.hpp"
+
 namespace fsd {
 
 namespace {
@@ -13,8 +15,6 @@ constexpr double kBefore = 0.5;            // s of truth kept before a window op
 constexpr double kAfter = 3.0;             // s recorded after it closes
 constexpr double kMaxWindow = 15.0;        // s of a window recorded at most (long or open-ended ones)
 constexpr double kStandstill = 0.05;       // m/s: the VCU stand-in's standstill speed
-
-double round3(double v) { return std::round(v * 1e3) / 1e3; }
 }  // namespace
 
 SimFaults::SimFaults(sim::VirtualCar& car, bool lidar_simulated) : car_(car), lidar_simulated_(lidar_simulated) {}
@@ -72,9 +72,9 @@ nlohmann::json SimFaults::report() const {
     if (w && r.started) {
       std::optional<Sample> at_start;
       for (const Sample& s : r.trace) {
-        trace["t_s"].push_back(round3(s.t));
-        trace["speed_m_s"].push_back(round3(s.speed));
-        trace["ax_m_s2"].push_back(round3(s.ax));
+        trace["t_s"].push_back(milli(s.t));
+        trace["speed_m_s"].push_back(milli(s.speed));
+        trace["ax_m_s2"].push_back(milli(s.ax));
         if (s.t < w->start) continue;
         if (!at_start) {
           at_start = s;

@@ -153,10 +153,7 @@ void Scorecard::set_section(const std::string& key, const nlohmann::json& value)
 
 bool Scorecard::mission_succeeded() const { return failures().empty(); }
 
-namespace {
-// Figures rounded to what they mean: millimetres, milliseconds, mm/s (scorecard.md).
 double milli(double v) { return std::round(v * 1e3) / 1e3; }
-}  // namespace
 
 std::vector<std::string> Scorecard::failures() const {
   std::vector<std::string> why;

@@ -32,6 +32,9 @@ struct VehicleLimits {
   double mu = 0, a_accel_max = 0, a_brake_max = 0, v_max = 0;
 };
 
+// The report's figures rounded to what they mean: milliseconds, millimetres, mm/s (docs/scorecard.md).
+double milli(double v);
+
 // {"<stage>": {"p50", "p99", "max" (ms), "n"}, ...}: the report's "latency_ms", on the car and in the simulator.
 nlohmann::json latency_json(const std::map<std::string, LatencyStats>& stages);
 

@@ -1,9 +1,11 @@
 #include "daemon/scoring/vs_truth.hpp"
 
-#include <cmath>
+#include <algorithm>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "daemon/scoring/scorecard.hpp"
 
 namespace fsd {
 
@@ -27,8 +29,6 @@ const json* lap_of(const json& report, int lap) {
     if (l.value("lap", 0) == lap) return &l;
   return nullptr;
 }
-
-double milli(double v) { return std::round(v * 1000.0) / 1000.0; }
 
 }  // namespace
 
