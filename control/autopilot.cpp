@@ -94,6 +94,10 @@ void Autopilot::on_state(const VehicleState& state) {
   supervisor_.heartbeat(InputStream::Pose, state.stamp);
 }
 
+void Autopilot::on_camera(Stamp t) {
+  if (std::isfinite(t)) supervisor_.heartbeat(InputStream::Camera, t);
+}
+
 void Autopilot::on_gnss(Stamp t, bool good) {
   if (!std::isfinite(t)) return;
   gnss_good_ = good;

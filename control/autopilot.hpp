@@ -68,6 +68,7 @@ class Autopilot {
   void on_cones(Stamp t, std::vector<Cone> map_cones);  // the whole cone map, map frame (or detections)
   void on_state(const VehicleState& state);             // fused pose and motion, map frame
   void on_gnss(Stamp t, bool good);                     // each GNSS-INS sample: usable for lap-2 tracking?
+  void on_camera(Stamp t);                              // the newest camera frame the perception stages use
 
   // The real-time planner at time `now`, when it is due (new cones, or replan_period since the last attempt);
   // returns whether a plan was taken this cycle. Call before step() in each cycle of a mission that plans
@@ -101,15 +102,12 @@ class Autopilot {
   void set_plan_service(PlanService* service) { plan_service_ = service; }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
-  // Faults found outside control that change no decision here (a lost camera: the LiDAR stages carry on alone):
-  // into the supervisor's log, once at each onset while `active` stays true.
-  void report(Stamp now, const std::vector<MissionFault>& faults);
-
  private:
   // The one place that tells the missions apart: the mission's class, and the typed views of two of them.
   std::unique_ptr<MissionRun> make_run(Mission mission, const ColourConvention& convention);
   MissionInput mission_input(Stamp now, bool plan_ok) const;
   void take_plan(Stamp now, PlanResult r);
+  void report(Stamp now, const std::vector<MissionFault>& faults);
 
   AutopilotConfig config_;
   Mission mission_;

@@ -237,6 +237,8 @@ const ConfigSection<SupervisorConfig>& supervisor_section() {
   static const auto s =
       ConfigSection<C>("control.supervisor")
           .number("lidar_timeout", &C::lidar_timeout, 0.05, 10, "s", "No cone detections this long: slow down.")
+          .number("camera_timeout", &C::camera_timeout, 0.05, 10, "s",
+                  "No camera frame this long, once one came: a fault; the LiDAR stages detect alone.")
           .number("lidar_stop_timeout", &C::lidar_stop_timeout, 0.1, 30, "s",
                   "No cone detections this long: controlled stop.")
           .number("pose_timeout", &C::pose_timeout, 0.02, 5, "s", "No pose this long: controlled stop.")

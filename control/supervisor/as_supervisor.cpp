@@ -18,6 +18,8 @@ std::string_view to_string(InputStream s) {
       return "vcu";
     case InputStream::Plan:
       return "planning";
+    case InputStream::Camera:
+      return "camera";
   }
   return "?";
 }
@@ -107,6 +109,13 @@ Supervision AsSupervisor::evaluate(Stamp now, double speed, bool finished) {
     standing_since_.reset();
   }
   const bool standing = standing_since_ && now - *standing_since_ >= config_.standstill_time;
+  // A camera that stopped sending changes no decision (the LiDAR stages carry on alone): watched in every state,
+  // once it has sent a frame, so the log says when it went and came back.
+  const std::string camera_lost = "no frames for " + seconds(config_.camera_timeout);
+  if (last_[idx(InputStream::Camera)] && stale(InputStream::Camera, now, config_.camera_timeout))
+    raise(now, "camera", camera_lost, "LiDAR-only detections, colour from reflectivity");
+  else
+    clear(now, "camera", camera_lost);
 
   if (state != AsState::Driving) {
     driving_since_.reset();

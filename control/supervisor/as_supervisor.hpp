@@ -19,7 +19,7 @@ namespace fsd {
 // What the stack asks of the VCU's AS state machine: the VCU protocol's own request type, so no mapping is needed.
 using wire::vcu::AsRequest;
 
-enum class InputStream : std::uint8_t { Lidar = 0, Pose, Gnss, Vcu, Plan };
+enum class InputStream : std::uint8_t { Lidar = 0, Pose, Gnss, Vcu, Plan, Camera };
 std::string_view to_string(InputStream s);
 
 struct Fault {
@@ -33,6 +33,7 @@ struct Fault {
 struct SupervisorConfig {
   double lidar_timeout = 0.3;              // s without cone detections: slow down
   double lidar_stop_timeout = 2.0;         // s: controlled stop
+  double camera_timeout = 0.5;             // s without a frame, once one came: a fault (LiDAR-only detections)
   double pose_timeout = 0.2;               // s without a pose: controlled stop
   double vcu_timeout = 0.2;                // s without VCU status: controlled stop
   double plan_timeout = 0.5;               // s since the newest usable plan: controlled stop
@@ -91,8 +92,8 @@ class AsSupervisor {
   SupervisorConfig config_;
   Mission mission_ = Mission::None;
   std::optional<VcuStatus> status_;
-  std::optional<Stamp> last_[5];
-  bool required_[5] = {true, true, false, true, true};
+  std::optional<Stamp> last_[6];
+  bool required_[6] = {true, true, false, true, true, false};
   std::optional<Stamp> driving_since_;
   std::optional<std::string> stop_reason_;
   Stamp stop_since_ = 0;

@@ -46,7 +46,6 @@ constexpr int kTelemetryEvery = 4;            // control cycles between dashboar
 constexpr std::size_t kMaxLinkFaults = 256;   // VCU link events kept for the report
 constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
 constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
-constexpr double kCameraLost = 0.5;           // s without a frame (ten at 20 Hz): the camera is lost
 constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
 constexpr std::size_t kRemoteFramesKept = 8;  // dds: perception frames between two cycles (10 Hz: one)
 
@@ -487,14 +486,6 @@ struct Stack::Impl {
     return any;
   }
 
-  // A camera that stopped sending: the LiDAR stages carry on alone (colour from reflectivity near the car; the map
-  // keeps the colours voted before). Not a stop: a fault while it lasts, so the log and the scorecard say so.
-  void report_camera(Stamp now) {
-    if (!detector || !detector->has_camera() || !last_camera_frame) return;
-    const bool lost = now - *last_camera_frame > kCameraLost;
-    autopilot->report(now, {{"camera", "no frames for 0.5 s", "LiDAR-only detections, colour from reflectivity", lost}});
-  }
-
   // The camera frame taken nearest `t`, decoded; empty without a camera stage, a frame, or a frame that decodes.
   std::optional<CameraImage> camera_image_near(Stamp t) {
     if (camera_recent.empty()) return std::nullopt;
@@ -590,13 +581,14 @@ struct Stack::Impl {
     cycle = {};
     ++cycles;
     if (const auto st = vcu->status()) autopilot->on_vcu(*st);
+    // The camera stage's frames: the supervisor watches for a camera that stops (control.supervisor.camera_timeout).
+    if (detector && detector->has_camera() && last_camera_frame) autopilot->on_camera(*last_camera_frame);
     if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
     const double w_perception = wall();
     collect_loop_closure(now);
     localize(now);  // first: the sensor sources place this cycle's scan by the newest pose
     if (state && !first_pose) first_pose = state->pose;
     cycle.perceived = perceive(now);
-    report_camera(now);
     apply_param_changes(now);
 
     const double w0 = wall(), c0 = cpu();

@@ -135,6 +135,31 @@ TEST(AsSupervisor, BriefLidarLossSlowsAndRecovers) {
   EXPECT_NE(sup.faults()[0].action.find("slow down"), std::string::npos);
 }
 
+TEST(AsSupervisor, ALostCameraIsAFaultThatClearsAndNeverSlowsTheCar) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  for (int k = 0; k < 500; ++k) {  // 100 Hz cycles
+    const double t = 0.01 * k;
+    feed_all(sup, t, t < 1.0 ? AsState::Ready : AsState::Driving);
+    // Frames at 20 Hz from 0.5 s (none before: a camera that never sent is not lost), none in [2, 3).
+    const bool sending = k >= 50 && !(k >= 200 && k < 300);
+    if (sending && k % 5 == 0) sup.heartbeat(InputStream::Camera, t);
+    const auto d = sup.evaluate(t, 5.0, false);
+    if (t >= 1.0) {
+      ASSERT_TRUE(d.may_move) << t;
+      EXPECT_GT(d.speed_cap, 100.0) << t;
+    }
+  }
+  ASSERT_EQ(sup.faults().size(), 1u);
+  const Fault& f = sup.faults()[0];
+  EXPECT_EQ(f.source, "camera");
+  EXPECT_EQ(f.action, "LiDAR-only detections, colour from reflectivity");
+  // The last frame before the gap at 1.95 s; stale 0.5 s later; back with the frame at 3.00 s.
+  EXPECT_NEAR(f.t, 1.95 + sup.config().camera_timeout, 0.015);
+  ASSERT_TRUE(f.cleared.has_value());
+  EXPECT_NEAR(*f.cleared, 3.0, 0.015);
+}
+
 TEST(AsSupervisor, LongLidarLossStops) {
   AsSupervisor sup;
   sup.set_mission(Mission::Trackdrive);
