@@ -28,6 +28,7 @@
 #include "tests/daemon/track_csv.hpp"
 #include "tests/dds/cyclone_reader.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 #include "visualization_msgs/msg/MarkerArray.h"
 
 #include <nlohmann/json.hpp>
@@ -252,10 +253,9 @@ TEST(DdsTopics, CycloneReadsTheLapsAndTheFaults) {
   test::CycloneReader status(cyclone, "rt/fsd/as/status", &fsd_msgs_msg_dds__AsStatus__desc, true);
   const std::string track = "../shared/tracks/epfl_acceleration.csv";
   const auto report = test::scratch_path("events_report.json");
-  const auto cfg = write_config("dds_events.json", "{" + dds_json(domain) + R"(,
-      "sim": {"enable_camera": false, "enable_lidar": false,
-              "faults": {"lidar": {"at_s": 7.0, "duration_s": 0.6}}},
-      "run": {"perception_source": "truth", "localization_source": "truth"}})");
+  const auto cfg =
+      write_config("dds_events.json", test::truth_sources(nlohmann::json::parse("{" + dds_json(domain) + R"(,
+      "sim": {"faults": {"lidar": {"at_s": 7.0, "duration_s": 0.6}}}})")));
   test::Fsd fsd({"run", "--sim", "--port", "0", "--until-finished", "--mission", "acceleration", "--config", cfg,
                  "--track", track, "--report", report},
                 test::scratch_path("events.log"));

@@ -12,6 +12,7 @@
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/mcap/node_tools.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd::mcap {
 namespace {
@@ -36,7 +37,7 @@ TEST(McapCoreReadsRecording, AFileRecordedByTheDaemon) {
   const std::string file = fsd::test::scratch_path("daemon_recorded.mcap");
   const std::string report = fsd::test::scratch_path("daemon_recorded.json");
   const std::string cfg = fsd::test::scratch_path("daemon_recorded_cfg.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 2.0}})";
+  std::ofstream(cfg) << fsd::test::truth_sources({{"run", {{"max_sim_time", 2.0}}}});
   std::string out;
   ASSERT_EQ(fsd::test::run_fsd("run --sim --headless --mission acceleration --track " + track + " --config " + cfg +
                                    " --record " + file + " --report " + report,

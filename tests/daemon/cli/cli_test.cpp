@@ -11,6 +11,7 @@
 #include "daemon/stack/settings.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -80,12 +81,11 @@ TEST(Cli, ConfigCheckListsEveryError) {
 // A desk run's dashboard stays on the machine; a configuration file that sets web.bind is obeyed.
 TEST(Cli, TheVirtualCarsDashboardBindsTheLoopbackUnlessConfigured) {
   const std::string quick = test::scratch_path("bind_quick.json");
-  std::ofstream(quick) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 1}})";
+  std::ofstream(quick) << test::truth_sources({{"run", {{"max_sim_time", 1}}}});
   const auto local = run("run --sim --port 0 --config " + quick);
   EXPECT_NE(local.out.find("dashboard on http://127.0.0.1:"), std::string::npos) << local.out;
   const std::string open = test::scratch_path("bind_open.json");
-  std::ofstream(open) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 1},
-                            "web": {"bind": "0.0.0.0"}})";
+  std::ofstream(open) << test::truth_sources({{"run", {{"max_sim_time", 1}}}, {"web", {{"bind", "0.0.0.0"}}}});
   const auto all = run("run --sim --port 0 --config " + open);
   EXPECT_NE(all.out.find("dashboard on http://0.0.0.0:"), std::string::npos) << all.out;
 }

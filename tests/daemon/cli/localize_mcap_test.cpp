@@ -14,13 +14,14 @@
 #include "daemon/recording/recording_reader.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
 
 TEST(LocalizeMcap, TheFusedTrajectoryOfARecordingFollowsItsTruth) {
   const auto cfg = test::scratch_path("loc_mcap_cfg.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+  std::ofstream(cfg) << test::truth_sources();
   const auto rec = test::scratch_path("loc_mcap.mcap");
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "

@@ -13,6 +13,7 @@
 
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd::test {
 
@@ -34,11 +35,9 @@ enum class Sources { Truth, TruthWithLidar, Real };
 inline FsdRun run_with_faults(const std::string& name, const json& faults, Sources sources = Sources::Truth,
                               double max_sim_time = 0) {
   const std::string config = scratch_path(name + ".json"), out = scratch_path(name + "_report.json");
-  json cfg = {{"sim", json::object()}, {"run", json::object()}};
-  if (sources != Sources::Real) {
-    cfg["sim"] = {{"enable_camera", false}, {"enable_lidar", sources == Sources::TruthWithLidar}};
-    cfg["run"] = {{"perception_source", "truth"}, {"localization_source", "truth"}};
-  }
+  json cfg = sources == Sources::Real
+                 ? json{{"sim", json::object()}, {"run", json::object()}}
+                 : truth_sources_json({{"sim", {{"enable_lidar", sources == Sources::TruthWithLidar}}}});
   if (!faults.is_null()) cfg["sim"]["faults"] = faults;
   if (max_sim_time > 0) cfg["run"]["max_sim_time"] = max_sim_time;
   std::ofstream(config) << cfg.dump();

@@ -11,11 +11,12 @@
 
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
 
-const std::string kFast = R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+const std::string kFast = test::truth_sources();
 
 std::string write(const std::string& name, const std::string& text) {
   const auto p = test::scratch_path(name);
@@ -77,8 +78,7 @@ TEST(RunRefusals, ARefusedRunLeavesNoReportFileBehind) {
 
 TEST(RunRefusals, TheVerdictNamesWhyARunFailed) {
   // Time runs out on lap 1: not finished, no stop, AS still Driving.
-  const auto cfg = write("short.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-                                          "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 12}})");
+  const auto cfg = write("short.json", test::truth_sources({{"run", {{"max_sim_time", 12}}}}));
   const auto report = test::scratch_path("short_report.json");
   std::string out;
   EXPECT_EQ(test::run_fsd("run --sim --headless --until-finished --config " + cfg + " --report " + report, &out), 1)

@@ -18,6 +18,7 @@
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/daemon/track_csv.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -33,7 +34,7 @@ nlohmann::json report(const std::string& path) {
 std::string fast_config() {
   // Truth perception needs neither LiDAR nor camera; leaving them out makes the run ~10× faster.
   const std::string path = scratch_path("fsd_fast.json");
-  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+  std::ofstream(path) << test::truth_sources();
   return path;
 }
 
@@ -102,9 +103,8 @@ TEST(SimRun, InRealTimeLapTwoIsBuiltBesideTheControlLoop) {
   // control loop drives on, and taken when it is ready. The shortest loop, about 37 s. The planner's 25 ms
   // real-time budget is relaxed as in the browser test: a loaded CI machine must not turn a slow plan into a stop.
   const std::string cfg = scratch_path("realtime.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
-                           "control": {"planner": {"time_budget": 0.5}},
-                           "web": {"bind": "127.0.0.1", "port": 0}})";
+  std::ofstream(cfg) << test::truth_sources(
+      {{"control", {{"planner", {{"time_budget", 0.5}}}}}, {"web", {{"bind", "127.0.0.1"}, {"port", 0}}}});
   const std::string out = scratch_path("realtime_report.json");
   std::string log;
   ASSERT_EQ(run_fsd("run --sim --until-finished --config " + cfg +

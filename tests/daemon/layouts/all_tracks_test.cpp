@@ -20,9 +20,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/daemon/layouts/friction_limited_lap.hpp"
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/daemon/layouts/friction_limited_lap.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -105,15 +106,14 @@ using test::TrueCones;
 
 std::string fast_config() {
   const std::string path = scratch_path("fsd_fast_all.json");
-  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+  std::ofstream(path) << test::truth_sources();
   return path;
 }
 
 // The same with lap 2 on the minimum-curvature line (control.trajectory.line).
 std::string racing_config() {
   const std::string path = scratch_path("fsd_racing_all.json");
-  std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
-                             "control": {"trajectory": {"line": "min_curvature"}}})";
+  std::ofstream(path) << test::truth_sources({{"control", {{"trajectory", {{"line", "min_curvature"}}}}}});
   return path;
 }
 

@@ -29,9 +29,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/daemon/layouts/friction_limited_lap.hpp"
 #include "tests/daemon/fsd_process.hpp"
+#include "tests/daemon/layouts/friction_limited_lap.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -57,8 +58,7 @@ struct Outcome {
 
 std::string fast_config() {
   const std::string path = scratch_path("fsd_fast_generated.json");
-  if (!std::filesystem::exists(path))
-    std::ofstream(path) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+  if (!std::filesystem::exists(path)) std::ofstream(path) << test::truth_sources();
   return path;
 }
 

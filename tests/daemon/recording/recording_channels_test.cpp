@@ -17,6 +17,7 @@
 #include "daemon/telemetry/telemetry.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -138,7 +139,7 @@ TEST(RecordingChannels, ARecordedRunCarriesItsStateSceneStatusAndLogAtTheirRates
   const auto file = test::scratch_path("derived_run.mcap");
   const auto report = test::scratch_path("derived_run.json");
   const auto cfg = test::scratch_path("derived_run_cfg.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+  std::ofstream(cfg) << test::truth_sources();
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
                           "../shared/tracks/epfl_acceleration.csv --config " +

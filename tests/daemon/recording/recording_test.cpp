@@ -20,13 +20,14 @@
 #include "common/mcap/writer.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
 
 using nlohmann::json;
 
-const std::string kFast = R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+const std::string kFast = test::truth_sources();
 
 std::string write_text(const std::string& name, const std::string& text) {
   const auto p = test::scratch_path(name);
@@ -324,8 +325,7 @@ TEST(Recording, AHeadlessRunWaitsForTheWriterRatherThanDropping) {
   // waits for the writer, so nothing is lost and the replay still repeats the run.
   const auto file = test::scratch_path("small_queue.mcap");
   const auto report = test::scratch_path("small_queue.json");
-  const auto cfg = write_text("small_queue_cfg.json", R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
-                                                           "record": {"queue_frames": 16}})");
+  const auto cfg = write_text("small_queue_cfg.json", test::truth_sources({{"record", {{"queue_frames", 16}}}}));
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
                           "../shared/tracks/epfl_acceleration.csv --config " +
@@ -346,8 +346,7 @@ TEST(Recording, AHeadlessRunWaitsForTheWriterRatherThanDropping) {
 TEST(Recording, LargeRecordingsSplitIntoPartsThatEachReplay) {
   const auto file = test::scratch_path("split.mcap");
   const auto report = test::scratch_path("split.json");
-  const auto cfg = write_text("split_cfg.json", R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
-                                                     "record": {"split_mb": 0.05}})");
+  const auto cfg = write_text("split_cfg.json", test::truth_sources({{"record", {{"split_mb", 0.05}}}}));
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
                           "../shared/tracks/epfl_acceleration.csv --config " +

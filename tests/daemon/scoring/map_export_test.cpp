@@ -10,6 +10,7 @@
 #include "daemon/scoring/map_export.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -36,7 +37,7 @@ TEST(MapExport, ConesWithoutABoundaryColourAreCountedNotWritten) {
 TEST(MapExport, ALapOneMapIsTheLayoutDrivenAndDrivesAgain) {
   const std::string track = "../shared/tracks/epfl_track_1.csv";
   const auto cfg = test::scratch_path("map_out_cfg.json");
-  std::ofstream(cfg) << R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})";
+  std::ofstream(cfg) << test::truth_sources();
   const auto map_csv = test::scratch_path("lap1_map.csv");
   std::string out;
   ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --laps 1 --config " + cfg + " --track " + track +

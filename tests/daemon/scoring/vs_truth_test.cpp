@@ -10,6 +10,7 @@
 #include "daemon/scoring/vs_truth.hpp"
 #include "tests/daemon/fsd_process.hpp"
 #include "tests/daemon/sim_report.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -25,11 +26,7 @@ TEST(VsTruth, TheReferenceIsTheSameLayoutDrivenOnTheTruthSources) {
   EXPECT_EQ(run["perception"]["source"], "lidar_camera");
   EXPECT_EQ(run["odometry"]["source"], "fused");
   // The reference on its own, as a user would run it.
-  const json truth = test::sim_report(
-      "vs_truth_reference",
-      {{"run", {{"perception_source", "truth"}, {"localization_source", "truth"}}},
-       {"sim", {{"enable_lidar", false}, {"enable_camera", false}}}},
-      kTrack);
+  const json truth = test::sim_report("vs_truth_reference", test::truth_sources_json(), kTrack);
   const json& vs = run["vs_truth"];
   EXPECT_EQ(vs["source"], "truth");
   EXPECT_EQ(vs["finished"], truth["finished"]);

@@ -14,6 +14,7 @@
 
 #include "tests/daemon/fsd_child.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -37,8 +38,7 @@ TEST(ServiceFiles, UnderTheJournalEachLineCarriesItsPriority) {
   struct stat st {};
   ASSERT_EQ(::stat(log.c_str(), &st), 0);
   const std::string stream = std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
-  const auto cfg = config("journal.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-                                             "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 1}})");
+  const auto cfg = config("journal.json", test::truth_sources({{"run", {{"max_sim_time", 1}}}}));
   ::setenv("JOURNAL_STREAM", stream.c_str(), 1);
   test::Fsd fsd({"run", "--sim", "--headless", "--track", kTrack, "--config", cfg}, log);
   ::unsetenv("JOURNAL_STREAM");
@@ -81,9 +81,9 @@ TEST(ServiceFiles, RecordingsGoToTheFolderUnderItsCap) {
     fs::last_write_time(p, fs::file_time_type::clock::now() - std::chrono::hours(10 - k));
   }
   std::ofstream(dir / "notes.txt") << "not a recording";
-  const auto cfg = config("rec.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-      "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 2}, "service": {"recordings_dir": ")" +
-                                          dir.string() + R"(", "recordings_max_mb": 2.5}})");
+  const auto cfg = config(
+      "rec.json", test::truth_sources({{"run", {{"max_sim_time", 2}}},
+                                       {"service", {{"recordings_dir", dir.string()}, {"recordings_max_mb", 2.5}}}}));
   test::Fsd fsd({"run", "--sim", "--headless", "--track", kTrack, "--config", cfg}, test::scratch_path("rec.log"));
   ASSERT_EQ(fsd.wait(60s), 0) << fsd.output();
   std::uintmax_t total = 0;

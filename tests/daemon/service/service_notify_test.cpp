@@ -17,6 +17,7 @@
 
 #include "tests/daemon/fsd_child.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -91,8 +92,7 @@ std::vector<double> watchdog_times(const std::vector<Notification>& got) {
 TEST(ServiceNotify, ReadyThenWatchdogAtHalfTheConfiguredInterval) {
   NotifySocket sock(test::scratch_path("notify.sock"));
   ASSERT_TRUE(sock.ok());
-  auto fsd =
-      start(test::scratch_path("notify.sock"), R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"}})", "notify");
+  auto fsd = start(test::scratch_path("notify.sock"), test::truth_sources(), "notify");
   std::vector<Notification> got;
   sock.read_for(std::chrono::seconds(4), got);
   fsd->signal(SIGTERM);
@@ -113,9 +113,7 @@ TEST(ServiceNotify, WatchdogStopsWhileTheControlLoopHangs) {
   NotifySocket sock(test::scratch_path("stall.sock"));
   ASSERT_TRUE(sock.ok());
   auto fsd = start(test::scratch_path("stall.sock"),
-                   R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
-                      "service": {"test_stall_at_s": 1.0, "test_stall_s": 1.5}})",
-                   "stall");
+                   test::truth_sources({{"service", {{"test_stall_at_s", 1.0}, {"test_stall_s", 1.5}}}}), "stall");
   std::vector<Notification> got;
   sock.read_for(std::chrono::seconds(4), got);
   fsd->signal(SIGTERM);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "tests/scratch_dir.hpp"
+#include "tests/truth_sources.hpp"
 
 namespace fsd {
 namespace {
@@ -52,8 +53,7 @@ TEST(StartAnywhere, EverySimulatorSourceRunsFromRoot) {
 
 TEST(StartAnywhere, TheDashboardIsServedFromRoot) {
   std::string out;
-  const auto cfg = config("root_dash.json", R"({"sim": {"enable_camera": false, "enable_lidar": false},
-                                              "run": {"perception_source": "truth", "localization_source": "truth", "max_sim_time": 1}})");
+  const auto cfg = config("root_dash.json", test::truth_sources({{"run", {{"max_sim_time", 1}}}}));
   EXPECT_EQ(from_root("run --sim --port 0 --track " + kTrack + " --config " + cfg, out), 0) << out;
   EXPECT_NE(out.find("dashboard at http://"), std::string::npos) << out;
 }
@@ -101,8 +101,7 @@ TEST(StartAnywhere, APortInUseExitsTwo) {
   const int tcp_port = ntohs(a.sin_port);
   ::getsockname(udp, reinterpret_cast<sockaddr*>(&a), &len);
   const int udp_port = ntohs(a.sin_port);
-  const auto fast = config("port_fast.json", R"({"sim": {"enable_camera": false, "enable_lidar": false}, "run": {"perception_source": "truth", "localization_source": "truth"},
-                                                "web": {"bind": "127.0.0.1"}})");
+  const auto fast = config("port_fast.json", test::truth_sources({{"web", {{"bind", "127.0.0.1"}}}}));
   std::string out;
   EXPECT_EQ(from_root("run --sim --port " + std::to_string(tcp_port) + " --track " + kTrack + " --config " + fast, out),
             2)
