@@ -204,6 +204,50 @@ json faults() {
   return object("fsd.Faults", {{"timestamp", time_type()}, {"faults", array_of(fault, "recent faults, newest last")}});
 }
 
+json localization() {
+  return object(
+      "fsd.Localization",
+      {{"timestamp", time_type()},
+       {"source", str("run.localization_source in use: fused, lidar_odometry, gnss, truth")},
+       {"quality", str("good, degraded, lost; empty when the source gives no verdict")},
+       {"gnss", str("the latest GNSS fix's verdict; empty without one")},
+       {"position_sigma", num("m, 1-sigma position bound: the square root of the larger eigenvalue of the position "
+                              "covariance; null when the source has no covariance")},
+       {"sigma_x", num("m, square root of the covariance's x variance")},
+       {"sigma_y", num("m")},
+       {"sigma_yaw", num("rad")},
+       {"covariance", array_of(json{{"type", "number"}}, "3x3 row-major over (x m, y m, yaw rad), map frame")}});
+}
+
+json localization_error() {
+  return object("fsd.LocalizationError",
+                {{"timestamp", time_type()},
+                 {"source", str("always \"estimate against the simulator ground truth\"")},
+                 {"position_error", num("m, distance from the estimated to the true rear-axle centre")},
+                 {"dx", num("m, estimate minus truth, map frame")},
+                 {"dy", num("m")},
+                 {"along", num("m, along the true heading (+ ahead)")},
+                 {"across", num("m, across the true heading (+ left)")},
+                 {"yaw_error", num("rad, estimate minus truth, wrapped")},
+                 {"carried", num("s the estimate was carried forward by its velocity to the truth's instant")}});
+}
+
+json loop_closures() {
+  const json event = object("fsd.LoopClosure", {{"t", num("s, run clock")},
+                                                {"lap", integer("1 for the first loop")},
+                                                {"x", num("m, where the car was (estimate before the correction)")},
+                                                {"y", num("m")},
+                                                {"dx", num("m, the correction's translation, map frame")},
+                                                {"dy", num("m")},
+                                                {"dyaw", num("rad, the correction's rotation")},
+                                                {"shift", num("m, |dx, dy|")},
+                                                {"pairs", integer("start cones seen again")},
+                                                {"rms", num("m over those pairs")},
+                                                {"cones_merged", integer("mapped twice, one cone again")}});
+  return object("fsd.LoopClosures",
+                {{"timestamp", time_type()}, {"loop_closures", array_of(event, "every loop closure, oldest first")}});
+}
+
 }  // namespace
 
 ChannelSpec channel_spec(const char* topic, Schema kind, const std::string& description, ChannelOptions options) {
@@ -235,6 +279,15 @@ ChannelSpec channel_spec(const char* topic, Schema kind, const std::string& desc
       break;
     case Schema::Faults:
       schema = faults();
+      break;
+    case Schema::Localization:
+      schema = localization();
+      break;
+    case Schema::LocalizationError:
+      schema = localization_error();
+      break;
+    case Schema::LoopClosures:
+      schema = loop_closures();
       break;
   }
   return {topic, schema["title"].get<std::string>(), with_schema(schema, description).dump(), options};

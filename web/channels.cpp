@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
+#include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
 #include "web/base64.hpp"
@@ -163,16 +165,43 @@ std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones) {
   return scene_update_json(cone_map_entities(t, cones));
 }
 
+bool camera_verified(const Cone& c) { return c.stage == DetectionStage::Camera || c.stage == DetectionStage::Truth; }
+
 std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose) {
-  json e = entity(t, "detections", 0.5);
+  constexpr double kSide = 0.35, kHeight = 0.4;
+  json verified = entity(t, "detections", 0.5), unverified = entity(t, "detections_unverified", 0.5);
+  verified["cubes"] = json::array();
+  unverified["lines"] = json::array();
+  // The box's bottom and top squares joined by one edge: one strip of 10 points in the box's own frame (base at
+  // z = 0), a third of the bytes of all 12 edges; it reads as the box's outline.
+  json edges = json::array();
+  {
+    const double h = kSide / 2;
+    const double b[4][2] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+    for (const double z : {0.0, kHeight})
+      for (int k = 0; k <= 4; ++k) edges.push_back(vec3(b[k % 4][0], b[k % 4][1], z));
+  }
   for (const auto& c : detections.cones) {
     if (!c.position.allFinite()) continue;
     const Vec2 m = car_pose.transform(c.position.head<2>());
-    e["cubes"].push_back({{"pose", yaw_pose(m.x(), m.y(), 0.2, car_pose.yaw)},
-                          {"size", vec3(0.35, 0.35, 0.4)},
-                          {"color", colour_of(c.colour, 0.35)}});
+    if (camera_verified(c)) {
+      // Verified by the camera's HOG + SVM (or the truth source's ideal detector): a solid box in its colour.
+      verified["cubes"].push_back({{"pose", yaw_pose(m.x(), m.y(), kHeight / 2, car_pose.yaw)},
+                                   {"size", vec3(kSide, kSide, kHeight)},
+                                   {"color", colour_of(c.colour, 0.85)}});
+    } else {
+      // LiDAR alone (not verified): the box's outline in its colour.
+      unverified["lines"].push_back({{"type", 0},
+                                     {"pose", yaw_pose(m.x(), m.y(), 0.0, car_pose.yaw)},
+                                     {"thickness", 0.04},
+                                     {"scale_invariant", false},
+                                     {"points", edges},
+                                     {"color", colour_of(c.colour, 1.0)},
+                                     {"colors", json::array()},
+                                     {"indices", json::array()}});
+    }
   }
-  return scene(json::array({e}));
+  return scene(json::array({verified, unverified}));
 }
 
 CarShape car_shape_of(const CarDescription& car) {
@@ -199,22 +228,27 @@ std::string car_scene(Stamp t, const Pose2& pose, const CarShape& shape) {
   return scene(json::array({e}));
 }
 
+namespace {
+// A driven trail as line strips in pieces of kPathPiece points (each starting where the previous one ended), so
+// that only the newest piece changes as the car drives on.
+void trail_pieces(std::vector<json>& out, Stamp t, const std::vector<Vec2>& path, const std::string& id,
+                  double thickness, const json& colour, double z, double min_spacing) {
+  const auto pts = decimate(path, min_spacing);
+  for (std::size_t first = 0, k = 0; first + 1 < pts.size(); first += kPathPiece, ++k) {
+    const std::size_t last = std::min(first + kPathPiece, pts.size() - 1);
+    json e = entity(t, id + "/" + std::to_string(k));
+    const std::vector<Vec2> piece(pts.begin() + static_cast<std::ptrdiff_t>(first),
+                                  pts.begin() + static_cast<std::ptrdiff_t>(last) + 1);
+    e["lines"].push_back(line_strip(piece, thickness, colour, z));
+    out.push_back(std::move(e));
+  }
+}
+}  // namespace
+
 std::vector<json> paths_entities(Stamp t, const PathSet& paths, double min_spacing) {
   std::vector<json> out;
-  // The driven trails only grow: cut into pieces of kPathPiece points (each starting where the previous ended),
-  // only the newest piece changes as the car drives on.
   const auto pieces = [&](const std::vector<Vec2>& path, const char* id, double thickness, const json& colour,
-                          double z) {
-    const auto pts = decimate(path, min_spacing);
-    for (std::size_t first = 0, k = 0; first + 1 < pts.size(); first += kPathPiece, ++k) {
-      const std::size_t last = std::min(first + kPathPiece, pts.size() - 1);
-      json e = entity(t, std::string(id) + "/" + std::to_string(k));
-      const std::vector<Vec2> piece(pts.begin() + static_cast<std::ptrdiff_t>(first),
-                                    pts.begin() + static_cast<std::ptrdiff_t>(last) + 1);
-      e["lines"].push_back(line_strip(piece, thickness, colour, z));
-      out.push_back(std::move(e));
-    }
-  };
+                          double z) { trail_pieces(out, t, path, id, thickness, colour, z, min_spacing); };
   pieces(paths.lap1_trajectory, "lap1_trajectory", 0.10, rgba(0.2, 0.9, 0.3, 1.0), 0.02);
   pieces(paths.lap2_tracking, "lap2_tracking", 0.10, rgba(0.95, 0.2, 0.9, 1.0), 0.04);
   // The plan changes as a whole at each update: one entity, coarser points.
@@ -412,6 +446,81 @@ std::string log_json(Stamp t, LogLevel level, const std::string& name, const std
               {"file", ""},
               {"line", 0}}
       .dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// ---- localization
+
+std::string localization_json(const LocalizationView& v) {
+  const Eigen::Matrix3d& P = v.covariance;
+  json j{{"timestamp", stamp(v.t)}, {"source", v.source}, {"quality", v.quality}, {"gnss", v.gnss}};
+  if (v.has_covariance && P.allFinite()) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(P.topLeftCorner<2, 2>());
+    const double largest = std::max(0.0, eig.eigenvalues().maxCoeff());
+    j["position_sigma"] = std::sqrt(largest);
+    j["sigma_x"] = std::sqrt(std::max(0.0, P(0, 0)));
+    j["sigma_y"] = std::sqrt(std::max(0.0, P(1, 1)));
+    j["sigma_yaw"] = std::sqrt(std::max(0.0, P(2, 2)));
+    j["covariance"] = {P(0, 0), P(0, 1), P(0, 2), P(1, 0), P(1, 1), P(1, 2), P(2, 0), P(2, 1), P(2, 2)};
+  } else {
+    j["position_sigma"] = nullptr;
+  }
+  return j.dump();
+}
+
+LocalizationError localization_error(const VehicleState& estimate, const TruthState& truth) {
+  // The estimate carried to the truth's instant with its own velocity (the state is up to a cycle older).
+  const double dt = truth.t - estimate.stamp;
+  const double c = std::cos(estimate.pose.yaw), s = std::sin(estimate.pose.yaw);
+  const double x = estimate.pose.x + (estimate.vx * c - estimate.vy * s) * dt;
+  const double y = estimate.pose.y + (estimate.vx * s + estimate.vy * c) * dt;
+  const double yaw = estimate.pose.yaw + estimate.yaw_rate * dt;
+  LocalizationError e;
+  e.t = truth.t;
+  e.dx = x - truth.pose.x;
+  e.dy = y - truth.pose.y;
+  e.position = std::hypot(e.dx, e.dy);
+  const double ct = std::cos(truth.pose.yaw), st = std::sin(truth.pose.yaw);
+  e.along = e.dx * ct + e.dy * st;
+  e.across = -e.dx * st + e.dy * ct;
+  e.yaw = std::remainder(yaw - truth.pose.yaw, 2 * std::numbers::pi);
+  e.carried = dt;
+  return e;
+}
+
+std::string localization_error_json(const LocalizationError& e) {
+  return json{{"timestamp", stamp(e.t)},
+              {"source", "estimate against the simulator ground truth"},
+              {"position_error", e.position},
+              {"dx", e.dx},
+              {"dy", e.dy},
+              {"along", e.along},
+              {"across", e.across},
+              {"yaw_error", e.yaw},
+              {"carried", e.carried}}
+      .dump();
+}
+
+std::string loop_closures_json(Stamp t, const std::vector<LoopClosureEvent>& events) {
+  json list = json::array();
+  for (const auto& e : events)
+    list.push_back({{"t", e.t},
+                    {"lap", e.lap},
+                    {"x", e.x},
+                    {"y", e.y},
+                    {"dx", e.dx},
+                    {"dy", e.dy},
+                    {"dyaw", e.dyaw},
+                    {"shift", std::hypot(e.dx, e.dy)},
+                    {"pairs", e.pairs},
+                    {"rms", e.rms},
+                    {"cones_merged", e.cones_merged}});
+  return json{{"timestamp", stamp(t)}, {"loop_closures", std::move(list)}}.dump();
+}
+
+std::vector<json> truth_path_entities(Stamp t, const std::vector<Vec2>& path, double min_spacing) {
+  std::vector<json> out;
+  trail_pieces(out, t, path, "truth_path", 0.06, rgba(0.96, 0.96, 0.96, 1.0), 0.08, min_spacing);
+  return out;
 }
 
 }  // namespace fsd::web

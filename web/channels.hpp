@@ -38,6 +38,11 @@ inline constexpr const char* kLog = "/log";                             // foxgl
 inline constexpr const char* kTruthCones = "/truth/cones";                 // foxglove.SceneUpdate, latched
 inline constexpr const char* kTruthCar = "/truth/car";                     // foxglove.SceneUpdate
 inline constexpr const char* kTruthVehicleState = "/truth/vehicle_state";  // fsd.TruthVehicleState
+inline constexpr const char* kTruthPath = "/truth/path";                   // foxglove.SceneUpdate, latched
+inline constexpr const char* kTruthLocalizationError = "/truth/localization_error";  // fsd.LocalizationError
+// The localization's own view of itself (also on the car): its source, quality and covariance; its loop closures.
+inline constexpr const char* kLocalization = "/localization/estimate";         // fsd.Localization
+inline constexpr const char* kLoopClosures = "/localization/loop_closures";  // fsd.LoopClosures, latched
 }  // namespace topics
 
 struct ChannelSpec {
@@ -59,6 +64,9 @@ enum class Schema {
   TruthVehicleState,  // fsd.TruthVehicleState
   AsStatus,           // fsd.AsStatus
   Faults,             // fsd.Faults
+  Localization,       // fsd.Localization
+  LocalizationError,  // fsd.LocalizationError
+  LoopClosures,       // fsd.LoopClosures
 };
 ChannelSpec channel_spec(const char* topic, Schema schema, const std::string& description, ChannelOptions options = {});
 
@@ -75,7 +83,12 @@ ChannelIds add_channels(WebServer& server, const std::vector<ChannelSpec>& specs
 // positions rounded to cm; cone_map_scene is the whole SceneUpdate.
 std::vector<nlohmann::json> cone_map_entities(Stamp t, const std::vector<Cone>& cones);
 std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones);
-// Detections (vehicle frame) placed in the map by the car's pose; translucent boxes that expire after 0.5 s.
+// Whether the camera's HOG + SVM verified a detection (stage Camera; the truth source's ideal detector counts too).
+bool camera_verified(const Cone& c);
+// Detections (vehicle frame) placed in the map by the car's pose, expiring after 0.5 s, in their colours: the
+// camera-verified ones as solid boxes (entity "detections", cubes), the LiDAR-only ones as the outline of the same
+// box (entity "detections_unverified": a line strip each, bottom and top squares joined by one edge, its pose at
+// the detection).
 std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose);
 
 struct CarShape {
@@ -168,6 +181,50 @@ struct TruthState {
   int cones_hit = 0;
 };
 std::string truth_state_json(const TruthState& s);
+
+// ---- localization: what the filter says of itself, its error against the truth (sim runs), its loop closures
+
+struct LocalizationView {
+  Stamp t = 0;               // the estimate's instant
+  std::string source;        // run.localization_source in use
+  std::string quality;       // good, degraded, lost ("" when the source has no such verdict)
+  std::string gnss;          // the latest GNSS fix's verdict ("" without one)
+  bool has_covariance = false;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // over (x, y, yaw), map frame
+};
+// fsd.Localization: source, quality, gnss; with a covariance position_sigma (m, √ of the larger eigenvalue of the
+// position block: the 1σ bound in the worst direction), sigma_x, sigma_y, sigma_yaw and the 3×3 row-major
+// covariance; position_sigma is null without one.
+std::string localization_json(const LocalizationView& v);
+
+struct LocalizationError {
+  Stamp t = 0;
+  double position = 0;           // m, |estimate − truth|
+  double dx = 0, dy = 0;         // m, map frame
+  double along = 0, across = 0;  // m, in the true heading's frame
+  double yaw = 0;                // rad, wrapped
+  double carried = 0;            // s the estimate was carried forward to the truth's instant
+};
+// The estimate against the truth at the truth's instant: the estimate carried forward by its own velocity over the
+// gap between the two stamps (at most a control cycle or two).
+LocalizationError localization_error(const VehicleState& estimate, const TruthState& truth);
+std::string localization_error_json(const LocalizationError& e);
+
+struct LoopClosureEvent {
+  Stamp t = 0;               // the run clock where the loop closed
+  int lap = 0;               // 1 for the first loop
+  double x = 0, y = 0;       // m, where the car was (the estimate before the correction)
+  double dx = 0, dy = 0;     // m, the correction's translation (map ← estimated)
+  double dyaw = 0;           // rad
+  int pairs = 0;             // start cones seen again
+  double rms = 0;            // m over them
+  int cones_merged = 0;
+};
+// fsd.LoopClosures: every loop closure so far, oldest first, each with its shift (m, |dx, dy|).
+std::string loop_closures_json(Stamp t, const std::vector<LoopClosureEvent>& events);
+
+// The true driven path (map frame), white, in pieces as the driven trails ("truth_path/0", ...).
+std::vector<nlohmann::json> truth_path_entities(Stamp t, const std::vector<Vec2>& path, double min_spacing = 0.25);
 
 enum class LogLevel : int { Unknown = 0, Debug = 1, Info = 2, Warning = 3, Error = 4, Fatal = 5 };  // foxglove.Log
 std::string log_json(Stamp t, LogLevel level, const std::string& name, const std::string& message);

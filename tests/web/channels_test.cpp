@@ -324,5 +324,123 @@ TEST(Channels, TruthStateIsLabelledAndInSiUnits) {
   for (const auto& [key, value] : j.items()) EXPECT_TRUE(props.contains(key)) << key;
 }
 
+// Verified by the camera (stage Camera, or the truth source's ideal detector): a solid box; LiDAR alone: the box's
+// outline. Both in the cone's colour, placed in the map by the car's pose (hand-computed).
+TEST(Channels, DetectionsAreSolidWhenTheCameraVerifiedThemAndOutlinedWhenNotInTheirColour) {
+  ConeDetections d;
+  Cone verified = fsd::test::cone_at(2, 0, ConeColour::Blue);
+  verified.stage = DetectionStage::Camera;
+  Cone lidar_yellow = fsd::test::cone_at(1, 1, ConeColour::Yellow);
+  lidar_yellow.stage = DetectionStage::Lidar;
+  Cone lidar_unknown = fsd::test::cone_at(3, -1, ConeColour::Unknown);
+  lidar_unknown.stage = DetectionStage::Lidar;
+  d.cones = {verified, lidar_yellow, lidar_unknown};
+  const auto j = json::parse(detections_scene(1.0, d, Pose2{10, 5, std::numbers::pi / 2}));
+  ASSERT_EQ(j["entities"].size(), 2u);
+  const auto& solid = j["entities"][0];
+  const auto& hollow = j["entities"][1];
+  EXPECT_EQ(solid["id"], "detections");
+  EXPECT_EQ(hollow["id"], "detections_unverified");
+  EXPECT_EQ(hollow["lifetime"], (json{{"sec", 0}, {"nsec", 500000000}}));
+  ASSERT_EQ(solid["cubes"].size(), 1u);
+  EXPECT_TRUE(solid["lines"].empty());
+  EXPECT_NEAR(solid["cubes"][0]["pose"]["position"]["x"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(solid["cubes"][0]["pose"]["position"]["y"].get<double>(), 7.0, 1e-9);
+  EXPECT_EQ(solid["cubes"][0]["color"]["b"], 0.95);  // blue
+  EXPECT_GE(solid["cubes"][0]["color"]["a"].get<double>(), 0.8);  // solid, not a ghost
+  ASSERT_EQ(hollow["lines"].size(), 2u);
+  EXPECT_TRUE(hollow["cubes"].empty());
+  const auto& y = hollow["lines"][0];
+  EXPECT_NEAR(y["pose"]["position"]["x"].get<double>(), 9.0, 1e-9);  // 1 m ahead, 1 m left: (10 − 1, 5 + 1)
+  EXPECT_NEAR(y["pose"]["position"]["y"].get<double>(), 6.0, 1e-9);
+  EXPECT_EQ(y["color"], (json{{"r", 1.0}, {"g", 0.85}, {"b", 0.05}, {"a", 1.0}}));  // yellow
+  EXPECT_NEAR(hollow["lines"][1]["pose"]["position"]["x"].get<double>(), 11.0, 1e-9);  // 3 ahead, 1 right
+  EXPECT_NEAR(hollow["lines"][1]["pose"]["position"]["y"].get<double>(), 8.0, 1e-9);
+  EXPECT_EQ(hollow["lines"][1]["color"]["r"], hollow["lines"][1]["color"]["b"]);  // unknown: grey
+  // The outline: a closed 0.35 m square at the ground and one at 0.4 m.
+  const auto& pts = y["points"];
+  ASSERT_EQ(pts.size(), 10u);
+  EXPECT_EQ(pts[0], pts[4]);
+  EXPECT_EQ(pts[5], pts[9]);
+  EXPECT_NEAR(std::abs(pts[1]["x"].get<double>() - pts[0]["x"].get<double>()) +
+                  std::abs(pts[1]["y"].get<double>() - pts[0]["y"].get<double>()),
+              0.35, 1e-9);
+  EXPECT_EQ(pts[0]["z"], 0.0);
+  EXPECT_EQ(pts[5]["z"], 0.4);
+  EXPECT_TRUE(camera_verified(verified));
+  EXPECT_FALSE(camera_verified(lidar_yellow));
+}
+
+TEST(Channels, LocalizationGivesTheOneSigmaBoundOfTheWorstDirection) {
+  LocalizationView v;
+  v.t = 2.5;
+  v.source = "fused";
+  v.quality = "good";
+  v.gnss = "accepted";
+  v.has_covariance = true;
+  // Position block [[0.05, 0.03], [0.03, 0.05]]: eigenvalues 0.08 and 0.02 (by hand), so 1σ = √0.08 m.
+  v.covariance << 0.05, 0.03, 0, 0.03, 0.05, 0, 0, 0, 0.0004;
+  const auto j = json::parse(localization_json(v));
+  EXPECT_NEAR(j["position_sigma"].get<double>(), std::sqrt(0.08), 1e-12);
+  EXPECT_NEAR(j["sigma_x"].get<double>(), std::sqrt(0.05), 1e-12);
+  EXPECT_NEAR(j["sigma_yaw"].get<double>(), 0.02, 1e-12);
+  EXPECT_EQ(j["covariance"].size(), 9u);
+  EXPECT_EQ(j["source"], "fused");
+  EXPECT_EQ(j["quality"], "good");
+  EXPECT_EQ(j["timestamp"], (json{{"sec", 2}, {"nsec", 500000000}}));
+  v.has_covariance = false;  // the truth or LiDAR-odometry source: no covariance, said so
+  EXPECT_TRUE(json::parse(localization_json(v))["position_sigma"].is_null());
+  v.has_covariance = true;
+  v.covariance(0, 0) = std::nan("");
+  EXPECT_TRUE(json::parse(localization_json(v))["position_sigma"].is_null());
+}
+
+TEST(Channels, LocalizationErrorCarriesTheEstimateToTheTruthsInstant) {
+  VehicleState est;
+  est.stamp = 1.0;
+  est.pose = {0, 0, 0};
+  est.vx = 10;
+  TruthState truth;
+  truth.t = 1.01;  // 10 ms later: the estimate moves 0.1 m ahead
+  truth.pose = {0.1, 0.05, 0.01};
+  const auto e = localization_error(est, truth);
+  EXPECT_NEAR(e.dx, 0.0, 1e-12);
+  EXPECT_NEAR(e.dy, -0.05, 1e-12);
+  EXPECT_NEAR(e.position, 0.05, 1e-12);
+  EXPECT_NEAR(e.along, -0.05 * std::sin(0.01), 1e-12);
+  EXPECT_NEAR(e.across, -0.05 * std::cos(0.01), 1e-12);
+  EXPECT_NEAR(e.yaw, -0.01, 1e-12);
+  EXPECT_NEAR(e.carried, 0.01, 1e-12);
+  truth.pose.yaw = 2 * std::numbers::pi - 0.01;  // wrapped: −0.01 rad is 0.01 rad away, not 6.27
+  EXPECT_NEAR(localization_error(est, truth).yaw, 0.01, 1e-9);
+  const auto j = json::parse(localization_error_json(e));
+  EXPECT_NEAR(j["position_error"].get<double>(), 0.05, 1e-12);
+  EXPECT_EQ(j["source"], "estimate against the simulator ground truth");
+}
+
+TEST(Channels, LoopClosuresListEachWithItsShift) {
+  const std::vector<LoopClosureEvent> events = {{.t = 52.3, .lap = 1, .x = 1, .y = 2, .dx = 0.3, .dy = -0.4,
+                                                 .dyaw = 0.01, .pairs = 9, .rms = 0.05, .cones_merged = 3}};
+  const auto j = json::parse(loop_closures_json(60, events));
+  ASSERT_EQ(j["loop_closures"].size(), 1u);
+  const auto& c = j["loop_closures"][0];
+  EXPECT_NEAR(c["shift"].get<double>(), 0.5, 1e-12);
+  EXPECT_EQ(c["t"], 52.3);
+  EXPECT_EQ(c["lap"], 1);
+  EXPECT_EQ(c["pairs"], 9);
+  EXPECT_TRUE(json::parse(loop_closures_json(1, {}))["loop_closures"].empty());
+}
+
+TEST(Channels, TheTruePathIsAWhiteTrailInPieces) {
+  std::vector<Vec2> path;
+  for (int i = 0; i < 150; ++i) path.emplace_back(1.0 * i, 2.0);
+  const auto e = truth_path_entities(0, path);
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0]["id"], "truth_path/0");
+  EXPECT_EQ(e[1]["lines"][0]["points"].back()["x"].get<double>(), 149.0);
+  EXPECT_EQ(e[0]["lines"][0]["color"], (json{{"r", 0.96}, {"g", 0.96}, {"b", 0.96}, {"a", 1.0}}));
+  EXPECT_TRUE(truth_path_entities(0, {}).empty());
+}
+
 }  // namespace
 }  // namespace fsd::web
