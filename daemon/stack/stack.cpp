@@ -672,10 +672,31 @@ struct Stack::Impl {
     s.detections = last_detections;
     if (last_detections) s.detections_pose = poses.at(last_detections->stamp);
     s.camera_jpeg = last_jpeg;
+    if (state) s.localization = localization_view();
+    for (const auto& r : loop_closures)
+      s.loop_closures.push_back({r.t, r.lap, r.estimate.x, r.estimate.y, r.correction.x, r.correction.y,
+                                 r.correction.yaw, r.pairs, r.rms, r.cones_merged});
     if (telemetry_extras) telemetry_extras(s);
+    view.add_truth_path(s);
     const auto shared = std::make_shared<const TelemetrySnapshot>(std::move(s));
     for (auto* tap : snapshot_taps) tap->on_snapshot(shared);
     if (telemetry) telemetry->publish(shared);
+  }
+
+  // The dashboard's view of the localization: its source, and with the fused source the filter's own verdict and
+  // covariance.
+  web::LocalizationView localization_view() const {
+    web::LocalizationView v;
+    v.t = state->stamp;
+    v.source = localization_source;
+    if (fused) {
+      const auto e = fused->estimate();
+      v.quality = std::string(fusion::to_string(e.quality));
+      v.gnss = std::string(fusion::to_string(e.gnss));
+      v.has_covariance = e.initialised;
+      v.covariance = e.covariance;
+    }
+    return v;
   }
 
   AsState as_state() const {

@@ -71,4 +71,17 @@ TelemetrySnapshot DashboardView::snapshot(Stamp now, AsState as, const ControlOu
   return s;
 }
 
+void DashboardView::add_truth_path(TelemetrySnapshot& s) {
+  if (!s.truth) return;
+  const Vec2 p = s.truth->pose.position();
+  if (s.as.as_state == AsState::Driving && p.allFinite() && truth_trail_.size() < kMaxTrailPoints &&
+      (truth_trail_.empty() || (p - truth_trail_.back()).norm() >= 0.1)) {
+    truth_trail_.push_back(p);
+    truth_trail_sent_.reset();
+  }
+  if (!truth_trail_sent_ && truth_trail_.size() >= 2)
+    truth_trail_sent_ = std::make_shared<const std::vector<Vec2>>(truth_trail_);
+  s.truth_path = truth_trail_sent_;
+}
+
 }  // namespace fsd

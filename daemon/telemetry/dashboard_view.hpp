@@ -27,11 +27,16 @@ class DashboardView {
   // A snapshot at `now` with the stack's parts filled; the caller adds the state, sensors and truth.
   TelemetrySnapshot snapshot(Stamp now, AsState as, const ControlOutput& out, const Autopilot& autopilot,
                              const std::optional<VcuStatus>& vcu) const;
+  // Sim runs, after the feeder added the truth to `s`: the true path while Driving (points 0.1 m apart), handed
+  // over as a new pointer only when it grew.
+  void add_truth_path(TelemetrySnapshot& s);
 
  private:
   Mission mission_;
   int trackdrive_laps_;
   std::vector<Vec2> lap1_trail_, later_trail_;
+  std::vector<Vec2> truth_trail_;
+  std::shared_ptr<const std::vector<Vec2>> truth_trail_sent_;
   // The lap shown: the one being driven (1 on the first lap), after the finish the last one driven.
   int lap_being_driven(bool finished) const;
   // The lap clock: runs while Driving, frozen when the car stopped, after the finish the last lap's time.

@@ -46,9 +46,13 @@ struct TelemetrySnapshot {
   Pose3 lidar_pose = Pose3::Identity();                          // map ← sensor at the scan
   web::AsStatusView as;
   std::vector<web::FaultEvent> faults;
+  // The localization's own view (source, quality, covariance) once the stack has a state; its loop closures.
+  std::optional<web::LocalizationView> localization;
+  std::vector<web::LoopClosureEvent> loop_closures;
   // Sim runs only: the simulator's ground truth, published on /truth/* (never mixed into the channels above).
   std::optional<web::TruthState> truth;
   std::shared_ptr<const std::vector<web::TruthCone>> truth_cones;  // a new pointer when a cone fell
+  std::shared_ptr<const std::vector<Vec2>> truth_path;  // the true driven path, a new pointer when it grew
 };
 
 class Telemetry {

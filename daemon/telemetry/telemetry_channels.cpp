@@ -97,6 +97,21 @@ std::vector<TelemetryChannel> make_table() {
              return std::to_string(s.faults.size()) + s.faults.back().source + s.faults.back().what;
            },
        .build = [](const TelemetrySnapshot& s, const ChannelUse&) { return text(web::faults_json(s.t, s.faults)); }});
+  // The localization's view of itself: on the car as in the simulator (not recorded: a replay recomputes it).
+  t.push_back({.spec = web::channel_spec(topics::kLocalization, Schema::Localization,
+                                         "Localization source, quality and the filter's covariance"),
+               .live_hz = 10,
+               .build = [](const TelemetrySnapshot& s, const ChannelUse&) -> Built {
+                 if (!s.localization) return std::nullopt;
+                 return text(web::localization_json(*s.localization));
+               }});
+  t.push_back({.spec = web::channel_spec(topics::kLoopClosures, Schema::LoopClosures,
+                                         "Every loop closure of the run: when, where, the correction", latched()),
+               .live_hz = 1,
+               .changed = [](const TelemetrySnapshot& s) { return std::to_string(s.loop_closures.size()); },
+               .build = [](const TelemetrySnapshot& s, const ChannelUse&) {
+                 return text(web::loop_closures_json(s.t, s.loop_closures));
+               }});
   // Fed by the log sink (web::make_log_sink; the recorder's own), not from snapshots.
   t.push_back(
       {.spec = web::channel_spec(topics::kLog, Schema::Log, "Log lines (the latest 100 sent to a new subscriber)",
@@ -126,6 +141,21 @@ std::vector<TelemetryChannel> make_table() {
                .build = [](const TelemetrySnapshot& s, const ChannelUse&) -> Built {
                  if (!s.truth) return std::nullopt;
                  return text(web::truth_state_json(*s.truth));
+               }});
+  t.push_back({.spec = web::channel_spec(topics::kTruthPath, Schema::SceneUpdate,
+                                         "Simulator ground truth: the path the car really drove", latched_delta()),
+               .truth = true,
+               .live_hz = 4,
+               .source = [](const TelemetrySnapshot& s) -> std::shared_ptr<const void> { return s.truth_path; },
+               .build = [](const TelemetrySnapshot& s,
+                           const ChannelUse&) { return scene(web::truth_path_entities(s.t, *s.truth_path)); }});
+  t.push_back({.spec = web::channel_spec(topics::kTruthLocalizationError, Schema::LocalizationError,
+                                         "Simulator ground truth: the localization's position and heading error"),
+               .truth = true,
+               .live_hz = 10,
+               .build = [](const TelemetrySnapshot& s, const ChannelUse&) -> Built {
+                 if (!s.truth || !s.localization) return std::nullopt;
+                 return text(web::localization_error_json(web::localization_error(s.state, *s.truth)));
                }});
   return t;
 }

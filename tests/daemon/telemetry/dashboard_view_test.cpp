@@ -112,5 +112,33 @@ TEST(DashboardView, ResAndEbsComeFromTheVcu) {
   EXPECT_EQ(s.as.as_state, AsState::Driving);
 }
 
+// The true path (sim runs): the truth's positions while Driving, 0.1 m apart at least; the same pointer while it
+// did not grow, so the channel sends nothing new.
+TEST(DashboardView, TheTruePathFollowsTheTruthWhileDriving) {
+  const auto ap = idle_autopilot(Mission::Trackdrive);
+  DashboardView view(Mission::Trackdrive, 2);
+  const ControlOutput out;
+  const auto snap = [&](AsState as, double x) {
+    TelemetrySnapshot s = view.snapshot(0, as, out, ap, {});
+    s.truth = web::TruthState{};
+    s.truth->pose = {x, 1.0, 0.0};
+    view.add_truth_path(s);
+    return s.truth_path;
+  };
+  EXPECT_EQ(snap(AsState::Ready, 0.0), nullptr);  // standing before go: nothing
+  EXPECT_EQ(snap(AsState::Driving, 0.0), nullptr);  // one point is no path
+  const auto two = snap(AsState::Driving, 0.5);
+  ASSERT_NE(two, nullptr);
+  EXPECT_EQ(*two, (std::vector<Vec2>{{0.0, 1.0}, {0.5, 1.0}}));
+  EXPECT_EQ(snap(AsState::Driving, 0.55), two);  // 5 cm on: not a new point, not a new message
+  const auto three = snap(AsState::Driving, 0.7);
+  ASSERT_NE(three, two);
+  EXPECT_EQ(three->back(), Vec2(0.7, 1.0));
+  EXPECT_EQ(snap(AsState::Emergency, 5.0), three);  // stopped driving: the path stays as it was
+  TelemetrySnapshot no_truth = view.snapshot(0, AsState::Driving, out, ap, {});
+  view.add_truth_path(no_truth);  // the car: no truth, no path
+  EXPECT_EQ(no_truth.truth_path, nullptr);
+}
+
 }  // namespace
 }  // namespace fsd

@@ -35,7 +35,9 @@ TEST(ChannelTable, EveryChannelOnceWithItsSchemaAndABuilderUnlessFedElsewhere) {
   // /camera/detections is not in it: nothing hands the camera's boxes to the telemetry yet.
   EXPECT_EQ(topics, (std::set<std::string>{"/map/cones", "/perception/cones", "/vehicle/car", "/planning/paths",
                                            "/lidar/points", "/camera/image", "/vehicle/state", "/as/status", "/faults",
-                                           "/log", "/truth/cones", "/truth/car", "/truth/vehicle_state"}));
+                                           "/log", "/localization/estimate", "/localization/loop_closures",
+                                           "/truth/cones", "/truth/car", "/truth/vehicle_state", "/truth/path",
+                                           "/truth/localization_error"}));
   // The scene the dashboard sends as changes, kept whole for late subscribers.
   EXPECT_TRUE(row("/map/cones").spec.options.delta && row("/map/cones").spec.options.latched);
   EXPECT_TRUE(row("/planning/paths").spec.options.delta);
@@ -106,6 +108,38 @@ TEST(ChannelPacer, AChangedKeyIsSentAtOnceAndTheRecordingFollowsTheRunsClock) {
   EXPECT_EQ(states, 250);  // every snapshot
   // Recorded only when the list changes (the first snapshot's empty list included), each at once.
   EXPECT_EQ(fault_msgs, (std::vector<Stamp>{0.0, 100 * 0.04, 101 * 0.04, 180 * 0.04}));
+}
+
+// The localization's rows: the estimate only once the stack has a state, its error only with the truth beside it,
+// the loop closures at once when one more closed, the true path only when it grew.
+TEST(ChannelPacer, LocalizationRowsSendWhatTheSnapshotHasAndLoopClosuresAtOnce) {
+  // Due rows whose builder gives a message (a row without data for a snapshot sends nothing).
+  std::map<std::string, int> n;
+  ChannelPacer pacer(telemetry_channels(), [](const TelemetryChannel& c) { return c.live_hz; });
+  TelemetrySnapshot s;
+  for (int tick = 0; tick < 1000; tick += 4) {  // snapshots every 40 ms for 10 s
+    s.t = tick * 0.01;
+    if (tick == 500) s.localization = web::LocalizationView{.t = s.t, .source = "fused"};  // a state from 5 s on
+    if (tick == 700) s.truth = web::TruthState{.t = s.t};                                 // the truth from 7 s on
+    if (tick == 604) s.loop_closures.push_back({.t = s.t, .lap = 1});  // 6.04 s: between two 1 Hz messages
+    if (tick % 100 == 0) s.truth_path = std::make_shared<const std::vector<Vec2>>(2, Vec2(0, 0));  // grew, 1 Hz
+    for (const auto i : pacer.due(s, s.t)) {
+      const auto& r = telemetry_channels()[i];
+      if (r.build && r.build(s, {})) ++n[r.spec.topic];
+    }
+  }
+  EXPECT_NEAR(n["/localization/estimate"], 50, 1);       // 10 Hz over the last 5 s
+  EXPECT_NEAR(n["/truth/localization_error"], 30, 1);    // 10 Hz over the last 3 s
+  EXPECT_NEAR(n["/localization/loop_closures"], 11, 1);  // 1 Hz, plus one at once
+  EXPECT_EQ(n["/truth/path"], 10);                       // each new path once
+  const auto loops = json::parse(*row("/localization/loop_closures").build(
+      [] {
+        TelemetrySnapshot s;
+        s.loop_closures.push_back({.t = 3, .lap = 1, .dx = 0.6, .dy = 0.8});
+        return s;
+      }(),
+      {})->json);
+  EXPECT_NEAR(loops["loop_closures"][0]["shift"].get<double>(), 1.0, 1e-12);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -39,12 +40,13 @@ constexpr const char* kTrack = "../shared/tracks/epfl_track_1.csv";
 
 // A headless sim run of `sim_seconds` with the dashboard server, telemetry (truth channels on) and /metrics.
 struct LiveRun {
-  explicit LiveRun(double sim_seconds) : cfg(config_schema()) {
+  explicit LiveRun(double sim_seconds, const std::function<void(Config&)>& tweak = {}) : cfg(config_schema()) {
     cfg.set("sim.enable_lidar", false, "test");
     cfg.set("sim.enable_camera", false, "test");
     cfg.set("run.perception_source", std::string("truth"), "test");
     cfg.set("run.localization_source", std::string("truth"), "test");
     cfg.set("run.track", kTrack, "test");
+    if (tweak) tweak(cfg);
     cfg.set("run.max_sim_time", sim_seconds, "test");
     cfg.set("web.bind", "127.0.0.1", "test");
     cfg.set("web.port", 0, "test");
@@ -258,6 +260,36 @@ TEST(Telemetry, EveryClientEndsWithTheStacksConeMapALateOneFromOneMessage) {
               map.front().position.x() + 1.0, 0.006);
   ASSERT_EQ((*update)["deletions"].size(), 1u) << update->dump();
   EXPECT_EQ((*update)["deletions"][0]["id"], "cone/" + std::to_string(map.back().id));
+}
+
+// On the LiDAR odometry the first lap's loop closes at the start's cones: a page opened after the run gets every
+// loop closure the Stack applied (its time, lap and correction) in the latched list, and the localization channel
+// names the source, without a covariance (the odometry gives none).
+TEST(Telemetry, ALoopClosureReachesTheDashboardWithItsCorrection) {
+  LiveRun live(45.0, [](Config& c) {
+    c.set("sim.enable_lidar", true, "test");
+    c.set("run.perception_source", std::string("lidar"), "test");
+    c.set("run.localization_source", std::string("lidar_odometry"), "test");
+  });
+  ASSERT_EQ(live.go(), 0);
+  const auto& closed = live.run->stack().loop_closures();
+  ASSERT_FALSE(closed.empty()) << "no loop closed in 45 s: nothing to show";
+  WsClient c(live.server->port());
+  ASSERT_TRUE(c.handshake_ok());
+  auto subs = subscribe(c, {"/localization/loop_closures"});
+  ASSERT_EQ(subs.size(), 1u);
+  const auto m = next_on(c, subs["/localization/loop_closures"]);
+  ASSERT_TRUE(m);
+  const auto& list = (*m)["loop_closures"];
+  ASSERT_EQ(list.size(), closed.size());
+  for (std::size_t i = 0; i < closed.size(); ++i) {
+    EXPECT_DOUBLE_EQ(list[i]["t"].get<double>(), closed[i].t);
+    EXPECT_EQ(list[i]["lap"], closed[i].lap);
+    EXPECT_DOUBLE_EQ(list[i]["dx"].get<double>(), closed[i].correction.x);
+    EXPECT_DOUBLE_EQ(list[i]["dyaw"].get<double>(), closed[i].correction.yaw);
+    EXPECT_NEAR(list[i]["shift"].get<double>(), std::hypot(closed[i].correction.x, closed[i].correction.y), 1e-12);
+    EXPECT_EQ(list[i]["pairs"], closed[i].pairs);
+  }
 }
 
 TEST(Telemetry, PlanFallbacksAreCounted) {
