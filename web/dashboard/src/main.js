@@ -28,12 +28,19 @@ const plots = {
   yaw: new TimePlot($('plot-yaw'), { title: 'Yaw rate', unit: '°/s', minRange: 5, series: [{ label: 'r', color: '#81c784' }, truthSeries('true r')] }),
   ay: new TimePlot($('plot-ay'), { title: 'Lateral acceleration', unit: 'm/s²', minRange: 1, series: [{ label: 'ay', color: '#e57373' }, truthSeries('true ay')] }),
   beta: new TimePlot($('plot-beta'), { title: 'Sideslip', unit: '°', minRange: 1, series: [{ label: 'β', color: '#ba68c8' }, truthSeries('true β')] }),
+  // The filter's position bound from its covariance (also on the car) and, in sim runs with the truth overlay, the
+  // true position error against it: an error above 3σ means the filter is overconfident.
+  loc: new TimePlot($('plot-loc'), {
+    title: 'Position error, filter σ', unit: 'm', minRange: 0.05, zeroBased: true,
+    series: [{ label: '1σ', color: '#4fc3f7' }, { label: '3σ', color: '#4fc3f7', dash: [6, 4] },
+             { label: 'error', color: '#ff8a65', hidden: true }],
+  }),
 };
 function truthSeries(label) {
   return { label, color: '#f5f5f5', dash: [2, 3], hidden: true };
 }
 
-const hook = (window.__fsd = { webgl: scene.webgl, connected: false, topics: {}, status: [], scene: () => scene.counts(), positions: (topic) => scene.positions(topic), plots: {}, truth: { on: false, samples: 0 } });
+const hook = (window.__fsd = { webgl: scene.webgl, connected: false, topics: {}, status: [], scene: () => scene.counts(), positions: (topic) => scene.positions(topic), detections: (topic) => scene.detections?.(topic) ?? [], plots: {}, truth: { on: false, samples: 0 }, localization: { samples: 0, errors: [] }, loopClosures: [] });
 
 function onVehicleState(m) {
   const t = seconds(m.timestamp);
@@ -55,6 +62,56 @@ function onTruthState(m) {
   plots.beta.pushSeries(last(plots.beta), t, m.sideslip * RAD2DEG);
   hook.truth.samples++;
   hook.truth.last = m;
+}
+
+// The localization's view of itself: source, quality, and the 1σ / 3σ position bound from the covariance.
+function onLocalization(m) {
+  const t = seconds(m.timestamp);
+  const sigma = m.position_sigma;
+  $('loc-source').textContent = `${m.source}${m.quality ? ` · ${m.quality}` : ''}`;
+  $('loc-sigma').textContent = Number.isFinite(sigma) ? `${(sigma * 100).toFixed(1)} / ${(3 * sigma * 100).toFixed(1)} cm` : 'no covariance';
+  if (Number.isFinite(sigma)) plots.loc.push(t, sigma, 3 * sigma);
+  const L = hook.localization;
+  L.samples++;
+  L.last = m;
+}
+
+// Sim runs with the truth overlay: the true position error, beside the filter's bound.
+function onLocalizationError(m) {
+  const t = seconds(m.timestamp);
+  plots.loc.pushSeries(plots.loc.series.length - 1, t, m.position_error);
+  $('loc-error-row').hidden = false;
+  $('loc-error').textContent = `${(m.position_error * 100).toFixed(1)} cm, ${(m.yaw_error * RAD2DEG).toFixed(2)}°`;
+  const L = hook.localization;
+  L.errors.push({ t, error: m.position_error, sigma: L.last?.position_sigma ?? null });
+  if (L.errors.length > 2000) L.errors.shift();
+}
+
+// Loop closures: a line each in the panel, a marker in the error plot, a toast for one that happens while watching.
+let loopsSeen = null;
+function onLoopClosures(m) {
+  const list = m.loop_closures ?? [];
+  $('loop-count').textContent = list.length;
+  $('loop-closures').replaceChildren(...[...list].reverse().map((c) => {
+    const li = document.createElement('li');
+    li.textContent = loopText(c);
+    return li;
+  }));
+  for (const c of list) plots.loc.mark(c.t, `loop ${c.lap}`);
+  if (loopsSeen !== null && list.length > loopsSeen) showToast(`Loop closed · ${loopText(list[list.length - 1])}`);
+  loopsSeen = list.length;
+  hook.loopClosures = list;
+}
+const loopText = (c) => `${c.t.toFixed(1)} s  loop ${c.lap}: moved ${(c.shift * 100).toFixed(0)} cm, ` +
+  `${(c.dyaw * RAD2DEG).toFixed(2)}° on ${c.pairs} cones (rms ${(c.rms * 100).toFixed(0)} cm)`;
+
+let toastTimer = null;
+function showToast(text) {
+  const el = $('toast');
+  el.textContent = text;
+  el.hidden = false;
+  clearTimeout(toastTimer);
+  toastTimer = setTimeout(() => (el.hidden = true), 10000);
 }
 
 const AS_CLASS = { Off: 'as-off', Ready: 'as-ready', Driving: 'as-driving', Emergency: 'as-emergency', Finished: 'as-finished' };
@@ -160,6 +217,9 @@ const bySchema = {
   'fsd.TruthVehicleState': onTruthState,
   'fsd.AsStatus': onAsStatus,
   'fsd.Faults': onFaults,
+  'fsd.Localization': onLocalization,
+  'fsd.LocalizationError': onLocalizationError,
+  'fsd.LoopClosures': onLoopClosures,
 };
 
 function setLink(state, detail) {
@@ -233,6 +293,7 @@ function setTruthOverlay(on) {
   if (!on) {
     for (const ch of client.channels.values()) if (isTruth(ch.topic)) scene.removeTopic(ch.topic);
     hook.truth.samples = 0;
+    $('loc-error-row').hidden = true;
   }
 }
 $('truth').addEventListener('click', () => setTruthOverlay(!hook.truth.on));

@@ -1,7 +1,7 @@
 // A small canvas plot of values over time: a sliding window, autoscaled, redrawn at most once per frame.
 export class TimePlot {
   // series: [{ label, color, dash?, hidden? }]; the first ones take push(), the others pushSeries()
-  constructor(canvas, { title, unit, series, windowS = 30, minRange = 1 }) {
+  constructor(canvas, { title, unit, series, windowS = 30, minRange = 1, zeroBased = false }) {
     this.canvas = canvas;
     this.ctx = canvas.getContext('2d');
     this.title = title;
@@ -9,8 +9,10 @@ export class TimePlot {
     this.series = series.map((s) => ({ ...s, t: [], v: [] }));
     this.windowS = windowS;
     this.minRange = minRange;
+    this.zeroBased = zeroBased;  // the axis starts at 0 (magnitudes)
     this.dirty = true;
     this.count = 0;
+    this.markers = [];  // { t, label }: vertical lines (events)
     new ResizeObserver(() => {
       this.dirty = true;
     }).observe(canvas);
@@ -61,12 +63,21 @@ export class TimePlot {
     this.dirty = true;
   }
 
+  // A vertical line at time t with a label (an event, e.g. a loop closure).
+  mark(t, label) {
+    if (!Number.isFinite(t) || this.markers.some((m) => m.t === t)) return;
+    this.markers.push({ t, label });
+    if (this.markers.length > 20) this.markers.shift();
+    this.dirty = true;
+  }
+
   samples(i) {
     return this.series[i].t.length;
   }
 
   clear() {
     for (const s of this.series) s.t.length = s.v.length = 0;
+    this.markers.length = 0;
   }
 
   draw() {
@@ -80,7 +91,11 @@ export class TimePlot {
     const g = this.ctx;
     g.setTransform(dpr, 0, 0, dpr, 0, 0);
     g.clearRect(0, 0, w, h);
-    const padL = 44, padR = 8, padT = 22, padB = 18;
+    g.font = '12px system-ui, sans-serif';
+    // The latest values go right of the title, or on a second row when the plot is too narrow for both.
+    const legendW = this.series.reduce((sum, s) => sum + (!s.hidden && s.v.length ? g.measureText(`${s.label} ${s.v[s.v.length - 1].toFixed(2)}`).width + 12 : 0), 0);
+    const twoRows = g.measureText(`${this.title} [${this.unit}]`).width + 44 + legendW + 8 > w;
+    const padL = 44, padR = 8, padT = twoRows ? 36 : 22, padB = 18;
     const pw = w - padL - padR, ph = h - padT - padB;
 
     let tMax = -Infinity, lo = Infinity, hi = -Infinity;
@@ -104,6 +119,10 @@ export class TimePlot {
     const margin = (hi - lo) * 0.08;
     lo -= margin;
     hi += margin;
+    if (this.zeroBased) {
+      lo = 0;
+      hi = Math.max(hi, this.minRange);
+    }
     const tMin = tMax - this.windowS;
     const X = (t) => padL + ((t - tMin) / this.windowS) * pw;
     const Y = (v) => padT + (1 - (v - lo) / (hi - lo)) * ph;
@@ -131,6 +150,22 @@ export class TimePlot {
     g.textBaseline = 'top';
     g.fillText(`−${this.windowS} s`, padL, padT + ph + 3);
 
+    // Event markers within the window.
+    for (const m of this.markers) {
+      if (m.t < tMin || m.t > tMax) continue;
+      const x = X(m.t);
+      g.strokeStyle = '#ffd400';
+      g.setLineDash([4, 3]);
+      g.beginPath();
+      g.moveTo(x, padT);
+      g.lineTo(x, padT + ph);
+      g.stroke();
+      g.setLineDash([]);
+      g.fillStyle = '#ffd400';
+      g.fillText(m.label, Math.min(x + 3, padL + pw - g.measureText(m.label).width), padT + 2);
+    }
+    g.fillStyle = '#8c96a5';
+
     // The series, and the latest values in the title row.
     let legendX = w - padR;
     g.textAlign = 'right';
@@ -151,7 +186,7 @@ export class TimePlot {
       if (s.v.length) {
         g.fillStyle = s.color;
         const text = `${s.label} ${s.v[s.v.length - 1].toFixed(2)}`;
-        g.fillText(text, legendX, 4);
+        g.fillText(text, legendX, twoRows ? 19 : 4);
         legendX -= g.measureText(text).width + 12;
       }
     }

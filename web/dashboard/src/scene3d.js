@@ -283,6 +283,21 @@ export class Scene3D {
     return out;
   }
 
+  // How each detection of a topic is drawn: where (map frame), solid (a box: camera-verified) or hollow (the box's
+  // outline: LiDAR only), and in which colour (r, g, b 0..1 as the message gave them); for the browser test.
+  detections(topic) {
+    const out = [];
+    for (const { group } of this.entities.values()) {
+      if (group.userData.topic !== topic) continue;
+      for (const o of group.children) {
+        if (!o.isMesh) continue;
+        const c = o.material.color;
+        out.push({ x: o.position.x, y: o.position.y, solid: !o.isLine2, color: { r: c.r, g: c.g, b: c.b } });
+      }
+    }
+    return out;
+  }
+
   // What is on screen, per topic: for the status line and the browser test.
   counts() {
     const out = {};
