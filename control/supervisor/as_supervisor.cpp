@@ -41,7 +41,30 @@ void AsSupervisor::require(InputStream s, bool required) {
   required_[idx(s)] = required;
 }
 
+namespace {
+// Why the VCU is in AS Emergency, from its Status fault bits (docs/vcu-protocol.md).
+std::string emergency_cause(std::uint32_t faults) {
+  namespace vcu = wire::vcu;
+  if (faults & vcu::kFaultEmergencyHeartbeat) return "the stack's heartbeat was lost (the stack stopped or stalled)";
+  if (faults & vcu::kFaultEmergencyRes) return "the RES emergency stop";
+  if (faults & vcu::kFaultEmergencyRequest) return "the stack's own request";
+  if (faults & vcu::kFaultEmergencyAsms) return "the ASMS switched off while driving";
+  return "a cause the VCU did not name";
+}
+}  // namespace
+
 void AsSupervisor::on_vcu(const VcuStatus& status) {
+  // AS Emergency is the VCU's (EBS engaged, only the ASMS switched off leaves it): logged with its cause when it
+  // begins, also when it was already so before this stack started (restarted after a crash), and cleared when it
+  // ends.
+  const bool was = status_ && status_->as_state == AsState::Emergency;
+  const bool is = status.as_state == AsState::Emergency;
+  if (is && !was) {
+    emergency_what_ = "AS Emergency: " + emergency_cause(status.faults);
+    raise(status.stamp, "vcu", emergency_what_, "EBS engaged: nothing is driven until the ASMS is switched off (AS Off)");
+  } else if (was && !is) {
+    clear(status.stamp, "vcu", emergency_what_);
+  }
   status_ = status;
   heartbeat(InputStream::Vcu, status.stamp);
 }

@@ -101,6 +101,7 @@ class AsSupervisor {
   std::vector<Fault> faults_;
   std::vector<std::pair<std::string, std::string>> active_;
   std::string plan_why_;  // the newest plan's reason for failing or ending short
+  std::string emergency_what_;  // the VCU's AS Emergency fault while it lasts
 };
 
 }  // namespace fsd

@@ -268,5 +268,59 @@ TEST(AsSupervisor, MissionFaultsAreLoggedOncePerOnset) {
   EXPECT_DOUBLE_EQ(sup.faults()[1].t, 3.0);
 }
 
+// A stack (re)started beside a VCU already in AS Emergency (its EBS fired when the stack's heartbeat stopped): the
+// cause is named from the Status fault bits, nothing moves or is asked for, and the fault clears when the ASMS
+// brings the VCU back to Off, from where Ready is asked again.
+TEST(AsSupervisor, AVcuInEmergencyAtStartIsAFaultNamingItsCauseUntilAsOff) {
+  AsSupervisor sup;
+  sup.set_mission(Mission::Trackdrive);
+  VcuStatus e = vcu(0.0, AsState::Emergency);
+  e.faults = wire::vcu::kFaultEmergencyHeartbeat;
+  for (double t = 0; t < 2; t += 0.1) {
+    e.stamp = t;
+    sup.on_vcu(e);
+    sup.heartbeat(InputStream::Pose, t);
+    sup.heartbeat(InputStream::Lidar, t);
+    sup.on_plan(t, true);
+    const auto d = sup.evaluate(t, 0.0, false);
+    EXPECT_FALSE(d.may_move);
+    EXPECT_EQ(d.request, AsRequest::None);
+  }
+  ASSERT_EQ(sup.faults().size(), 1u);
+  const Fault& f = sup.faults()[0];
+  EXPECT_EQ(f.source, "vcu");
+  EXPECT_EQ(f.t, 0.0);
+  EXPECT_NE(f.what.find("heartbeat"), std::string::npos) << f.what;
+  EXPECT_NE(f.action.find("ASMS"), std::string::npos) << f.action;
+  EXPECT_FALSE(f.cleared);
+  // The ASMS off: AS Off, the fault over, Ready asked again once standing.
+  AsRequest asked = AsRequest::None;
+  for (double t = 2; t < 3.5; t += 0.1) {
+    feed_all(sup, t, AsState::Off);
+    if (const auto r = sup.evaluate(t, 0.0, false).request; r != AsRequest::None) asked = r;
+  }
+  ASSERT_EQ(sup.faults().size(), 1u);
+  ASSERT_TRUE(sup.faults()[0].cleared);
+  EXPECT_NEAR(*sup.faults()[0].cleared, 2.0, 1e-9);
+  EXPECT_EQ(asked, AsRequest::Ready);
+}
+
+TEST(AsSupervisor, EachEmergencyCauseIsNamed) {
+  namespace vcu_bits = wire::vcu;
+  const std::pair<std::uint32_t, const char*> causes[] = {{vcu_bits::kFaultEmergencyRes, "RES"},
+                                                          {vcu_bits::kFaultEmergencyRequest, "request"},
+                                                          {vcu_bits::kFaultEmergencyAsms, "ASMS"},
+                                                          {0u, "did not name"}};
+  for (const auto& [bits, word] : causes) {
+    AsSupervisor sup;
+    feed_all(sup, 0.0, AsState::Driving);
+    VcuStatus e = vcu(0.1, AsState::Emergency);
+    e.faults = bits;
+    sup.on_vcu(e);
+    ASSERT_EQ(sup.faults().size(), 1u) << word;
+    EXPECT_NE(sup.faults()[0].what.find(word), std::string::npos) << sup.faults()[0].what;
+  }
+}
+
 }  // namespace
 }  // namespace fsd
