@@ -119,9 +119,12 @@ TEST(ChannelPacer, LocalizationRowsSendWhatTheSnapshotHasAndLoopClosuresAtOnce) 
   TelemetrySnapshot s;
   for (int tick = 0; tick < 1000; tick += 4) {  // snapshots every 40 ms for 10 s
     s.t = tick * 0.01;
-    if (tick == 500) s.localization = web::LocalizationView{.t = s.t, .source = "fused"};  // a state from 5 s on
-    if (tick == 700) s.truth = web::TruthState{.t = s.t};                                 // the truth from 7 s on
-    if (tick == 604) s.loop_closures.push_back({.t = s.t, .lap = 1});  // 6.04 s: between two 1 Hz messages
+    if (tick == 500) {  // a state from 5 s on
+      s.localization.emplace();
+      s.localization->source = "fused";
+    }
+    if (tick == 700) s.truth.emplace();  // the truth from 7 s on
+    if (tick == 604) s.loop_closures.emplace_back();  // 6.04 s: between two 1 Hz messages
     if (tick % 100 == 0) s.truth_path = std::make_shared<const std::vector<Vec2>>(2, Vec2(0, 0));  // grew, 1 Hz
     for (const auto i : pacer.due(s, s.t)) {
       const auto& r = telemetry_channels()[i];
@@ -132,13 +135,13 @@ TEST(ChannelPacer, LocalizationRowsSendWhatTheSnapshotHasAndLoopClosuresAtOnce) 
   EXPECT_NEAR(n["/truth/localization_error"], 30, 1);    // 10 Hz over the last 3 s
   EXPECT_NEAR(n["/localization/loop_closures"], 11, 1);  // 1 Hz, plus one at once
   EXPECT_EQ(n["/truth/path"], 10);                       // each new path once
-  const auto loops = json::parse(*row("/localization/loop_closures").build(
-      [] {
-        TelemetrySnapshot s;
-        s.loop_closures.push_back({.t = 3, .lap = 1, .dx = 0.6, .dy = 0.8});
-        return s;
-      }(),
-      {})->json);
+  TelemetrySnapshot one;
+  one.loop_closures.emplace_back();
+  one.loop_closures[0].dx = 0.6;
+  one.loop_closures[0].dy = 0.8;
+  const auto built = row("/localization/loop_closures").build(one, {});
+  ASSERT_TRUE(built);
+  const auto loops = json::parse(built->json);
   EXPECT_NEAR(loops["loop_closures"][0]["shift"].get<double>(), 1.0, 1e-12);
 }
 
