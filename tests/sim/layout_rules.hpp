@@ -704,4 +704,46 @@ inline HandFigures measure_hand(const LayoutRows& l, bool closed) {
   return f;
 }
 
+// Which classes of public layouts a loop's cones show (what `--irregular` may draw), by the checker alone.
+struct Seen {
+  bool circle = false, chain = false, jittered = false, uneven = false, outlier = false, narrowing = false;
+  HandFigures hand;
+  ChainFigures chains;
+};
+
+inline Seen seen_in(const LayoutRows& l, bool closed) {
+  Seen s;
+  s.circle = measure_circle(l).found;
+  if (s.circle) return s;
+  s.hand = measure_hand(l, closed);
+  // Cones placed exactly leave a third or more of them on the arc through their neighbours (straights, arcs);
+  // cones moved by hand leave almost none (the slalom's, a narrowing's and an outlier's ring stay exact).
+  s.jittered = s.hand.on_curve_share < 0.2;
+  // Moved cones scatter about their ring (outward only at the tightest hairpins): a looser fit, a radius up to
+  // 0.75 m wide of the tightest, and a link that would also take a straight under ~4.5 m between (the generator's
+  // straights are 10 m or more).
+  s.chains = s.jittered ? measure_chains(l, s.hand.width_median, 0.3, 0.75, 1.5)
+                        : measure_chains(l, s.hand.width_median, 0.005, 0.05, 0.05);
+  s.chain = s.chains.chains > 0;
+  // Uneven gaps next to even ones; measurable where the cones are not also moved (jitter changes gaps too).
+  s.uneven = !s.jittered && s.hand.gap_change_median > 0.04;
+  s.outlier = s.hand.outliers > 0;
+  s.narrowing = s.hand.narrowings > 0;
+  return s;
+}
+
+// An acceleration lane's braking zone: how far its end row (the farthest orange cone along the lane) stands past
+// the finish line (the mean of the four farther big orange cones of the eight). NaN without eight big orange cones.
+inline double braking_zone(const LayoutRows& l) {
+  const V2 fwd(std::cos(l.yaw), std::sin(l.yaw));
+  std::vector<double> xs;
+  for (const V2& p : l.big_orange) xs.push_back((p - l.start).dot(fwd));
+  if (xs.size() != 8) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(xs.begin(), xs.end());
+  const double finish = 0.25 * (xs[4] + xs[5] + xs[6] + xs[7]);
+  double end = 0;
+  for (const V2& p : l.orange) end = std::max(end, (p - l.start).dot(fwd));
+  return end - finish;
+}
+
 }  // namespace fsd::test

@@ -2,10 +2,8 @@
 // the project's loader and measured by an independent checker from its cones alone (tests/sim/layout_rules.hpp).
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <set>
@@ -21,9 +19,11 @@ namespace {
 
 using sim::LayoutKind;
 using sim::TrackGeneratorOptions;
+using test::Seen;
+using test::seen_in;
 using test::V2;
 
-constexpr int kSeeds = 40;  // per kind; the sweep (tests/daemon/layouts/generated_tracks_test.cpp) drives more
+constexpr int kSeeds = 40;  // per kind; the figures over 200 seeds: bench/track_generator_mix.cpp
 
 // The layout written to a file as `fsd track generate --out` writes it, reloaded by the project's loader (it
 // must accept it) and read by the checker's own CSV reader.
@@ -322,34 +322,6 @@ TEST(TrackGenerator, SkidpadsAreTheRulesFigureOfEight) {
 // What public layouts have beyond the rules (options; docs/track-generator.md), each measured from the cones.
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-// Which classes the cones show, by the checker alone.
-struct Seen {
-  bool circle = false, chain = false, jittered = false, uneven = false, outlier = false, narrowing = false;
-  test::HandFigures hand;
-  test::ChainFigures chains;
-};
-
-Seen seen_in(const test::LayoutRows& l, bool closed) {
-  Seen s;
-  s.circle = test::measure_circle(l).found;
-  if (s.circle) return s;
-  s.hand = test::measure_hand(l, closed);
-  // Cones placed exactly leave a third or more of them on the arc through their neighbours (straights, arcs);
-  // cones moved by hand leave almost none (the slalom's, a narrowing's and an outlier's ring stay exact).
-  s.jittered = s.hand.on_curve_share < 0.2;
-  // Moved cones scatter about their ring (outward only at the tightest hairpins): a looser fit, a radius up to
-  // 0.75 m wide of the tightest, and a link that would also take a straight under ~4.5 m between (the generator's
-  // straights are 10 m or more).
-  s.chains = s.jittered ? test::measure_chains(l, s.hand.width_median, 0.3, 0.75, 1.5)
-                        : test::measure_chains(l, s.hand.width_median, 0.005, 0.05, 0.05);
-  s.chain = s.chains.chains > 0;
-  // Uneven gaps next to even ones; measurable where the cones are not also moved (jitter changes gaps too).
-  s.uneven = !s.jittered && s.hand.gap_change_median > 0.04;
-  s.outlier = s.hand.outliers > 0;
-  s.narrowing = s.hand.narrowings > 0;
-  return s;
-}
 
 // The rules a layout with hand placement still keeps, from its cones: gaps within 5 m, the lane 3 m between
 // cones across (outliers and the narrowing aside), one simple course of a rules' lap, its start line. Parts of
@@ -669,15 +641,8 @@ TEST(TrackGenerator, IrregularMixGivesEachClassAtItsProbability) {
     auto o = opts(LayoutKind::Acceleration, seed);
     o.irregular = true;
     const auto l = generate_rows(o);
-    const V2 fwd = heading(l.yaw);
-    std::vector<double> xs;
-    for (const V2& p : l.big_orange) xs.push_back((p - l.start).dot(fwd));
-    std::sort(xs.begin(), xs.end());
-    ASSERT_EQ(xs.size(), 8u);
-    const double finish = 0.25 * (xs[4] + xs[5] + xs[6] + xs[7]);
-    double end = 0;
-    for (const V2& p : l.orange) end = std::max(end, (p - l.start).dot(fwd));
-    const double zone = end - finish;
+    ASSERT_EQ(l.big_orange.size(), 8u);
+    const double zone = test::braking_zone(l);
     const bool drawn = sim::resolve_mix(o).braking_max == 25.0;
     if (drawn) ++short_zones;
     EXPECT_EQ(std::fabs(zone - 25.0) < 0.01, drawn) << "seed " << seed << " zone " << zone;
@@ -715,79 +680,6 @@ TEST(TrackGenerator, IrregularMixKeepsTheDefaultDrawsAndTheOptionsGiven) {
     o.circle = true;
     EXPECT_TRUE(test::measure_circle(generate_rows(o)).found) << "seed " << seed;
   }
-}
-
-// The figures docs/track-generator.md quotes: how often each class shows over 200 seeds of each kind, as the
-// checker sees it, how often that disagrees with what the seed drew, and the time to generate. By hand:
-//   build-gen/tests/test_sim --gtest_also_run_disabled_tests --gtest_filter='TrackGenerator.DISABLED_MixFigures'
-TEST(TrackGenerator, DISABLED_MixFigures) {
-  constexpr int kSeeds = 200;
-  const std::string path = test::scratch_path("mix_figures.csv");
-  for (auto kind : {LayoutKind::Trackdrive, LayoutKind::Autocross}) {
-    int loops = 0, circles = 0, chains = 0, jittered = 0, unjittered = 0, uneven = 0, outliers = 0, narrowings = 0;
-    int missed = 0, unasked_chains = 0;  // a class drawn but not seen (chains aside); chains seen but not drawn
-    double seconds = 0, worst = 0;
-    for (int seed = 1; seed <= kSeeds; ++seed) {
-      auto o = opts(kind, seed);
-      o.irregular = true;
-      const auto r = sim::resolve_mix(o);
-      const auto t0 = std::chrono::steady_clock::now();
-      const std::string text = format_track(sim::generate_track(o));
-      const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      seconds += dt, worst = std::max(worst, dt);
-      std::ofstream(path, std::ios::binary) << text;
-      const Seen s = seen_in(test::read_layout(path), true);
-      auto disagree = [&](bool seen, bool drawn, const char* what) {
-        if (seen == drawn) return;
-        ++missed;
-        std::printf("  %s seed %d: %s %s but %s\n", std::string(sim::to_string(kind)).c_str(), seed, what,
-                    drawn ? "drawn" : "not drawn", seen ? "seen" : "not seen");
-      };
-      disagree(s.circle, r.circle, "circle");
-      if (s.circle) {
-        ++circles;
-        continue;
-      }
-      ++loops;
-      chains += s.chain, jittered += s.jittered, outliers += s.outlier, narrowings += s.narrowing;
-      if (!s.jittered) {
-        ++unjittered, uneven += s.uneven;
-        disagree(s.uneven, r.spacing_jitter > 0, "spacing jitter");
-      }
-      disagree(s.jittered, r.cone_jitter > 0, "cone jitter");
-      disagree(s.outlier, r.inner_outlier > 0, "inner outlier");
-      disagree(s.narrowing, r.narrowing > 0, "narrowing");
-      if (r.shares.hairpin_chain > 0) disagree(s.chain, true, "hairpin chain");
-      unasked_chains += r.shares.hairpin_chain == 0 && s.chain;
-    }
-    std::printf(
-        "%s, %d seeds: circle %d (%.1f %%); of the %d loops: hairpin chains %.1f %%, cone jitter %.1f %%, inner "
-        "outlier %.1f %%, narrowing %.1f %%; uneven spacing %.1f %% of the %d without jitter. Seen against drawn: "
-        "%d disagreements, %d layouts with chains not drawn. Generation %.1f ms mean, %.1f ms worst\n",
-        std::string(sim::to_string(kind)).c_str(), kSeeds, circles, 100.0 * circles / kSeeds, loops,
-        100.0 * chains / loops, 100.0 * jittered / loops, 100.0 * outliers / loops, 100.0 * narrowings / loops,
-        100.0 * uneven / unjittered, unjittered, missed, unasked_chains, 1e3 * seconds / kSeeds, 1e3 * worst);
-    EXPECT_EQ(missed, 0);
-    EXPECT_NEAR(jittered / double(loops), 0.5, 0.1);
-    EXPECT_NEAR(narrowings / double(loops), 0.4, 0.1);
-    EXPECT_NEAR(circles / double(kSeeds), 0.05, 0.04);
-  }
-  int short_zones = 0;
-  for (int seed = 1; seed <= kSeeds; ++seed) {
-    auto o = opts(LayoutKind::Acceleration, seed);
-    o.irregular = true;
-    const auto l = generate_rows(o);
-    const V2 fwd = heading(l.yaw);
-    std::vector<double> xs;
-    for (const V2& p : l.big_orange) xs.push_back((p - l.start).dot(fwd));
-    std::sort(xs.begin(), xs.end());
-    double end = 0;
-    for (const V2& p : l.orange) end = std::max(end, (p - l.start).dot(fwd));
-    short_zones += std::fabs(end - 0.25 * (xs[4] + xs[5] + xs[6] + xs[7]) - 25.0) < 0.01;
-  }
-  std::printf("acceleration, %d seeds: braking zone closed 25 m after the finish %.1f %%\n", kSeeds,
-              100.0 * short_zones / kSeeds);
-  EXPECT_NEAR(short_zones / double(kSeeds), 0.35, 0.1);
 }
 
 TEST(TrackGenerator, SameSeedAndOptionsGiveTheSameBytes) {
