@@ -197,7 +197,6 @@ ControlOutput Autopilot::step(Stamp now) {
 
   // The mission's path: the real-time plan (plan()), the recorded lap, a lane, a skid pad's figure of eight.
   const MissionPath mission_path = run_->update_path(in);
-  if (mission_path.replaced) follower_.reset(mission_path.resume_s);
   // The mission's own paths count as plans for the watchdog while they exist.
   if (mission_path.fixed) supervisor_.heartbeat(InputStream::Plan, now);
   report(now, mission_path.faults);
@@ -205,11 +204,14 @@ ControlOutput Autopilot::step(Stamp now) {
   // Follow it.
   const PathSource source = state_ ? mission_path.source : PathSource::None;
   const Path* path = state_ ? mission_path.path : nullptr;
+  // Back on a path after another one (GNSS regained): the follower's projection hint is from long ago. A mission
+  // path that replaces the one followed says where on it the car is: a figure of eight passes its crossing five
+  // times, and the nearest point of it all may be another pass.
+  if (source != last_source_) (source == PathSource::Recorded ? lap2_follower_ : follower_).reset();
+  if (mission_path.replaced) follower_.reset(mission_path.resume_s);
   FollowResult follow;
   if (path && state_) {
     PathFollower& f = source == PathSource::Recorded ? lap2_follower_ : follower_;
-    // Back on a path after another one (GNSS regained): the follower's projection hint is from long ago.
-    if (source != last_source_) f.reset();
     follow = f.follow(*path, *state_, now, config_.speed.v_max);
     if (follow.ok) progress_s_ = follow.s;
   }

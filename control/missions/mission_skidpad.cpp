@@ -1,6 +1,7 @@
 #include "control/missions/mission_skidpad.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "control/planning/footprint.hpp"
 
@@ -22,17 +23,27 @@ MissionPath SkidpadMission::update_path(const MissionInput& in) {
       compute_geometry(e);
       entry_ = std::move(e);
     }
-    // Refit while still on the entry lane: more of the circles are seen as the car approaches.
-    const bool on_entry = !plan_ || in.progress_s < plan_->crossing_s[0] - 3.0;
-    if (crossings_ == 0 && on_entry) {
+    // Refit on each fresh map until the car drives the left circle: more of the circles are seen as the car
+    // approaches and drives the right one, and a figure fitted from the entry alone can miss the far circle by a
+    // metre. Not near a crossing, where the laps are counted.
+    constexpr double kCrossingClear = 3.0;  // m
+    bool refit = !plan_;
+    if (plan_ && crossings_ < 3) {
+      refit = true;
+      for (const double c : plan_->crossing_s) refit = refit && std::abs(in.progress_s - c) > kCrossingClear;
+    }
+    if (refit) {
       if (auto g = fit_skidpad(*in.cones, origin, convention_)) {
         SkidpadPlan plan = skidpad_path(*g, origin, config_.mission.skidpad_exit_length, config_.planner.ds);
         plan_speed_ = std::max(0.0, in.state->speed());
         SpeedProfile(limits()).apply(plan.path, plan_speed_, 0.0);
         plan.path.stamp = in.cones_stamp;
-        // The car is on the entry (before the first crossing): its place on the new figure is looked for there.
-        if (const auto at = project(plan.path, in.state->pose.position(), 0.0, 0.0, plan.crossing_s[0]))
-          out.resume_s = at->s;
+        // The car's place on the new figure is looked for where it was on the old one: on the entry before the
+        // first crossing, else within a few metres (the figure passes its crossing five times).
+        const Vec2 p = in.state->pose.position();
+        const auto at = crossings_ == 0 ? project(plan.path, p, 0.0, 0.0, plan.crossing_s[0])
+                                        : project(plan.path, p, in.progress_s, kCrossingClear, kCrossingClear);
+        if (at) out.resume_s = at->s;
         geometry_ = g;
         plan_ = std::move(plan);
         out.replaced = true;

@@ -79,11 +79,16 @@ TEST_F(SkidpadTest, TheFigureOfEightOnceTheCirclesAreFitted) {
   EXPECT_NEAR(sample(*p.path, entry + 2.5 * kCircle).p.x(), -kCentreX - kDriven, 0.3);
 }
 
-TEST_F(SkidpadTest, RefittedOnlyWhileOnTheEntry) {
+TEST_F(SkidpadTest, RefittedUntilTheLeftCircleAwayFromTheCrossings) {
   SkidpadMission run(config, ColourConvention{});
   world.see(0.0, skidpad_cones());
   run.update_path(world.input(0.0));
   run.start(world.input(0.0));
+  const auto follow_at = [&](Stamp t, double s) {
+    world.progress_s = s;
+    const FollowResult f = test::followed_at(s);
+    run.progress(world.input(t), &f);
+  };
   // Still on the entry (5 m along): a new view moves the circles.
   world.progress_s = 5.0;
   world.see(0.1, skidpad_cones(0.2));
@@ -92,10 +97,28 @@ TEST_F(SkidpadTest, RefittedOnlyWhileOnTheEntry) {
   // Within 3 m of the crossing: the figure stays as it is.
   world.progress_s = 12.5;
   world.see(0.2, skidpad_cones(0.4));
-  const MissionPath p = run.update_path(world.input(0.2));
+  MissionPath p = run.update_path(world.input(0.2));
   EXPECT_FALSE(p.replaced);
   EXPECT_EQ(p.source, PathSource::Skidpad);
   EXPECT_NEAR(run.geometry()->right.centre.x(), kCentreX + 0.2, 1e-6);
+  // Half way round the right circle (a fit from the entry can miss the far circle): refitted, and the car's place on
+  // the new figure is where it was, not another pass of the crossing.
+  follow_at(1.0, 16.0);
+  const double half = 15.2 + 0.5 * kCircle;
+  follow_at(3.0, half);
+  world.move(3.0, {kCentreX + 0.4 + kDriven, kCentreY}, -std::numbers::pi / 2, 8.0);  // the circle's far side
+  world.see(3.0, skidpad_cones(0.4));
+  p = run.update_path(world.input(3.0));
+  EXPECT_TRUE(p.replaced);
+  EXPECT_NEAR(run.geometry()->right.centre.x(), kCentreX + 0.4, 1e-6);
+  ASSERT_TRUE(p.resume_s.has_value());
+  EXPECT_NEAR(*p.resume_s, half, 1.0);
+  // On the left circle (past the third crossing): the figure stays.
+  follow_at(10.0, 15.2 + 2 * kCircle + 1.0);
+  world.progress_s = 15.2 + 2.5 * kCircle;
+  world.see(12.0, skidpad_cones(0.6));
+  EXPECT_FALSE(run.update_path(world.input(12.0)).replaced);
+  EXPECT_NEAR(run.geometry()->right.centre.x(), kCentreX + 0.4, 1e-6);
 }
 
 TEST_F(SkidpadTest, EachCircleIsALapTimedCrossingToCrossingAndTheFourthEndsTheMission) {
