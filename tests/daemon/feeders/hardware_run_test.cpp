@@ -436,6 +436,58 @@ class Devices {
   std::thread thread_;
 };
 
+// The daemon killed (SIGKILL, no safe stop) while the car stands in AS Ready, then started again: fsd sim's VCU
+// stand-in fires the EBS when the heartbeat stops (the rules' AS Emergency), and the restarted stack names that
+// state and its cause as a fault, asks for nothing and drives nothing. The VCU's own log is the truth.
+TEST(HardwareRun, KilledWhileStandingTheRestartedStackNamesTheEmergencyAndDrivesNothing) {
+  const int port = free_udp_port();
+  const std::string sim_cfg = write_file("hw_restart_sim.json", R"({"sim": {"enable_camera": false,
+                                 "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": -1, "heartbeat_timeout": 1.0}},
+                         "drivers": {"vlp16": {"data_port": )" + std::to_string(port) +
+                                                                     "}}}");
+  Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_track_1.csv", "--duration", "90"},
+          scratch_path("hw_restart_sim.log"));
+  const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
+  const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
+  ASSERT_FALSE(gnss.empty()) << sim.output();
+  ASSERT_FALSE(vcu.empty()) << sim.output();
+  const std::string run_cfg = write_file(
+      "hw_restart_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" +
+                                 gnss + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
+                                 std::to_string(port) + R"(, "position_port": )" + std::to_string(free_udp_port()) +
+                                 R"(}}, "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
+                                 "web": {"bind": "127.0.0.1", "port": 0}})");
+  {
+    Fsd first({"run", "--config", run_cfg, "--mission", "trackdrive"}, scratch_path("hw_restart_first.log"));
+    ASSERT_FALSE(sim.wait_for(std::regex("VCU AS Off \\S+ Ready at"), 60s).empty()) << sim.output() << first.output();
+    first.signal(SIGKILL);
+    EXPECT_EQ(first.wait(10s), 128 + SIGKILL);
+  }
+  ASSERT_FALSE(sim.wait_for(std::regex("VCU AS Ready \\S+ Emergency at \\S+ s: heartbeat lost"), 10s).empty())
+      << sim.output();
+
+  const std::string report_path = scratch_path("hw_restart_report.json");
+  std::remove(report_path.c_str());
+  Fsd again({"run", "--config", run_cfg, "--mission", "trackdrive", "--report", report_path},
+            scratch_path("hw_restart_again.log"));
+  const std::string what = again.wait_for(std::regex("fault at t = \\S+ s: vcu: (AS Emergency: [^>]*) ->"), 30s);
+  EXPECT_NE(what.find("heartbeat was lost"), std::string::npos) << again.output();
+  std::this_thread::sleep_for(2s);  // a while longer: nothing may be asked for
+  again.signal(SIGTERM);
+  ASSERT_EQ(again.wait(20s), 0) << again.output();
+  const auto r = nlohmann::json::parse(slurp(report_path));
+  EXPECT_EQ(r["as_state"], "Emergency");
+  ASSERT_FALSE(r["faults"].empty());
+  EXPECT_EQ(r["faults"][0]["source"], "vcu") << r["faults"].dump();
+  sim.signal(SIGTERM);
+  EXPECT_EQ(sim.wait(20s), 0);
+  // The VCU's log: Ready, then the EBS on the lost heartbeat, and no transition after it (nothing was asked for).
+  const std::string sim_log = sim.output();
+  const std::regex transition("VCU AS \\S+ \\S+ \\S+ at");
+  const auto n = std::distance(std::sregex_iterator(sim_log.begin(), sim_log.end(), transition), std::sregex_iterator());
+  EXPECT_EQ(n, 2) << sim_log;
+}
+
 // The camera is a looping 160×120 video file at 20 fps. The pit-lane dashboard runs as on the car (no --headless):
 // while driving, a browser's view of it shows the stack's AS state and mission, the camera's picture, and /metrics
 // the control loop.
