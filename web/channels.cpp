@@ -171,35 +171,19 @@ std::string detections_scene(Stamp t, const ConeDetections& detections, const Po
   constexpr double kSide = 0.35, kHeight = 0.4;
   json verified = entity(t, "detections", 0.5), unverified = entity(t, "detections_unverified", 0.5);
   verified["cubes"] = json::array();
-  unverified["lines"] = json::array();
-  // The box's bottom and top squares joined by one edge: one strip of 10 points in the box's own frame (base at
-  // z = 0), a third of the bytes of all 12 edges; it reads as the box's outline.
-  json edges = json::array();
-  {
-    const double h = kSide / 2;
-    const double b[4][2] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
-    for (const double z : {0.0, kHeight})
-      for (int k = 0; k <= 4; ++k) edges.push_back(vec3(b[k % 4][0], b[k % 4][1], z));
-  }
+  unverified["cubes"] = json::array();
+  // The LiDAR-only boxes are the same boxes, drawn as their outline by the dashboard (render = outline) and half
+  // transparent by other Foxglove clients: a box costs a third of the bytes of its 12 edges as lines, which the
+  // Wi-Fi budget needs at 4 Hz.
+  unverified["metadata"].push_back({{"key", "render"}, {"value", "outline"}});
   for (const auto& c : detections.cones) {
     if (!c.position.allFinite()) continue;
     const Vec2 m = car_pose.transform(c.position.head<2>());
-    if (camera_verified(c)) {
-      // Verified by the camera's HOG + SVM (or the truth source's ideal detector): a solid box in its colour.
-      verified["cubes"].push_back({{"pose", yaw_pose(m.x(), m.y(), kHeight / 2, car_pose.yaw)},
-                                   {"size", vec3(kSide, kSide, kHeight)},
-                                   {"color", colour_of(c.colour, 0.85)}});
-    } else {
-      // LiDAR alone (not verified): the box's outline in its colour.
-      unverified["lines"].push_back({{"type", 0},
-                                     {"pose", yaw_pose(m.x(), m.y(), 0.0, car_pose.yaw)},
-                                     {"thickness", 0.04},
-                                     {"scale_invariant", false},
-                                     {"points", edges},
-                                     {"color", colour_of(c.colour, 1.0)},
-                                     {"colors", json::array()},
-                                     {"indices", json::array()}});
-    }
+    // Verified by the camera's HOG + SVM (or the truth source's ideal detector): a solid box in its colour.
+    const bool solid = camera_verified(c);
+    (solid ? verified : unverified)["cubes"].push_back({{"pose", yaw_pose(m.x(), m.y(), kHeight / 2, car_pose.yaw)},
+                                                        {"size", vec3(kSide, kSide, kHeight)},
+                                                        {"color", colour_of(c.colour, solid ? 0.85 : 0.5)}});
   }
   return scene(json::array({verified, unverified}));
 }

@@ -348,25 +348,18 @@ TEST(Channels, DetectionsAreSolidWhenTheCameraVerifiedThemAndOutlinedWhenNotInTh
   EXPECT_NEAR(solid["cubes"][0]["pose"]["position"]["y"].get<double>(), 7.0, 1e-9);
   EXPECT_EQ(solid["cubes"][0]["color"]["b"], 0.95);  // blue
   EXPECT_GE(solid["cubes"][0]["color"]["a"].get<double>(), 0.8);  // solid, not a ghost
-  ASSERT_EQ(hollow["lines"].size(), 2u);
-  EXPECT_TRUE(hollow["cubes"].empty());
-  const auto& y = hollow["lines"][0];
+  // The LiDAR-only ones: the same boxes, half transparent, with render = outline for the dashboard.
+  EXPECT_EQ(hollow["metadata"], (json::array({{{"key", "render"}, {"value", "outline"}}})));
+  ASSERT_EQ(hollow["cubes"].size(), 2u);
+  EXPECT_TRUE(hollow["lines"].empty());
+  const auto& y = hollow["cubes"][0];
   EXPECT_NEAR(y["pose"]["position"]["x"].get<double>(), 9.0, 1e-9);  // 1 m ahead, 1 m left: (10 − 1, 5 + 1)
   EXPECT_NEAR(y["pose"]["position"]["y"].get<double>(), 6.0, 1e-9);
-  EXPECT_EQ(y["color"], (json{{"r", 1.0}, {"g", 0.85}, {"b", 0.05}, {"a", 1.0}}));  // yellow
-  EXPECT_NEAR(hollow["lines"][1]["pose"]["position"]["x"].get<double>(), 11.0, 1e-9);  // 3 ahead, 1 right
-  EXPECT_NEAR(hollow["lines"][1]["pose"]["position"]["y"].get<double>(), 8.0, 1e-9);
-  EXPECT_EQ(hollow["lines"][1]["color"]["r"], hollow["lines"][1]["color"]["b"]);  // unknown: grey
-  // The outline: a closed 0.35 m square at the ground and one at 0.4 m.
-  const auto& pts = y["points"];
-  ASSERT_EQ(pts.size(), 10u);
-  EXPECT_EQ(pts[0], pts[4]);
-  EXPECT_EQ(pts[5], pts[9]);
-  EXPECT_NEAR(std::abs(pts[1]["x"].get<double>() - pts[0]["x"].get<double>()) +
-                  std::abs(pts[1]["y"].get<double>() - pts[0]["y"].get<double>()),
-              0.35, 1e-9);
-  EXPECT_EQ(pts[0]["z"], 0.0);
-  EXPECT_EQ(pts[5]["z"], 0.4);
+  EXPECT_EQ(y["color"], (json{{"r", 1.0}, {"g", 0.85}, {"b", 0.05}, {"a", 0.5}}));  // yellow
+  EXPECT_EQ(y["size"], solid["cubes"][0]["size"]);
+  EXPECT_NEAR(hollow["cubes"][1]["pose"]["position"]["x"].get<double>(), 11.0, 1e-9);  // 3 ahead, 1 right
+  EXPECT_NEAR(hollow["cubes"][1]["pose"]["position"]["y"].get<double>(), 8.0, 1e-9);
+  EXPECT_EQ(hollow["cubes"][1]["color"]["r"], hollow["cubes"][1]["color"]["b"]);  // unknown: grey
   EXPECT_TRUE(camera_verified(verified));
   EXPECT_FALSE(camera_verified(lidar_yellow));
 }

@@ -70,9 +70,14 @@ export class Scene3D {
     this.dirty = true;
   }
 
-  material(c, ghost = false) {
-    const key = `${c.r},${c.g},${c.b},${c.a}${ghost ? ',ghost' : ''}`;
+  material(c, ghost = false, outline = false) {
+    const key = `${c.r},${c.g},${c.b},${c.a}${ghost ? ',ghost' : ''}${outline ? ',outline' : ''}`;
     let m = this.materials.get(key);
+    if (!m && outline) {
+      // The body's wires in its own colour (LiDAR-only detections): hollow beside the solid camera-verified ones.
+      m = new THREE.MeshBasicMaterial({ color: new THREE.Color(c.r, c.g, c.b), wireframe: true });
+      this.materials.set(key, m);
+    }
     if (!m && ghost) {
       // A wireframe in a pale version of the colour: it shows where the truth is without hiding what the stack
       // sees, and stays apart from the stack's solid cones where the two agree.
@@ -123,6 +128,7 @@ export class Scene3D {
       this.remove(key);
       const group = new THREE.Group();
       const ghost = (e.metadata ?? []).some((kv) => kv.key === 'render' && kv.value === 'ghost');
+      const outline = (e.metadata ?? []).some((kv) => kv.key === 'render' && kv.value === 'outline');
       group.userData = { topic, id: e.id, cylinders: 0, cubes: 0, lines: 0, ghost };
       for (const c of e.cylinders ?? []) {
         const m = new THREE.Mesh(this.cylinderGeometry(c.bottom_scale ?? 1, c.top_scale ?? 1), this.material(c.color, ghost));
@@ -133,7 +139,7 @@ export class Scene3D {
         group.userData.cylinders++;
       }
       for (const c of e.cubes ?? []) {
-        const m = new THREE.Mesh(this.box, this.material(c.color, ghost));
+        const m = new THREE.Mesh(this.box, this.material(c.color, ghost, outline));
         Scene3D.place(m, c.pose);
         m.scale.set(c.size.x, c.size.y, c.size.z);
         group.add(m);
@@ -284,7 +290,7 @@ export class Scene3D {
   }
 
   // How each detection of a topic is drawn: where (map frame), solid (a box: camera-verified) or hollow (the box's
-  // outline: LiDAR only), and in which colour (r, g, b 0..1 as the message gave them); for the browser test.
+  // wires: LiDAR only), and in which colour (r, g, b 0..1 as the message gave them); for the browser test.
   detections(topic) {
     const out = [];
     for (const { group } of this.entities.values()) {
@@ -292,7 +298,7 @@ export class Scene3D {
       for (const o of group.children) {
         if (!o.isMesh) continue;
         const c = o.material.color;
-        out.push({ x: o.position.x, y: o.position.y, solid: !o.isLine2, color: { r: c.r, g: c.g, b: c.b } });
+        out.push({ x: o.position.x, y: o.position.y, solid: !o.isLine2 && !o.material.wireframe, color: { r: c.r, g: c.g, b: c.b } });
       }
     }
     return out;
