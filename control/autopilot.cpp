@@ -249,6 +249,7 @@ ControlOutput Autopilot::step(Stamp now) {
   if (driving && state_) {
     if (const AsRequest r = run_->request(in); r != AsRequest::None) out.request = r;  // the EBS test's trigger
   }
+  supervisor_.requested(out.request);
   if (sup.may_move) {
     cmd.target_speed = std::clamp(std::min(cmd.target_speed, sup.speed_cap), 0.0, config_.speed.v_max);
     cmd.brake_hard = false;

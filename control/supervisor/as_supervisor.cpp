@@ -55,11 +55,12 @@ std::string emergency_cause(std::uint32_t faults) {
 
 void AsSupervisor::on_vcu(const VcuStatus& status) {
   // AS Emergency is the VCU's (EBS engaged, only the ASMS switched off leaves it): logged with its cause when it
-  // begins, also when it was already so before this stack started (restarted after a crash), and cleared when it
-  // ends.
+  // begins, also when it was already so before this stack started (restarted after a crash), unless this stack
+  // asked for it (its own fault is logged), and cleared when it ends.
   const bool was = status_ && status_->as_state == AsState::Emergency;
   const bool is = status.as_state == AsState::Emergency;
-  if (is && !was) {
+  const bool asked = emergency_asked_ && (status.faults & wire::vcu::kFaultEmergencyRequest);
+  if (is && !was && !asked) {
     emergency_what_ = "AS Emergency: " + emergency_cause(status.faults);
     raise(status.stamp, "vcu", emergency_what_, "EBS engaged: nothing is driven until the ASMS is switched off (AS Off)");
   } else if (was && !is) {

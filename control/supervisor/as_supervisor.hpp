@@ -73,6 +73,9 @@ class AsSupervisor {
   void report(Stamp t, const std::string& source, const std::string& what, const std::string& action,
               bool active = true);
 
+  // The request sent to the VCU this cycle (the supervisor's or the mission's): an AS Emergency this stack asked for
+  // is its own fault's doing, not logged again when the VCU enters it.
+  void requested(AsRequest r) { emergency_asked_ = emergency_asked_ || r == AsRequest::Emergency; }
   // One decision per control cycle; `speed` is the car's speed, `finished` the mission's finish.
   Supervision evaluate(Stamp now, double speed, bool finished);
 
@@ -102,6 +105,7 @@ class AsSupervisor {
   std::vector<std::pair<std::string, std::string>> active_;
   std::string plan_why_;  // the newest plan's reason for failing or ending short
   std::string emergency_what_;  // the VCU's AS Emergency fault while it lasts
+  bool emergency_asked_ = false;
 };
 
 }  // namespace fsd

@@ -322,5 +322,23 @@ TEST(AsSupervisor, EachEmergencyCauseIsNamed) {
   }
 }
 
+// An AS Emergency this stack asked for is its own fault's doing: not logged again as the VCU's.
+TEST(AsSupervisor, AnEmergencyThisStackAskedForIsNotLoggedAgain) {
+  AsSupervisor sup;
+  feed_all(sup, 0.0, AsState::Driving);
+  sup.requested(AsRequest::Emergency);
+  VcuStatus e = vcu(0.1, AsState::Emergency);
+  e.faults = wire::vcu::kFaultEmergencyRequest;
+  sup.on_vcu(e);
+  EXPECT_TRUE(sup.faults().empty());
+  // The RES pressed meanwhile is not this stack's doing.
+  AsSupervisor other;
+  feed_all(other, 0.0, AsState::Driving);
+  other.requested(AsRequest::Emergency);
+  e.faults = wire::vcu::kFaultEmergencyRes;
+  other.on_vcu(e);
+  EXPECT_EQ(other.faults().size(), 1u);
+}
+
 }  // namespace
 }  // namespace fsd
