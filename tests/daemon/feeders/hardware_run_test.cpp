@@ -118,6 +118,35 @@ std::string write_file(const std::string& name, const std::string& text) {
   return path;
 }
 
+// `fsd sim` playing the car in another process: its VLP-16 on a free loopback port, its GNSS-INS and VCU on
+// pseudo-terminals, the VCU stand-in's `vcu` settings; and the `fsd run` config that drives it over them, both
+// watchdogs at 1 s (a loaded 2-core machine stalls the real-time sim and the daemon for a hundred ms at times; these
+// tests are about the wiring, the watchdogs are tested in test_control and test_drivers).
+struct CarInAnotherProcess {
+  int port = free_udp_port();
+  Fsd sim;
+  std::string gnss, vcu;
+  CarInAnotherProcess(const std::string& name, const std::string& track, const std::string& vcu_settings)
+      : sim({"sim", "--config",
+             write_file(name + "_sim.json", R"({"sim": {"enable_camera": false, "vcu": )" + vcu_settings +
+                                                R"(}, "drivers": {"vlp16": {"data_port": )" + std::to_string(port) +
+                                                "}}}"),
+             "--track", track, "--duration", "120"},
+            scratch_path(name + "_sim.log")) {
+    gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
+    vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
+  }
+  bool up() const { return !gnss.empty() && !vcu.empty(); }
+  // The `fsd run` config, with `more` (JSON members) added at its top level.
+  std::string run_config(const std::string& name, const std::string& more = "") {
+    return write_file(name + "_run.json",
+                      R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" +
+                          gnss + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
+                          R"(, "position_port": )" + std::to_string(free_udp_port()) +
+                          R"(}}, "web": {"bind": "127.0.0.1", "port": 0})" + (more.empty() ? "" : ", " + more) + "}");
+  }
+};
+
 // Hand-computed: 2 m/s along a course 0.1 rad left of the heading is vx = 2 cos 0.1, vy = 2 sin 0.1.
 TEST(GnssState, BodyVelocityFromSpeedCourseAndHeading) {
   GnssSample s;
@@ -220,34 +249,20 @@ TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
 // LiDAR over UDP, GNSS-INS and VCU over ptys), fsd run finds the lane with its LiDAR stages and drives it. The
 // truth is fsd sim's: the cones it counts as hit, and how far the car went from the start.
 TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
-  const int port = free_udp_port();
-  const std::string sim_cfg = write_file("hw_acc_sim.json", R"({"sim": {"enable_camera": false,
-                                 "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0}},
-                         "drivers": {"vlp16": {"data_port": )" + std::to_string(port) +
-                                                                "}}}");
-  Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_acceleration.csv", "--duration", "90"},
-          scratch_path("hw_acc_sim.log"));
-  const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
-  const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
-  ASSERT_FALSE(gnss.empty()) << sim.output();
-  ASSERT_FALSE(vcu.empty()) << sim.output();
-  // Watchdogs (the VCU link's and the supervisor's) at 1 s as in the inspection test below: this test is about the
-  // wiring, and a loaded 2-core machine stalls the real-time sim and the daemon for a hundred ms at times.
-  const std::string run_cfg = write_file(
-      "hw_acc_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" +
-                             gnss + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
-                             R"(, "position_port": )" + std::to_string(free_udp_port()) +
-                             R"(}}, "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
-                             "web": {"bind": "127.0.0.1", "port": 0}})");
+  CarInAnotherProcess car("hw_acc", "../shared/tracks/epfl_acceleration.csv",
+                          R"({"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0})");
+  ASSERT_TRUE(car.up()) << car.sim.output();
+  const std::string run_cfg =
+      car.run_config("hw_acc", R"("control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}})");
   const std::string report_path = scratch_path("hw_acc_report.json");
   std::remove(report_path.c_str());
   Fsd run({"run", "--config", run_cfg, "--mission", "acceleration", "--until-finished", "--report", report_path},
           scratch_path("hw_acc_run.log"));
   const int rc = run.wait(90s);
   const std::string log = run.output();
-  sim.signal(SIGTERM);
-  const std::string hit = sim.wait_for(std::regex("LiDAR packets in \\S+ s, (\\d+) cone\\(s\\) hit"), 20s);
-  EXPECT_EQ(sim.wait(20s), 0);
+  car.sim.signal(SIGTERM);
+  const std::string hit = car.sim.wait_for(std::regex("LiDAR packets in \\S+ s, (\\d+) cone\\(s\\) hit"), 20s);
+  EXPECT_EQ(car.sim.wait(20s), 0);
   ASSERT_EQ(rc, 0) << log;
   EXPECT_NE(log.find("run.perception_source = lidar_camera without the camera's calibration"), std::string::npos) << log;
   const auto r = nlohmann::json::parse(slurp(report_path));
@@ -256,36 +271,21 @@ TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
   // The 75 m lane driven and the stop inside the rules' 100 m after it (the layout's lane is 75 m).
   EXPECT_GT(r["max_distance_from_start_m"].get<double>(), 75.0);
   EXPECT_LT(r["max_distance_from_start_m"].get<double>(), 175.0);
-  ASSERT_FALSE(hit.empty()) << sim.output();
-  EXPECT_EQ(std::stoi(hit), 0) << sim.output();
+  ASSERT_FALSE(hit.empty()) << car.sim.output();
+  EXPECT_EQ(std::stoi(hit), 0) << car.sim.output();
 }
 
 // The inspection mission end to end: fsd sim plays the car (its VCU stand-in owns the AS state and moves the car
 // on the daemon's Commands), fsd run drives it over the real transports until AS Finished.
 TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
-  const int port = free_udp_port();
-  const std::string sim_cfg = write_file("hw_sim.json", R"({"sim": {"enable_camera": false,
-                                 "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0}},
-                         "drivers": {"vlp16": {"data_port": )" +
-                                                            std::to_string(port) + "}}}");
-  Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_track_1.csv", "--duration", "120"},
-          scratch_path("hw_sim.log"));
-  const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
-  const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
-  ASSERT_FALSE(gnss.empty()) << sim.output();
-  ASSERT_FALSE(vcu.empty()) << sim.output();
-
+  CarInAnotherProcess car("hw", "../shared/tracks/epfl_track_1.csv",
+                          R"({"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0})");
+  ASSERT_TRUE(car.up()) << car.sim.output();
   constexpr double kInspection = 3.0;  // s of steering sweep at control.mission.inspection_speed (1 m/s)
-  // Both ends' watchdogs (VCU heartbeat, VCU status, pose) get 1 s instead of 0.1–0.2 s: on a loaded 2-core CI
-  // machine the real-time sim and the daemon can each stall for a few hundred ms, and this test is about the
-  // wiring. The watchdogs themselves are tested in test_control and test_drivers.
-  const std::string run_cfg = write_file(
-      "hw_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"("}, "gnss": {"device": ")" + gnss +
-                         R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
-                         R"(, "position_port": )" + std::to_string(free_udp_port()) +
-                         R"(}}, "control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
-                         R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
-                         "run": {"stats_period": 1.0}, "web": {"bind": "127.0.0.1", "port": 0}})");
+  const std::string run_cfg =
+      car.run_config("hw", R"("control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
+                               R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
+                               "run": {"stats_period": 1.0})");
   const std::string report_path = scratch_path("hw_report.json");
   const std::string recording = scratch_path("hw_run.mcap");
   std::remove(report_path.c_str());
@@ -294,8 +294,8 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
           scratch_path("hw_run.log"));
   const int rc = run.wait(90s);
   const std::string log = run.output();
-  sim.signal(SIGTERM);
-  EXPECT_EQ(sim.wait(20s), 0);
+  car.sim.signal(SIGTERM);
+  EXPECT_EQ(car.sim.wait(20s), 0);
   ASSERT_EQ(rc, 0) << log;
 
   const auto r = nlohmann::json::parse(slurp(report_path));
@@ -338,8 +338,8 @@ TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
   EXPECT_EQ(d["control"]["overruns"].get<double>() < 0.2 * d["control"]["cycles"].get<double>(), true);
 
   // The sim sent at least what the daemon received.
-  const std::string sent = sim.wait_for(std::regex("fsd sim: (\\d+) LiDAR packets"), 5s);
-  ASSERT_FALSE(sent.empty()) << sim.output();
+  const std::string sent = car.sim.wait_for(std::regex("fsd sim: (\\d+) LiDAR packets"), 5s);
+  ASSERT_FALSE(sent.empty()) << car.sim.output();
   EXPECT_GE(std::stod(sent), lidar);
   // The log shows the per-driver rates and the transitions.
   EXPECT_NE(log.find("pkt/s"), std::string::npos) << log;
@@ -440,31 +440,19 @@ class Devices {
 // stand-in fires the EBS when the heartbeat stops (the rules' AS Emergency), and the restarted stack names that
 // state and its cause as a fault, asks for nothing and drives nothing. The VCU's own log is the truth.
 TEST(HardwareRun, KilledWhileStandingTheRestartedStackNamesTheEmergencyAndDrivesNothing) {
-  const int port = free_udp_port();
-  const std::string sim_cfg = write_file("hw_restart_sim.json", R"({"sim": {"enable_camera": false,
-                                 "vcu": {"ready_to_drive_s": 1.0, "res_go_at_s": -1, "heartbeat_timeout": 1.0}},
-                         "drivers": {"vlp16": {"data_port": )" + std::to_string(port) +
-                                                                     "}}}");
-  Fsd sim({"sim", "--config", sim_cfg, "--track", "../shared/tracks/epfl_track_1.csv", "--duration", "90"},
-          scratch_path("hw_restart_sim.log"));
-  const std::string gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
-  const std::string vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
-  ASSERT_FALSE(gnss.empty()) << sim.output();
-  ASSERT_FALSE(vcu.empty()) << sim.output();
-  const std::string run_cfg = write_file(
-      "hw_restart_run.json", R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" +
-                                 gnss + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" +
-                                 std::to_string(port) + R"(, "position_port": )" + std::to_string(free_udp_port()) +
-                                 R"(}}, "control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
-                                 "web": {"bind": "127.0.0.1", "port": 0}})");
+  CarInAnotherProcess car("hw_restart", "../shared/tracks/epfl_track_1.csv",
+                          R"({"ready_to_drive_s": 1.0, "res_go_at_s": -1, "heartbeat_timeout": 1.0})");
+  ASSERT_TRUE(car.up()) << car.sim.output();
+  const std::string run_cfg =
+      car.run_config("hw_restart", R"("control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}})");
   {
     Fsd first({"run", "--config", run_cfg, "--mission", "trackdrive"}, scratch_path("hw_restart_first.log"));
-    ASSERT_FALSE(sim.wait_for(std::regex("VCU AS Off \\S+ Ready at"), 60s).empty()) << sim.output() << first.output();
+    ASSERT_FALSE(car.sim.wait_for(std::regex("VCU AS Off \\S+ Ready at"), 60s).empty()) << car.sim.output() << first.output();
     first.signal(SIGKILL);
     EXPECT_EQ(first.wait(10s), 128 + SIGKILL);
   }
-  ASSERT_FALSE(sim.wait_for(std::regex("VCU AS Ready \\S+ Emergency at \\S+ s: heartbeat lost"), 10s).empty())
-      << sim.output();
+  ASSERT_FALSE(car.sim.wait_for(std::regex("VCU AS Ready \\S+ Emergency at \\S+ s: heartbeat lost"), 10s).empty())
+      << car.sim.output();
 
   const std::string report_path = scratch_path("hw_restart_report.json");
   std::remove(report_path.c_str());
@@ -479,10 +467,10 @@ TEST(HardwareRun, KilledWhileStandingTheRestartedStackNamesTheEmergencyAndDrives
   EXPECT_EQ(r["as_state"], "Emergency");
   ASSERT_FALSE(r["faults"].empty());
   EXPECT_EQ(r["faults"][0]["source"], "vcu") << r["faults"].dump();
-  sim.signal(SIGTERM);
-  EXPECT_EQ(sim.wait(20s), 0);
+  car.sim.signal(SIGTERM);
+  EXPECT_EQ(car.sim.wait(20s), 0);
   // The VCU's log: Ready, then the EBS on the lost heartbeat, and no transition after it (nothing was asked for).
-  const std::string sim_log = sim.output();
+  const std::string sim_log = car.sim.output();
   const std::regex transition("VCU AS \\S+ \\S+ \\S+ at");
   const auto n = std::distance(std::sregex_iterator(sim_log.begin(), sim_log.end(), transition), std::sregex_iterator());
   EXPECT_EQ(n, 2) << sim_log;
