@@ -1,11 +1,13 @@
-// LiDAR odometry on one lap of each shared trackdrive, scans rendered by the virtual car's VLP-16 at 8 m/s: the
+// LiDAR odometry on one lap of each shared trackdrive, scans rendered by the virtual car's VLP-16 while it drives
+// round the centre line at a constant speed (8 m/s by default; a kinematic bicycle steered onto the line): the
 // drift against the simulator's true poses and the CPU time per scan (thread CPU clock: one core, so a shared
 // machine does not distort it). A plain executable printing a table (not Google Benchmark: one lap is one sample).
 // Run from the project root (Release build):
-//   build-rel/bench/lidar_odometry_bench [--speed 8] [--trace] [--set KEY=VALUE ...] [TRACK.csv ...]
+//   build-rel/bench/lidar_odometry_bench [--speed 8] [--measured-motion] [--trace] [--set KEY=VALUE ...] [TRACK.csv ...]
 // --trace prints one line per scan: the true and the estimated increment and their difference; --set changes one
 // localization.lidar_odometry.* key (a JSON value) for a sweep; --known-start-speed gives the odometry the car's
-// speed at the first scan (the drive is a flying start), as wheel speeds would.
+// speed at the first scan (the drive is a flying start), as wheel speeds would; --measured-motion hands it each
+// scan's true mean forward speed and yaw rate, as the daemon hands it the wheel speeds and the GNSS-INS yaw rate.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -18,7 +20,7 @@
 
 int main(int argc, char** argv) {
   double speed = 8.0;
-  bool trace = false, known_start_speed = false;
+  bool trace = false, known_start_speed = false, measured_motion = false;
   std::vector<std::string> tracks;
   auto schema = std::make_shared<fsd::ConfigSchema>();
   fsd::lidar_odometry::describe_lidar_odometry_config(*schema);
@@ -29,6 +31,8 @@ int main(int argc, char** argv) {
       speed = std::atof(argv[++i]);
     } else if (a == "--known-start-speed") {
       known_start_speed = true;
+    } else if (a == "--measured-motion") {
+      measured_motion = true;
     } else if (a == "--trace") {
       trace = true;
     } else if (a == "--set" && i + 1 < argc) {
@@ -43,7 +47,8 @@ int main(int argc, char** argv) {
       }
     } else if (a.rfind("--", 0) == 0) {
       std::fprintf(stderr,
-                   "usage: %s [--speed M_S] [--known-start-speed] [--trace] [--set KEY=VALUE ...] [TRACK.csv ...]\n",
+                   "usage: %s [--speed M_S] [--known-start-speed] [--measured-motion] [--trace] [--set KEY=VALUE ...] "
+                   "[TRACK.csv ...]\n",
                    argv[0]);
       return 2;
     } else {
@@ -58,7 +63,7 @@ int main(int argc, char** argv) {
       "| layout | scans | distance | end-point error | KITTI-style | yaw error | worst scan yaw | degenerate | "
       "ms/scan p50 | p99 |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& t : tracks) {
-    const auto r = fsd::test::drive_odometry_lap(t, speed, odo_cfg, trace, known_start_speed);
+    const auto r = fsd::test::drive_odometry_lap(t, speed, odo_cfg, trace, known_start_speed, measured_motion);
     std::string name = t.substr(t.find_last_of('/') + 1);
     name = name.substr(0, name.rfind('.'));
     std::printf("| %s | %d | %.1f m | %.2f m (%.2f %%) | %.2f %% | %.2f° | %.2f° | %d | %.2f | %.2f |\n", name.c_str(),

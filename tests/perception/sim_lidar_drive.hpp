@@ -1,7 +1,8 @@
 #pragma once
-// Scans as the virtual car's VLP-16 renders them while the car drives a track's true centre line at constant speed,
-// decoded by the real Vlp16ScanBuilder, with the true body pose at any time and the world's true cones: the
-// independent truth of the LiDAR perception tests.
+// Scans as the virtual car's VLP-16 renders them while the car drives round a track's true centre line at constant
+// speed (a kinematic bicycle steered onto it), decoded by the real Vlp16ScanBuilder, with the true body pose at any
+// time and the world's true cones: the independent truth of the LiDAR perception and odometry tests.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <memory>
@@ -19,15 +20,24 @@
 
 namespace fsd::test {
 
-// Body pose (map ← body, rear axle on the ground) driving a closed polyline at constant speed from arc length s0;
-// the heading looks 1 m ahead and behind so the 0.25 m samples of the line do not make it jitter.
-class LineDrive {
+// Body pose (map ← body, rear axle on the ground) of a car driving round a closed polyline at constant speed from arc
+// length s0: a kinematic bicycle with the virtual car's wheelbase, steering lock and steering rate, steered onto the
+// line by pure pursuit and integrated at 1 kHz as far as it is asked. Its yaw turns as a car's does, never in the
+// steps the polyline's kinks would give a pose taken off the line itself.
+class CarDrive {
  public:
-  LineDrive(std::vector<Vec2> line, double speed, double s0) : line_(std::move(line)), speed_(speed), s0_(s0) {
+  static constexpr double kWheelbase = 1.53, kLock = 0.5, kSteerRate = 1.2;  // m, rad, rad/s (car.*)
+  static constexpr double kDt = 1e-3;                                         // s
+
+  CarDrive(std::vector<Vec2> line, double speed, double s0) : line_(std::move(line)), speed_(speed) {
     s_.push_back(0);
     for (std::size_t i = 0; i < line_.size(); ++i)
       s_.push_back(s_.back() + (line_[(i + 1) % line_.size()] - line_[i]).norm());
+    const Vec2 p = at(s0), d = at(s0 + 1.0) - at(s0 - 1.0);
+    state_ = {p.x(), p.y(), std::atan2(d.y(), d.x()), 0.0, s0};
+    poses_.push_back(pose(state_));
   }
+  // The line's point `s` metres along it (wrapping).
   Vec2 at(double s) const {
     s = std::fmod(std::fmod(s, s_.back()) + s_.back(), s_.back());
     std::size_t i = 0;
@@ -37,16 +47,45 @@ class LineDrive {
     return a + f * (b - a);
   }
   Pose3 operator()(Stamp t) const {
-    const double s = s0_ + speed_ * t;
-    const Vec2 p = at(s), d = at(s + 1.0) - at(s - 1.0);
-    return Pose2{p.x(), p.y(), std::atan2(d.y(), d.x())}.to_pose3();
+    const double k = std::max(0.0, t) / kDt;
+    const auto i = static_cast<std::size_t>(k);
+    while (poses_.size() < i + 2) {
+      step();
+      poses_.push_back(pose(state_));
+    }
+    const Pose2 &a = poses_[i], &b = poses_[i + 1];
+    const double f = k - static_cast<double>(i);
+    return Pose2{a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), a.yaw + f * wrap_angle(b.yaw - a.yaw)}.to_pose3();
   }
   double length() const { return s_.back(); }
 
  private:
+  struct State {
+    double x, y, yaw, steer, s;  // s: arc length of the line's point nearest the car
+  };
+  static Pose2 pose(const State& q) { return {q.x, q.y, q.yaw}; }
+  void step() const {
+    State& q = state_;
+    const Vec2 p(q.x, q.y);
+    // The nearest point of the line, looked for a little ahead of the last.
+    double best = (at(q.s) - p).squaredNorm();
+    for (double ds = 0.05; ds < 2.0; ds += 0.05)
+      if (const double d = (at(q.s + ds) - p).squaredNorm(); d < best) best = d, q.s += ds, ds = 0.0;
+    const double lookahead = std::max(3.0, 0.3 * speed_);
+    const Vec2 g = at(q.s + lookahead) - p;
+    const double alpha = wrap_angle(std::atan2(g.y(), g.x()) - q.yaw);
+    const double want = std::clamp(std::atan(2 * kWheelbase * std::sin(alpha) / g.norm()), -kLock, kLock);
+    q.steer += std::clamp(want - q.steer, -kSteerRate * kDt, kSteerRate * kDt);
+    q.x += speed_ * std::cos(q.yaw) * kDt;
+    q.y += speed_ * std::sin(q.yaw) * kDt;
+    q.yaw = wrap_angle(q.yaw + speed_ / kWheelbase * std::tan(q.steer) * kDt);
+  }
+
   std::vector<Vec2> line_;
   std::vector<double> s_;
-  double speed_, s0_;
+  double speed_;
+  mutable State state_{};
+  mutable std::vector<Pose2> poses_;  // every kDt from t = 0
 };
 
 struct SimLidarSetup {
@@ -91,7 +130,7 @@ class SimLidarDrive {
   const Pose3& mount() const { return mount_; }  // body ← sensor
   const sim::World& world() const { return world_; }
   const Track& track() const { return track_; }
-  const LineDrive& drive() const { return drive_; }
+  const CarDrive& drive() const { return drive_; }
   // The standing cones in the map frame with their true colours.
   std::vector<Cone> true_cones() const {
     std::vector<Cone> out;
@@ -109,7 +148,7 @@ class SimLidarDrive {
   SimLidarSetup setup_;
   Track track_;
   sim::World world_;
-  LineDrive drive_;
+  CarDrive drive_;
   sim::LidarModel lidar_;
   Pose3 mount_;
   std::unique_ptr<Vlp16ScanBuilder> builder_;
