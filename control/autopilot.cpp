@@ -204,14 +204,15 @@ ControlOutput Autopilot::step(Stamp now) {
   // Follow it.
   const PathSource source = state_ ? mission_path.source : PathSource::None;
   const Path* path = state_ ? mission_path.path : nullptr;
+  // The recorded lap has a follower of its own (control.lap2 gains); every other path the real-time one.
+  PathFollower& f = source == PathSource::Recorded ? lap2_follower_ : follower_;
   // Back on a path after another one (GNSS regained): the follower's projection hint is from long ago. A mission
   // path that replaces the one followed says where on it the car is: a figure of eight passes its crossing five
   // times, and the nearest point of it all may be another pass.
-  if (source != last_source_) (source == PathSource::Recorded ? lap2_follower_ : follower_).reset();
+  if (source != last_source_) f.reset();
   if (mission_path.replaced) follower_.reset(mission_path.resume_s);
   FollowResult follow;
   if (path && state_) {
-    PathFollower& f = source == PathSource::Recorded ? lap2_follower_ : follower_;
     follow = f.follow(*path, *state_, now, config_.speed.v_max);
     if (follow.ok) progress_s_ = follow.s;
   }
@@ -236,7 +237,6 @@ ControlOutput Autopilot::step(Stamp now) {
   run_->limit(in, cmd);
   // The contact guard: the car's predicted motion against the mapped cones; a predicted contact slows it first.
   if (path && state_ && follow.ok) {
-    const PathFollower& f = source == PathSource::Recorded ? lap2_follower_ : follower_;
     out.guard = guard_.check(*path, f, *state_, cmd, obstacles_, config_.path.body, config_.follower.wheelbase,
                              config_.follower.max_steer);
     if (out.guard.contact) cmd.target_speed = std::min(cmd.target_speed, out.guard.speed_cap);
