@@ -119,31 +119,42 @@ std::string write_file(const std::string& name, const std::string& text) {
 }
 
 // `fsd sim` playing the car in another process: its VLP-16 on a free loopback port, its GNSS-INS and VCU on
-// pseudo-terminals, the VCU stand-in's `vcu` settings; and the `fsd run` config that drives it over them, both
-// watchdogs at 1 s (a loaded 2-core machine stalls the real-time sim and the daemon for a hundred ms at times; these
-// tests are about the wiring, the watchdogs are tested in test_control and test_drivers).
+// pseudo-terminals, its RES pressing go `res_go_at_s` after Ready (< 0: never); and the `fsd run` config that drives
+// it over them. Every watchdog of both ends (VCU heartbeat and link, the supervisor's VCU and pose) is at 1 s: a
+// loaded 2-core machine stalls the real-time sim and the daemon for a hundred ms at times; these tests are about the
+// wiring, the watchdogs are tested in test_control and test_drivers.
 struct CarInAnotherProcess {
   int port = free_udp_port();
   Fsd sim;
   std::string gnss, vcu;
-  CarInAnotherProcess(const std::string& name, const std::string& track, const std::string& vcu_settings)
+  CarInAnotherProcess(const std::string& name, const std::string& track, double res_go_at_s)
       : sim({"sim", "--config",
-             write_file(name + "_sim.json", R"({"sim": {"enable_camera": false, "vcu": )" + vcu_settings +
-                                                R"(}, "drivers": {"vlp16": {"data_port": )" + std::to_string(port) +
-                                                "}}}"),
+             write_file(name + "_sim.json",
+                        nlohmann::json{{"sim",
+                                        {{"enable_camera", false},
+                                         {"vcu",
+                                          {{"ready_to_drive_s", 1.0},
+                                           {"res_go_at_s", res_go_at_s},
+                                           {"heartbeat_timeout", 1.0}}}}},
+                                       {"drivers", {{"vlp16", {{"data_port", port}}}}}}
+                            .dump()),
              "--track", track, "--duration", "120"},
             scratch_path(name + "_sim.log")) {
     gnss = sim.wait_for(std::regex("GNSS-INS NMEA on (\\S+)"), 30s);
     vcu = sim.wait_for(std::regex("VCU link on (\\S+)"), 5s);
   }
   bool up() const { return !gnss.empty() && !vcu.empty(); }
-  // The `fsd run` config, with `more` (JSON members) added at its top level.
-  std::string run_config(const std::string& name, const std::string& more = "") {
-    return write_file(name + "_run.json",
-                      R"({"drivers": {"vcu": {"device": ")" + vcu + R"(", "timeout": 1.0}, "gnss": {"device": ")" +
-                          gnss + R"("}, "vlp16": {"address": "127.0.0.1", "data_port": )" + std::to_string(port) +
-                          R"(, "position_port": )" + std::to_string(free_udp_port()) +
-                          R"(}}, "web": {"bind": "127.0.0.1", "port": 0})" + (more.empty() ? "" : ", " + more) + "}");
+  // The `fsd run` config, with `patch` merged in (a JSON merge patch).
+  std::string run_config(const std::string& name, const nlohmann::json& patch = nlohmann::json::object()) {
+    nlohmann::json cfg{
+        {"drivers",
+         {{"vcu", {{"device", vcu}, {"timeout", 1.0}}},
+          {"gnss", {{"device", gnss}}},
+          {"vlp16", {{"address", "127.0.0.1"}, {"data_port", port}, {"position_port", free_udp_port()}}}}},
+        {"control", {{"supervisor", {{"vcu_timeout", 1.0}, {"pose_timeout", 1.0}}}}},
+        {"web", {{"bind", "127.0.0.1"}, {"port", 0}}}};
+    cfg.merge_patch(patch);
+    return write_file(name + "_run.json", cfg.dump());
   }
 };
 
@@ -249,11 +260,9 @@ TEST(HardwareRun, MissingDeviceExitsTwoNamingKeyAndPath) {
 // LiDAR over UDP, GNSS-INS and VCU over ptys), fsd run finds the lane with its LiDAR stages and drives it. The
 // truth is fsd sim's: the cones it counts as hit, and how far the car went from the start.
 TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
-  CarInAnotherProcess car("hw_acc", "../shared/tracks/epfl_acceleration.csv",
-                          R"({"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0})");
+  CarInAnotherProcess car("hw_acc", "../shared/tracks/epfl_acceleration.csv", 1.5);
   ASSERT_TRUE(car.up()) << car.sim.output();
-  const std::string run_cfg =
-      car.run_config("hw_acc", R"("control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}})");
+  const std::string run_cfg = car.run_config("hw_acc");
   const std::string report_path = scratch_path("hw_acc_report.json");
   std::remove(report_path.c_str());
   Fsd run({"run", "--config", run_cfg, "--mission", "acceleration", "--until-finished", "--report", report_path},
@@ -278,14 +287,11 @@ TEST(HardwareRun, AccelerationOnItsOwnLidarAgainstFsdSim) {
 // The inspection mission end to end: fsd sim plays the car (its VCU stand-in owns the AS state and moves the car
 // on the daemon's Commands), fsd run drives it over the real transports until AS Finished.
 TEST(HardwareRun, InspectionAgainstFsdSimGoesReadyDrivingFinished) {
-  CarInAnotherProcess car("hw", "../shared/tracks/epfl_track_1.csv",
-                          R"({"ready_to_drive_s": 1.0, "res_go_at_s": 1.5, "heartbeat_timeout": 1.0})");
+  CarInAnotherProcess car("hw", "../shared/tracks/epfl_track_1.csv", 1.5);
   ASSERT_TRUE(car.up()) << car.sim.output();
   constexpr double kInspection = 3.0;  // s of steering sweep at control.mission.inspection_speed (1 m/s)
-  const std::string run_cfg =
-      car.run_config("hw", R"("control": {"mission": {"inspection_duration": )" + std::to_string(kInspection) +
-                               R"(}, "supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}},
-                               "run": {"stats_period": 1.0})");
+  const std::string run_cfg = car.run_config(
+      "hw", {{"control", {{"mission", {{"inspection_duration", kInspection}}}}}, {"run", {{"stats_period", 1.0}}}});
   const std::string report_path = scratch_path("hw_report.json");
   const std::string recording = scratch_path("hw_run.mcap");
   std::remove(report_path.c_str());
@@ -440,11 +446,9 @@ class Devices {
 // stand-in fires the EBS when the heartbeat stops (the rules' AS Emergency), and the restarted stack names that
 // state and its cause as a fault, asks for nothing and drives nothing. The VCU's own log is the truth.
 TEST(HardwareRun, KilledWhileStandingTheRestartedStackNamesTheEmergencyAndDrivesNothing) {
-  CarInAnotherProcess car("hw_restart", "../shared/tracks/epfl_track_1.csv",
-                          R"({"ready_to_drive_s": 1.0, "res_go_at_s": -1, "heartbeat_timeout": 1.0})");
+  CarInAnotherProcess car("hw_restart", "../shared/tracks/epfl_track_1.csv", -1.0);  // the RES never says go
   ASSERT_TRUE(car.up()) << car.sim.output();
-  const std::string run_cfg =
-      car.run_config("hw_restart", R"("control": {"supervisor": {"vcu_timeout": 1.0, "pose_timeout": 1.0}})");
+  const std::string run_cfg = car.run_config("hw_restart");
   {
     Fsd first({"run", "--config", run_cfg, "--mission", "trackdrive"}, scratch_path("hw_restart_first.log"));
     ASSERT_FALSE(car.sim.wait_for(std::regex("VCU AS Off \\S+ Ready at"), 60s).empty()) << car.sim.output() << first.output();
