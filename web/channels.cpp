@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numbers>
 
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
@@ -466,7 +465,7 @@ LocalizationError localization_error(const VehicleState& estimate, const TruthSt
   const double ct = std::cos(truth.pose.yaw), st = std::sin(truth.pose.yaw);
   e.along = e.dx * ct + e.dy * st;
   e.across = -e.dx * st + e.dy * ct;
-  e.yaw = std::remainder(yaw - truth.pose.yaw, 2 * std::numbers::pi);
+  e.yaw = wrap_angle(yaw - truth.pose.yaw);
   e.carried = dt;
   return e;
 }

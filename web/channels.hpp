@@ -86,9 +86,8 @@ std::string cone_map_scene(Stamp t, const std::vector<Cone>& cones);
 // Whether the camera's HOG + SVM verified a detection (stage Camera; the truth source's ideal detector counts too).
 bool camera_verified(const Cone& c);
 // Detections (vehicle frame) placed in the map by the car's pose, expiring after 0.5 s, in their colours: the
-// camera-verified ones as solid boxes (entity "detections", cubes), the LiDAR-only ones as the outline of the same
-// box (entity "detections_unverified": a line strip each, bottom and top squares joined by one edge, its pose at
-// the detection).
+// camera-verified ones as solid boxes (entity "detections"), the LiDAR-only ones as the same boxes half transparent
+// with metadata render = outline (entity "detections_unverified"), which the dashboard draws as their wires.
 std::string detections_scene(Stamp t, const ConeDetections& detections, const Pose2& car_pose);
 
 struct CarShape {
