@@ -47,6 +47,7 @@ inline constexpr std::string_view kRawSchemaVcuTx = "fsd.raw.vcu_tx";           
 inline constexpr std::string_view kRawSchemaTruthState = "fsd.raw.truth_state";
 inline constexpr std::string_view kRawSchemaTruthCones = "fsd.raw.truth_cones";
 inline constexpr std::string_view kRawSchemaTruthScan = "fsd.raw.truth_scan";
+inline constexpr std::string_view kRawSchemaTruthLidarReturns = "fsd.raw.truth_lidar_returns";
 
 // The metadata map a writer of this version puts in kRecordingMetadata.
 StringMap recording_metadata();

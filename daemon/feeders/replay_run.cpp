@@ -158,6 +158,8 @@ struct ReplayRun::Impl {
         dashboard_cones = std::make_shared<const std::vector<web::TruthCone>>(truth_cones(*c));
         scoring->set_truth_cones(std::move(*c));
       }
+    } else if (scoring && e.channel == RawChannel::TruthLidarReturns) {
+      if (auto r = decode_truth_lidar_returns(e.bytes)) scoring->add_lidar_returns(*r);
     } else if (e.channel == RawChannel::VcuTx) {
       if (recorded.mode == "sim")
         cycle_vcu_tx.push_back(e.bytes);

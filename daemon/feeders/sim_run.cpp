@@ -163,6 +163,14 @@ struct SimRun::Impl {
       stack->feed({RawChannel::TruthCones, t, cones});
     }
     if (faults->truth_scan_due(t)) stack->feed({RawChannel::TruthScan, t, {}});
+    // Which cones the LiDAR returned points from (recall_visible_15m), recorded so that a replay scores alike.
+    if (car_settings.run.lidar) {
+      std::vector<TruthLidarReturns> returns;
+      for (const auto& r : car->take_lidar_cone_returns())
+        returns.push_back({static_cast<std::uint32_t>(r.cone + 1), static_cast<std::uint32_t>(r.returns), r.t});
+      scoring->add_lidar_returns(returns);
+      if (!returns.empty()) stack->feed({RawChannel::TruthLidarReturns, t, encode_truth_lidar_returns(returns)});
+    }
   }
 
   // The simulator's ground truth on the dashboard's /truth/* channels, never mixed into the stack's own.

@@ -13,6 +13,7 @@ static_assert(std::endian::native == std::endian::little, "truth frames are writ
 constexpr std::uint8_t kVersion = 1;
 constexpr std::size_t kStateSize = 2 + 10 * 8 + 4 + 1;
 constexpr std::size_t kConeSize = 3 * 8 + 1 + 4;
+constexpr std::size_t kReturnsSize = 4 + 4 + 8;
 
 template <class T>
 void put(std::vector<std::uint8_t>& out, T v) {
@@ -100,6 +101,35 @@ std::optional<std::vector<Cone>> decode_truth_cones(std::span<const std::uint8_t
     c.id = get<std::uint32_t>(b, at);
   }
   return cones;
+}
+
+std::vector<std::uint8_t> encode_truth_lidar_returns(const std::vector<TruthLidarReturns>& returns) {
+  std::vector<std::uint8_t> out;
+  out.reserve(5 + returns.size() * kReturnsSize);
+  put<std::uint8_t>(out, kVersion);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(returns.size()));
+  for (const auto& r : returns) {
+    put<std::uint32_t>(out, r.id);
+    put<std::uint32_t>(out, r.returns);
+    put<double>(out, r.t);
+  }
+  return out;
+}
+
+std::optional<std::vector<TruthLidarReturns>> decode_truth_lidar_returns(std::span<const std::uint8_t> b,
+                                                                         std::size_t max_cones) {
+  if (b.size() < 5 || b[0] != kVersion) return std::nullopt;
+  std::size_t at = 1;
+  const auto n = get<std::uint32_t>(b, at);
+  if (n > max_cones || b.size() != 5 + static_cast<std::size_t>(n) * kReturnsSize) return std::nullopt;
+  std::vector<TruthLidarReturns> out(n);
+  for (auto& r : out) {
+    r.id = get<std::uint32_t>(b, at);
+    r.returns = get<std::uint32_t>(b, at);
+    r.t = get<double>(b, at);
+    if (r.id == 0 || r.returns == 0 || !std::isfinite(r.t)) return std::nullopt;
+  }
+  return out;
 }
 
 }  // namespace fsd

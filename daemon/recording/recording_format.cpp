@@ -108,6 +108,8 @@ std::string_view raw_schema(RawChannel c) {
       return mcap::kRawSchemaTruthCones;
     case RawChannel::TruthScan:
       return mcap::kRawSchemaTruthScan;
+    case RawChannel::TruthLidarReturns:
+      return mcap::kRawSchemaTruthLidarReturns;
   }
   return "fsd.raw.unknown";
 }
@@ -132,6 +134,8 @@ std::string raw_schema_description(RawChannel c) {
       return "simulator truth: the standing cones (daemon/feeders/truth_frames.hpp)";
     case RawChannel::TruthScan:
       return "simulator truth: the ideal detector's scan tick (no bytes)";
+    case RawChannel::TruthLidarReturns:
+      return "simulator truth: the LiDAR returns from each cone (daemon/feeders/truth_frames.hpp)";
   }
   return "";
 }

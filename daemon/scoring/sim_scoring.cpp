@@ -55,7 +55,13 @@ SimScoring::SimScoring(const Track& track, Mission mission, const RunSettings& r
   card_->set_vehicle_limits({sp.mu, sp.a_accel_max, sp.a_brake_max, sp.v_max});
   // Scored against the true pose at the detections' instant, not the one the stack placed them by.
   stack.on_detections([this](const ConeDetections& det, const Pose2&) {
-    perception_.add_frame(det, truth_cones_, truth_poses_.at(det.stamp).value_or(last_pose_));
+    const Pose2 pose = truth_poses_.at(det.stamp).value_or(last_pose_);
+    if (!visibility_.known()) {
+      perception_.add_frame(det, truth_cones_, pose);
+      return;
+    }
+    const auto visible = visibility_.visible_at(det.stamp);
+    perception_.add_frame(det, truth_cones_, pose, &visible);
   });
   // Each loop closure with the pose's error against the truth at its instant, before and after the correction.
   stack.on_loop_closure([this](const LoopClosureRecord& r) {

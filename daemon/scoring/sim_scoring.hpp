@@ -3,7 +3,8 @@
 // recording both fill it: one Scorecard for the track and mission, fed the simulator's truth each cycle (the
 // car's true state, the standing cones), the Stack's detections scored against the truth at their instant, and at
 // the end the Stack's latencies, faults, cone map and perception figures. The live run feeds the virtual car's
-// truth; the replay the recorded truth frames (RawChannel::TruthState / TruthCones), so both score alike.
+// truth; the replay the recorded truth frames (RawChannel::TruthState / TruthCones / TruthLidarReturns), so both
+// score alike.
 #include <memory>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "common/track.hpp"
 #include "common/types.hpp"
+#include "daemon/scoring/lidar_visibility.hpp"
 #include "daemon/scoring/odometry_score.hpp"
 #include "daemon/scoring/perception_score.hpp"
 #include "daemon/scoring/scorecard.hpp"
@@ -39,6 +41,8 @@ class SimScoring {
   void on_truth(const sim::VehicleTruth& truth);
   // The standing cones, whenever they change (a cone knocked over), as the Stack is sent them.
   void set_truth_cones(std::vector<Cone> cones) { truth_cones_ = std::move(cones); }
+  // The returns the simulated LiDAR sent from each cone since the last call (which cones it could see).
+  void add_lidar_returns(const std::vector<TruthLidarReturns>& returns) { visibility_.add(returns); }
   // After the step: the VCU's true AS state and the cones hit so far; the Stack's pose against the truth; the
   // cone map as it is when lap 1 is timed ("map_lap1": the map lap 2 drives on, before lap 2's sightings).
   void after_step(AsState as, int cones_hit);
@@ -55,6 +59,7 @@ class SimScoring {
   Stack& stack_;
   std::unique_ptr<Scorecard> card_;
   PerceptionScore perception_;
+  LidarVisibility visibility_;
   OdometryScore odometry_;
   PoseHistory truth_poses_{256};  // the car's true poses of the last 2.5 s, for the perception score
   // A loop closure is scored when its solve comes back, which on a worker (--workers) is seconds of simulated time

@@ -6,7 +6,8 @@ namespace fsd {
 
 namespace {
 constexpr std::array<std::string_view, kRawChannels> kNames{
-    "vlp16_data", "vlp16_position", "nmea", "camera", "vcu_rx", "vcu_tx", "truth_state", "truth_cones", "truth_scan"};
+    "vlp16_data", "vlp16_position", "nmea",        "camera",     "vcu_rx",
+    "vcu_tx",     "truth_state",    "truth_cones", "truth_scan", "truth_lidar_returns"};
 }
 
 std::string_view to_string(RawChannel c) {

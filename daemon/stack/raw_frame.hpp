@@ -20,17 +20,18 @@ struct TelemetrySnapshot;
 struct ParamChange;
 
 enum class RawChannel : std::uint8_t {
-  Vlp16Data = 0,      // VLP-16 data packet (UDP 2368 payload, 1206 bytes)
-  Vlp16Position = 1,  // VLP-16 position packet (UDP 8308 payload, 512 bytes)
-  Nmea = 2,           // GNSS-INS serial bytes, any chunking
-  Camera = 3,         // one JPEG frame
-  VcuRx = 4,          // VCU protocol bytes from the VCU
-  VcuTx = 5,          // VCU protocol bytes to the VCU (recorded, never fed)
-  TruthState = 6,     // simulator: the true vehicle state (truth_frames.hpp)
-  TruthCones = 7,     // simulator: the standing cones, when they change
-  TruthScan = 8,      // simulator without a simulated LiDAR: the ideal detector's scan tick
+  Vlp16Data = 0,          // VLP-16 data packet (UDP 2368 payload, 1206 bytes)
+  Vlp16Position = 1,      // VLP-16 position packet (UDP 8308 payload, 512 bytes)
+  Nmea = 2,               // GNSS-INS serial bytes, any chunking
+  Camera = 3,             // one JPEG frame
+  VcuRx = 4,              // VCU protocol bytes from the VCU
+  VcuTx = 5,              // VCU protocol bytes to the VCU (recorded, never fed)
+  TruthState = 6,         // simulator: the true vehicle state (truth_frames.hpp)
+  TruthCones = 7,         // simulator: the standing cones, when they change
+  TruthScan = 8,          // simulator without a simulated LiDAR: the ideal detector's scan tick
+  TruthLidarReturns = 9,  // simulator: the returns its LiDAR sent from each cone (the scorecard's, unused by the stack)
 };
-inline constexpr int kRawChannels = 9;
+inline constexpr int kRawChannels = 10;
 std::string_view to_string(RawChannel c);
 std::optional<RawChannel> raw_channel_from_string(std::string_view s);
 

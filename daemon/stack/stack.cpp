@@ -198,8 +198,9 @@ struct Stack::Impl {
     // whose camera is not fitted yet still starts).
     if (perception_source == "lidar_camera" && !opt.camera) {
       perception_source = "lidar";
-      log->warn("run.perception_source = lidar_camera without the camera's calibration (drivers.camera.calibration): "
-                "LiDAR-only detections, colour from reflectivity");
+      log->warn(
+          "run.perception_source = lidar_camera without the camera's calibration (drivers.camera.calibration): "
+          "LiDAR-only detections, colour from reflectivity");
     }
     if (perception_source == "lidar" || perception_source == "lidar_camera") detector = make_detector(cfg);
     if (perception_source == "dds") {
@@ -263,7 +264,8 @@ struct Stack::Impl {
         break;
     }
     std::lock_guard lock(link_m);
-    if (link_faults.size() < kMaxLinkFaults) link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog", std::nullopt});
+    if (link_faults.size() < kMaxLinkFaults)
+      link_faults.push_back({e.t, "vcu", describe(e), "supervisor watchdog", std::nullopt});
   }
 
   void decode(const RawFrame& f) {
@@ -309,6 +311,8 @@ struct Stack::Impl {
       case RawChannel::TruthScan:
         truth_scan = true;
         break;
+      case RawChannel::TruthLidarReturns:
+        break;  // which cones the LiDAR could see: recorded for the scorecard, nothing the stack may use
     }
   }
 

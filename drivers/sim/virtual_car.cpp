@@ -155,6 +155,13 @@ void VirtualCar::advance_to(Stamp t) {
   }
 }
 
+std::vector<ConeReturns> VirtualCar::take_lidar_cone_returns() {
+  if (!lidar_) return {};
+  auto returns = lidar_->take_cone_returns();
+  std::erase_if(returns, [this](const ConeReturns& r) { return faults_.active(FaultKind::Lidar, r.t); });
+  return returns;
+}
+
 std::vector<Cone> VirtualCar::standing_cones() const {
   std::vector<Cone> out;
   for (std::size_t i = 0; i < world_.cones().size(); ++i) {

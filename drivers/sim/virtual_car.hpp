@@ -71,6 +71,9 @@ class VirtualCar {
   // Upright cones in the map frame with their true colours (the truth perception source and the scorecard).
   std::vector<Cone> standing_cones() const;
   std::uint64_t lidar_packets() const { return lidar_ ? lidar_->packets_sent() : 0; }
+  // The LiDAR's returns from each cone since the last call, as they left the sensor (none in a LiDAR outage, none
+  // without the LiDAR model): which cones the sensor could see.
+  std::vector<ConeReturns> take_lidar_cone_returns();
 
  private:
   VehicleTruth truth_at(Stamp t) const;  // interpolated between the last two physics steps

@@ -18,7 +18,7 @@ jobs="${FUZZ_JOBS:-2}"            # build jobs and targets fuzzed at once (the m
 out="test-artifacts/fuzz"
 targets=("$@")
 ((${#targets[@]})) || targets=(vlp16_packet vlp16_pcap nmea vcu mcap_reader cone_crop cone_model csv_cloud sensor_csv
-                                foxglove_client http_api dds_messages)
+                                foxglove_client http_api dds_messages truth_frames)
 
 # Per-target libFuzzer options. NMEA lines are at most 82 characters: 2 KiB holds ~25 sentences (several receiver
 # epochs) and keeps the executions fast; the 16 KB seeds are truncated to it, which still covers every sentence type.

@@ -199,5 +199,45 @@ TEST(LidarGeometry, RangeLimits) {
   EXPECT_GT(n, 1000);
 }
 
+TEST(LidarGeometry, ConeReturnsAreThePointsDecodedOnEachConeAndNoneFromOneBeyondRange) {
+  // Two cones within range (3 and 6 m ahead of the sensor, apart in azimuth) and one beyond max_range. Noise off,
+  // so a decoded point is on a cone's surface to the millimetre or on the ground.
+  const std::vector<Vec2> cones{{5.0, 1.5}, {8.0, -2.0}, {25.0, 0.0}};
+  const World world(make_track({make_cone(cones[0].x(), cones[0].y()), make_cone(cones[1].x(), cones[1].y()),
+                                make_cone(cones[2].x(), cones[2].y())}),
+                    bare_config(), 1);
+  LidarConfig cfg;
+  cfg.range_noise = 0.0;
+  cfg.max_range = 20.0;
+  LidarModel lidar(cfg, world, 1);
+  std::vector<int> decoded(cones.size(), 0);
+  std::vector<int> counted(cones.size(), 0);
+  for (int turn = 1; turn <= 3; ++turn) {
+    lidar.advance_to(
+        0.1 * turn, [](Stamp) { return Pose3::Identity(); },
+        [&](Stamp, std::span<const std::uint8_t> pkt) {
+          for (const auto& r : decode(pkt)) {
+            const Vec3 p = mount() * r.p;
+            for (std::size_t i = 0; i < cones.size(); ++i)
+              decoded[i] += small_cone_surface_distance(p, cones[i].x(), cones[i].y()) < std::abs(p.z());
+          }
+        });
+    for (const auto& c : lidar.take_cone_returns()) {
+      ASSERT_GE(c.cone, 0);
+      ASSERT_LT(c.cone, static_cast<int>(cones.size()));
+      EXPECT_GT(c.t, 0.1 * (turn - 1));
+      EXPECT_LE(c.t, 0.1 * turn);
+      counted[static_cast<std::size_t>(c.cone)] += c.returns;
+    }
+  }
+  EXPECT_GT(decoded[0], 60);
+  EXPECT_GT(decoded[1], 15);
+  EXPECT_EQ(decoded[2], 0);
+  // A point at a cone's foot can lie nearer the ground than the cone's surface: a return or two per turn.
+  for (std::size_t i = 0; i < cones.size(); ++i) EXPECT_NEAR(counted[i], decoded[i], 6) << "cone " << i;
+  EXPECT_EQ(counted[2], 0);
+  EXPECT_TRUE(lidar.take_cone_returns().empty());  // taken: nothing left until the next packets
+}
+
 }  // namespace
 }  // namespace fsd::sim

@@ -129,6 +129,7 @@ void LidarModel::build_packet(const std::function<Pose3(Stamp)>& body_pose_at) {
             const double incidence = std::abs(hit->normal.dot(dir));
             intensity = static_cast<std::uint8_t>(
                 std::clamp(std::lround(hit->reflectivity * (0.3 + 0.7 * incidence)), 0L, 255L));
+            if (hit->cone >= 0) count_cone_return(hit->cone, t_seq);
           }
         }
         vlp::write_u16(packet_, ch, counts);
@@ -142,6 +143,18 @@ void LidarModel::build_packet(const std::function<Pose3(Stamp)>& body_pose_at) {
                  static_cast<std::uint32_t>(std::llround(past_hour * 1e6) % 3600000000LL));
   packet_[vlp::kReturnModeOffset] = return_mode_;
   packet_[vlp::kProductOffset] = static_cast<std::uint8_t>(cfg_.product_id);
+}
+
+void LidarModel::count_cone_return(int cone, Stamp t) {
+  // A few cones per packet, and the same cone over consecutive firings: the last entry first.
+  auto it =
+      std::find_if(cone_returns_.rbegin(), cone_returns_.rend(), [cone](const auto& c) { return c.cone == cone; });
+  if (it == cone_returns_.rend()) {
+    cone_returns_.push_back({cone, 1, t});
+    return;
+  }
+  ++it->returns;
+  it->t = t;
 }
 
 }  // namespace fsd::sim

@@ -22,6 +22,8 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/config.hpp"
 #include "common/geometry.hpp"
@@ -52,6 +54,13 @@ const ConfigSection<LidarConfig>& lidar_section();  // prefix "sim.lidar"
 // Body ← sensor transform of a mounting.
 Pose3 lidar_mount(const LidarConfig& cfg);
 
+// Returns the sensor sent from one world cone (the scorecard's recall_visible_15m: what the LiDAR could see).
+struct ConeReturns {
+  int cone = -1;    // index into World::cones()
+  int returns = 0;  // returns sent (not dropped, in range) since the last take
+  Stamp t = 0;      // the last of their firing times
+};
+
 class LidarModel {
  public:
   // `start` is the time of the first firing; the head points along the sensor's +x then.
@@ -63,12 +72,15 @@ class LidarModel {
   void advance_to(Stamp t, const std::function<Pose3(Stamp)>& body_pose_at, const ByteSink& sink);
 
   std::uint64_t packets_sent() const { return packets_; }
+  // The cone returns of the packets emitted since the last call, one entry per cone (bounded: one per cone).
+  std::vector<ConeReturns> take_cone_returns() { return std::exchange(cone_returns_, {}); }
   Stamp next_packet_start() const;
   const LidarConfig& config() const { return cfg_; }
 
  private:
   void build_packet(const std::function<Pose3(Stamp)>& body_pose_at);
   double azimuth_rad(Stamp t) const;
+  void count_cone_return(int cone, Stamp t);
 
   LidarConfig cfg_;
   const World& world_;
@@ -80,6 +92,7 @@ class LidarModel {
   std::array<double, wire::vlp16::kLasers> cos_elev_{}, sin_elev_{}, offset_{};
   double cos_step_ = 1.0, sin_step_ = 0.0;  // head rotation between two lasers' firings
   std::array<std::uint8_t, wire::vlp16::kPacketSize> packet_{};
+  std::vector<ConeReturns> cone_returns_;
 };
 
 }  // namespace fsd::sim

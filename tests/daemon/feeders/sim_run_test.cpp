@@ -84,6 +84,9 @@ TEST(SimRun, TrackdriveTwoLapsOnTheDefaultsTheCarDrivesOnWhatItSees) {
   EXPECT_GT(per["frames"].get<int>(), 300);  // 10 Hz scans over the run
   EXPECT_GE(per["precision"].get<double>(), 0.99) << per.dump();
   EXPECT_GE(per["recall_15m"].get<double>(), 0.97) << per.dump();
+  // Of the cones the LiDAR returned points from, perception misses fewer than of all within 15 m (some are hidden).
+  EXPECT_GE(per["recall_visible_15m"].get<double>(), 0.99) << per.dump();
+  EXPECT_GT(per["recall_visible_15m"].get<double>(), per["recall_15m"].get<double>()) << per.dump();
   EXPECT_GE(per["verified_colour_accuracy_12m"].get<double>(), 0.98) << per.dump();
 }
 

@@ -164,6 +164,30 @@ TEST(Recording, ATwoLapTrackdriveReplaysBitForBit) {
   EXPECT_EQ(replayed, without_wall_time(live));
 }
 
+TEST(Recording, AReplayOnTheLidarScoresWhatTheSensorCouldSeeAsTheLiveRun) {
+  // The LiDAR pipeline (camera off): the scorecard's recall over the cones the simulated LiDAR returned points
+  // from comes from the recorded truth in the replay, figure for figure.
+  const auto file = test::scratch_path("lidar.mcap");
+  const auto live_report = test::scratch_path("lidar_live.json");
+  const auto cfg = write_text("lidar.json", R"({"sim": {"enable_camera": false},
+                                               "run": {"perception_source": "lidar", "localization_source": "truth"}})");
+  std::string out;
+  ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
+                          "../shared/tracks/epfl_acceleration.csv --config " +
+                              cfg + " --record " + file + " --report " + live_report,
+                          &out),
+            0)
+      << out;
+  const json live = read_json(live_report);
+  ASSERT_TRUE(live["perception"].contains("recall_visible_15m")) << live["perception"].dump();
+  EXPECT_GE(live["perception"]["recall_visible_15m"].get<double>(), 0.97) << live["perception"].dump();
+  const auto report = test::scratch_path("lidar_replay.json");
+  ASSERT_EQ(test::run_fsd("run --replay " + file + " --headless --until-finished --report " + report, &out), 0) << out;
+  const json replay = read_json(report);
+  EXPECT_EQ(replay["replay"]["command_mismatches"], 0);
+  EXPECT_EQ(replay["perception"], live["perception"]);
+}
+
 TEST(Recording, AConfigOnTopOfTheRecordedOneChangesTheReplay) {
   const auto& rec = acceleration();
   ASSERT_EQ(rec.rc, 0) << rec.log;

@@ -188,5 +188,40 @@ TEST(TruthFrames, RoundTripAndRejectWhatIsNotOne) {
   EXPECT_FALSE(decode_truth_cones(std::span(cb).first(cb.size() - 2)));
 }
 
+TEST(TruthFrames, LidarReturnsByteLayoutAndRejections) {
+  // The layout written out by hand: version 1, count 1, id 42, 5 returns, t 0.25 (f64 little-endian 0x3FD0...).
+  const std::vector<std::uint8_t> one{1,                               // version
+                                      1,  0, 0, 0,                     // count
+                                      42, 0, 0, 0,                     // id
+                                      5,  0, 0, 0,                     // returns
+                                      0,  0, 0, 0, 0, 0, 0xD0, 0x3F};  // t = 0.25
+  const auto back = decode_truth_lidar_returns(one);
+  ASSERT_TRUE(back);
+  ASSERT_EQ(back->size(), 1u);
+  EXPECT_EQ((*back)[0].id, 42u);
+  EXPECT_EQ((*back)[0].returns, 5u);
+  EXPECT_EQ((*back)[0].t, 0.25);
+  EXPECT_EQ(encode_truth_lidar_returns(*back), one);
+  const auto none = decode_truth_lidar_returns(encode_truth_lidar_returns({}));
+  ASSERT_TRUE(none);
+  EXPECT_TRUE(none->empty());
+
+  EXPECT_FALSE(decode_truth_lidar_returns(std::span(one).first(one.size() - 1)));  // short
+  auto no_id = one;
+  no_id[5] = 0;
+  EXPECT_FALSE(decode_truth_lidar_returns(no_id));
+  auto no_returns = one;
+  no_returns[9] = 0;
+  EXPECT_FALSE(decode_truth_lidar_returns(no_returns));
+  auto nan_time = one;
+  nan_time[19] = 0xF8;
+  nan_time[20] = 0x7F;  // 0x7FF8... is a NaN
+  EXPECT_FALSE(decode_truth_lidar_returns(nan_time));
+  auto version = one;
+  version[0] = 2;
+  EXPECT_FALSE(decode_truth_lidar_returns(version));
+  EXPECT_FALSE(decode_truth_lidar_returns(one, 0));  // more entries than allowed
+}
+
 }  // namespace
 }  // namespace fsd
