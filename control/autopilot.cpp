@@ -107,6 +107,10 @@ void Autopilot::on_gnss(Stamp t, bool good) {
   }
 }
 
+void Autopilot::on_map_match(Stamp t) {
+  if (std::isfinite(t)) map_matched_ = t;
+}
+
 void Autopilot::relocate(const std::function<Pose2(Stamp)>& correction, Stamp now) {
   if (state_) state_->pose = correction(state_->stamp) * state_->pose;
   // Moved with the pose, so that the correction is no distance driven.
@@ -164,6 +168,7 @@ MissionInput Autopilot::mission_input(Stamp now, bool plan_ok) const {
   in.plan = plan_ ? &*plan_ : nullptr;
   in.plan_ok = plan_ok;
   in.gnss_ok = gnss_good_ && gnss_good_since_ && now - *gnss_good_since_ <= config_.gnss_timeout;
+  in.map_matched = map_matched_ && now - *map_matched_ <= config_.map_match_timeout;
   in.odometer = odometer_;
   in.progress_s = progress_s_;
   return in;

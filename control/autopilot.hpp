@@ -68,6 +68,7 @@ class Autopilot {
   void on_cones(Stamp t, std::vector<Cone> map_cones);  // the whole cone map, map frame (or detections)
   void on_state(const VehicleState& state);             // fused pose and motion, map frame
   void on_gnss(Stamp t, bool good);                     // each GNSS-INS sample: usable for lap-2 tracking?
+  void on_map_match(Stamp t);                           // the localization's pose was matched to the cone map
   void on_camera(Stamp t);                              // the newest camera frame the perception stages use
 
   // The real-time planner at time `now`, when it is due (new cones, or replan_period since the last attempt);
@@ -102,6 +103,7 @@ class Autopilot {
   void set_plan_service(PlanService* service) { plan_service_ = service; }
   // Fault injection (tests, the virtual car): the planner produces nothing while stalled.
   void set_planner_stalled(bool stalled) { planner_stalled_ = stalled; }
+
  private:
   // The one place that tells the missions apart: the mission's class, and the typed views of two of them.
   std::unique_ptr<MissionRun> make_run(Mission mission, const ColourConvention& convention);
@@ -129,10 +131,11 @@ class Autopilot {
   bool new_cones_ = false;                // since the planner last ran
   std::optional<Stamp> gnss_good_since_;  // stamp of the newest good fix
   bool gnss_good_ = false;
+  std::optional<Stamp> map_matched_;  // stamp of the newest match of the pose to the cone map
 
   // Real-time planning.
   std::optional<Path> plan_;
-  std::vector<Obstacle> obstacles_;     // the cone map as the body must avoid it (refreshed with the cones)
+  std::vector<Obstacle> obstacles_;  // the cone map as the body must avoid it (refreshed with the cones)
   Stamp last_plan_attempt_ = -1e9;
   PlanService* plan_service_ = nullptr;
   bool plan_pending_ = false;  // a plan is out with the service

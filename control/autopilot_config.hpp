@@ -24,8 +24,9 @@ struct AutopilotConfig {
   LapCounterConfig laps;
   RecordedTrajectoryConfig trajectory;
   Lap2Config lap2;
-  double replan_period = 0.1;  // s: the real-time plan is refreshed at least this often (on new cones at once)
-  double gnss_timeout = 0.5;   // s without a good GNSS fix: lap 2 falls back to real-time planning
+  double replan_period = 0.1;      // s: the real-time plan is refreshed at least this often (on new cones at once)
+  double gnss_timeout = 0.5;       // s without a good GNSS fix: lap 2 leaves the recorded lap, unless ...
+  double map_match_timeout = 1.0;  // s: ... the pose was matched to the cone map this recently (Stack: fused source)
 };
 
 }  // namespace fsd

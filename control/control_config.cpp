@@ -98,7 +98,8 @@ const ConfigSection<PathOptimizerConfig>& optimizer_section() {
                   "Share of the steering lock's curvature never planned (left to correct with).", true)
           .number("lock_margin_soft", &C::lock_margin_soft, 0, 0.5, "",
                   "Share below the lock's curvature where curvature starts to cost.", true)
-          .number("w_lock_soft", &C::w_lock_soft, 0, 1e5, "m", "Cost per metre of curvature beyond that, squared.", true)
+          .number("w_lock_soft", &C::w_lock_soft, 0, 1e5, "m", "Cost per metre of curvature beyond that, squared.",
+                  true)
           .number("kappa_rate_max", &C::kappa_rate_max, 0.01, 10, "1/m²", "Steepest change of curvature along a path.",
                   true)
           .number("clearance", &C::clearance, 0, 1, "m", "Kept between the body and every cone's base.", true)
@@ -314,7 +315,11 @@ const ConfigSection<AutopilotConfig>& autopilot_section() {
                             .number("replan_period", &C::replan_period, 0.01, 5, "s",
                                     "The real-time plan is refreshed at least this often.")
                             .number("gnss_timeout", &C::gnss_timeout, 0.05, 10, "s",
-                                    "No good GNSS fix this long: lap 2 falls back to real-time planning.");
+                                    "No good GNSS fix this long: lap 2 leaves the recorded lap for real-time planning, "
+                                    "unless the pose was matched to the cone map within map_match_timeout.")
+                            .number("map_match_timeout", &C::map_match_timeout, 0.05, 10, "s",
+                                    "GNSS lost: lap 2 stays on the recorded lap while the pose was matched to the cone "
+                                    "map this recently.");
   return s;
 }
 
@@ -378,11 +383,11 @@ AutopilotConfig read_control(const Config& config) {
 std::optional<double> control_param(const AutopilotConfig& c, const std::string& key) {
   for (auto v : {planner_section().value(key, c.planner), walk_section().value(key, c.planner.walk),
                  path_section().value(key, c.path), optimizer_section().value(key, c.path.optimizer),
-                 guard_section().value(key, c.guard),
-                 follower_section().value(key, c.follower), speed_section().value(key, c.speed),
-                 mission_section().value(key, c.mission), supervisor_section().value(key, c.supervisor),
-                 lap_counter_section().value(key, c.laps), trajectory_section().value(key, c.trajectory),
-                 lap2_section().value(key, c.lap2), autopilot_section().value(key, c)})
+                 guard_section().value(key, c.guard), follower_section().value(key, c.follower),
+                 speed_section().value(key, c.speed), mission_section().value(key, c.mission),
+                 supervisor_section().value(key, c.supervisor), lap_counter_section().value(key, c.laps),
+                 trajectory_section().value(key, c.trajectory), lap2_section().value(key, c.lap2),
+                 autopilot_section().value(key, c)})
     if (v) return v;
   return std::nullopt;
 }
@@ -391,11 +396,11 @@ bool apply_control_param(AutopilotConfig& c, const std::string& key, double valu
   const bool applied =
       planner_section().apply(key, value, c.planner) || walk_section().apply(key, value, c.planner.walk) ||
       path_section().apply(key, value, c.path) || optimizer_section().apply(key, value, c.path.optimizer) ||
-      guard_section().apply(key, value, c.guard) ||
-      follower_section().apply(key, value, c.follower) || speed_section().apply(key, value, c.speed) ||
-      mission_section().apply(key, value, c.mission) || supervisor_section().apply(key, value, c.supervisor) ||
-      lap_counter_section().apply(key, value, c.laps) || trajectory_section().apply(key, value, c.trajectory) ||
-      lap2_section().apply(key, value, c.lap2) || autopilot_section().apply(key, value, c);
+      guard_section().apply(key, value, c.guard) || follower_section().apply(key, value, c.follower) ||
+      speed_section().apply(key, value, c.speed) || mission_section().apply(key, value, c.mission) ||
+      supervisor_section().apply(key, value, c.supervisor) || lap_counter_section().apply(key, value, c.laps) ||
+      trajectory_section().apply(key, value, c.trajectory) || lap2_section().apply(key, value, c.lap2) ||
+      autopilot_section().apply(key, value, c);
   if (applied) share_settings(c);
   return applied;
 }

@@ -10,15 +10,21 @@ const ConfigSection<MapMatchConfig>& map_match_section() {
   static const auto s =
       ConfigSection<MapMatchConfig>("localization.map_match")
           .boolean("enabled", &MapMatchConfig::enabled,
-                   "run.localization_source = lidar_odometry: each frame's cones are matched to the cone map and the "
-                   "pose corrected towards it (the map lap 1 built and closed, from lap 2 on).")
+                   "Each frame's cones are matched to the cone map and the pose corrected towards it (the map lap 1 "
+                   "built and closed, from lap 2 on): run.localization_source = lidar_odometry always, fused while "
+                   "no GNSS fix is recent.")
           .number("gate", &MapMatchConfig::gate, 0.05, 5.0, "m",
                   "A detection pairs with the nearest mapped cone this close to where the pose puts it.")
           .number("max_range", &MapMatchConfig::max_range, 1.0, 100.0, "m", "Detections farther away are not used.")
           .integer("min_pairs", &MapMatchConfig::min_pairs, 2, 1000, "", "Fewer pairs: no correction.")
           .number("gain", &MapMatchConfig::gain, 0.0, 1.0, "", "Share of each frame's alignment applied to the pose.")
           .number("max_step", &MapMatchConfig::max_step, 0.01, 10.0, "m",
-                  "An alignment moving the pose more than this is taken for a wrong pairing and not applied.");
+                  "An alignment moving the pose more than this is taken for a wrong pairing and not applied.")
+          .number("fused_sigma", &MapMatchConfig::fused_sigma, 0.005, 10.0, "m",
+                  "run.localization_source = fused, no GNSS fix recent: a frame's alignment to the cone map is a "
+                  "pose measurement of the fusion filter with this position sigma per axis.")
+          .number("fused_yaw_sigma", &MapMatchConfig::fused_yaw_sigma, 0.001, 1.0, "rad",
+                  "The same measurement's heading sigma.");
   return s;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// Localization against the cone map (run.localization_source = lidar_odometry): each perception frame's cones are
+// Localization against the cone map (run.localization_source = lidar_odometry, and the fused source while no GNSS
+// fix is recent: daemon/stack/fused_localization.hpp): each perception frame's cones are
 // paired with the mapped cones near where the pose puts them, and the rigid motion that lays the pairs onto the
 // map corrects the pose, a share of it per frame. The LiDAR odometry alone drifts again within a lap after the
 // loop closure corrected the start, and its heading wobbles scan to scan; the map (from lap 2 on the one lap 1
@@ -21,6 +22,9 @@ struct MapMatchConfig {
   int min_pairs = 4;        // fewer pairs: no correction (a straight of one row constrains nothing across)
   double gain = 0.3;        // share of the frame's alignment applied (the odometry is smooth; a match may be off)
   double max_step = 0.3;    // m: an alignment moving the pose more than this is no match (a wrong pairing)
+  // The fused source (GNSS lost): a frame's whole alignment is a pose measurement of the fusion filter, this sure.
+  double fused_sigma = 0.10;      // m per axis
+  double fused_yaw_sigma = 0.02;  // rad
 };
 const ConfigSection<MapMatchConfig>& map_match_section();  // "localization.map_match"
 

@@ -7,13 +7,16 @@
 namespace fsd {
 
 struct Lap2Config {
-  double mu_margin = 0.97;        // share of mu of the lap-2 speed profile
-  double lqr_q_lateral = 1.0;     // 1/m²
-  double lqr_q_heading = 1.0;     // 1/rad²
-  double lqr_r = 2.0;             // 1/rad²
-  double speed_preview = 0.4;     // s: target speed taken this far ahead on the lap path
-  double speed_lead = 0.2;        // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)
-  double speed_lead_brake = 0.0;  // s: the same where the path slows down
+  double mu_margin = 1.0;      // share of mu of the lap-2 speed profile (tracked exactly: see speed_lead_brake)
+  double lqr_q_lateral = 1.0;  // 1/m²
+  double lqr_q_heading = 1.0;  // 1/rad²
+  double lqr_r = 2.0;          // 1/rad²
+  double speed_preview = 0.4;  // s: target speed taken this far ahead on the lap path
+  double speed_lead = 0.2;     // s: plus the path's acceleration times this (≈ 1 / the VCU speed-loop gain)
+  // s: the same where the path slows down. With the preview, 0.5 s: the VCU speed loop's time constant (1/kp), by
+  // which a proportional loop lags a ramp, so the car brakes where the profile does and meets each corner at its
+  // planned speed instead of up to 1 m/s above it.
+  double speed_lead_brake = 0.1;
 
   // The lap-1 follower settings with the lap-2 gains on top.
   FollowerConfig follower(const FollowerConfig& base) const {

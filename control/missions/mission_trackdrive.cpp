@@ -94,10 +94,14 @@ MissionPath TrackdriveMission::update_path(const MissionInput& in) {
     out.path = &*run_out_;
     return out;
   }
-  // The recorded lap from shortly before the first line, while the GNSS fix is good.
+  // The recorded lap from shortly before the first line, while the pose is anchored: a good GNSS fix, or without
+  // one the pose matched to the cone map lap 1 built (the LiDAR odometry carries it between matches).
   if (lap_path_ && lap_counter_ && target_laps() > 1) {
-    out.faults.push_back({"gnss", "fix lost", "fallback to real-time planning", !in.gnss_ok});
-    if (in.gnss_ok) {
+    const bool anchored = in.gnss_ok || in.map_matched;
+    out.faults.push_back({"gnss", "fix lost", "fallback to real-time planning", !anchored});
+    out.faults.push_back(
+        {"gnss", "fix lost, the pose held to the cone map", "recorded lap kept", !in.gnss_ok && anchored});
+    if (anchored) {
       out.source = PathSource::Recorded;
       out.path = &*lap_path_;
       return out;

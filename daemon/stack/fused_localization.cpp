@@ -9,6 +9,21 @@ FusedLocalization::FusedLocalization(const Config& cfg) {
   const auto fc = fusion::read_fusion_config(cfg);
   filter_ = fusion::make_fusion_filter(fc.common.filter, fc);
   lidar_odometry_ = fc.common.lidar_odometry;
+  good_gnss_timeout_ = fc.common.good_gnss_timeout_s;
+}
+
+bool FusedLocalization::gnss_recent() const {
+  const auto e = filter_->state();
+  return e.last_gnss_accepted >= 0 && e.stamp - e.last_gnss_accepted <= good_gnss_timeout_;
+}
+
+std::optional<Pose2> FusedLocalization::add_map_correction(const Pose2& correction, double sigma, double yaw_sigma) {
+  const auto e = filter_->state();
+  if (!e.initialised) return std::nullopt;
+  filter_->add(fusion::MapPose{e.stamp, correction * e.pose, sigma, yaw_sigma});
+  const auto after = filter_->state();
+  if (after.last_map_pose != e.stamp) return std::nullopt;
+  return after.pose * e.pose.inverse();
 }
 
 void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu,

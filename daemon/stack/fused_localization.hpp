@@ -22,6 +22,12 @@ class FusedLocalization {
   void add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu,
            const std::optional<fusion::OdometryIncrement>& odometry = std::nullopt);
   bool takes_lidar_odometry() const { return lidar_odometry_; }
+  // Whether a GNSS fix was accepted within localization.fusion.good_gnss_timeout_s of the filter's time.
+  bool gnss_recent() const;
+  // The cone map's word on the pose while the GNSS is not recent: `correction` (map ← estimated, a frame's whole
+  // alignment from localization/map_match) laid onto the filter's pose now, a MapPose measurement of that σ.
+  // What the filter moved its pose by (map ← before) when it took it; nothing when it gated it away.
+  std::optional<Pose2> add_map_correction(const Pose2& correction, double sigma, double yaw_sigma);
   // The vehicle state once the filter has a position and a heading.
   std::optional<VehicleState> state(double steering_measured) const;
   fusion::LocalizationState estimate() const { return filter_->state(); }
@@ -31,6 +37,7 @@ class FusedLocalization {
   Stamp last_vcu_ = -1e300;
   Stamp newest_ = -1e300;  // the newest stamp handed to the filter
   bool lidar_odometry_ = false;
+  double good_gnss_timeout_ = 1.0;
 };
 
 }  // namespace fsd

@@ -111,6 +111,7 @@ struct Stack::Impl {
   std::deque<RemoteFrame> remote_frames;  // dds: bounded by kRemoteFramesKept
   double remote_max_age = 0;              // dds.max_detection_age
   std::uint64_t remote_late = 0;
+  std::uint64_t map_poses_applied = 0;  // fused: cone-map matches the filter took while no GNSS fix was recent
   ConeMap cone_map;
   MapMatchConfig map_match;                               // the LiDAR alone: the pose drawn towards the cone map
   std::optional<double> lidar_odometry_max_speed;         // the LiDAR alone: control.speed.v_max capped to it
@@ -368,6 +369,22 @@ struct Stack::Impl {
       if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), map_match)) {
         odometry->correct(m->correction);
         pose = m->correction * pose;
+      }
+    } else if (fused) {
+      // Each frame is matched to the cone map (a match: the pose agrees with the map, which keeps lap 2 on the
+      // recorded lap through a GNSS loss); while no GNSS fix is recent, the match's whole alignment goes into the
+      // filter as a measurement (the lap-1 map holds the pose where the odometry and the wheels alone drift).
+      MapMatchConfig whole = map_match;
+      whole.gain = 1.0;
+      if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), whole)) {
+        autopilot->on_map_match(now);
+        if (!fused->gnss_recent()) {
+          if (const auto moved =
+                  fused->add_map_correction(m->correction, map_match.fused_sigma, map_match.fused_yaw_sigma)) {
+            pose = *moved * pose;
+            ++map_poses_applied;
+          }
+        }
       }
     }
     cone_map.update(det, pose, camera_rejected);
@@ -736,6 +753,7 @@ struct Stack::Impl {
     }
     counters.truth_frames_rejected = truth_rejected;
     counters.remote_frames_late = remote_late;
+    counters.map_poses_applied = map_poses_applied;
     counters.cycles = cycles;
     counters.late_plans = late_plans;
   }

@@ -97,6 +97,7 @@ struct StackCounters {
   std::uint64_t camera_decode_failures = 0;  // frames the camera stage could not decode (skipped: LiDAR only)
   std::uint64_t perception_frames = 0;       // perception frames run (scans, or truth ticks)
   std::uint64_t remote_frames_late = 0;      // dds: perception frames too old when taken (not used)
+  std::uint64_t map_poses_applied = 0;       // fused: poses from the cone map taken while no GNSS fix was recent
   std::uint64_t camera_verified = 0, camera_rejected = 0;  // candidates the camera stage accepted / removed
   std::uint64_t truth_frames_rejected = 0;
   std::uint64_t cycles = 0;

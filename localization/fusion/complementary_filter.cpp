@@ -66,6 +66,31 @@ void ComplementaryFilter::on_odometry(const OdometryIncrement& o) {
   odometry_until_ = o.t1 + 2.0 * dt;  // until the next increment is overdue, speed and gyro wait
 }
 
+void ComplementaryFilter::on_map_pose(const MapPose& m) {
+  if (!have_position_ || !heading_known_ || !std::isfinite(m.pose.x) || !std::isfinite(m.pose.y) ||
+      !std::isfinite(m.pose.yaw) || !(m.sigma > 0) || !(m.yaw_sigma > 0))
+    return;
+  // No covariance to weigh it by: each of position and heading moves by the share the two σ give (a scalar Kalman
+  // step), after a plausibility test at 4σ of both.
+  const double sig = position_sigma();
+  const Vec2 d(m.pose.x - pose_.x, m.pose.y - pose_.y);
+  const double dyaw = wrap_angle(m.pose.yaw - pose_.yaw);
+  if (d.norm() > 4.0 * std::hypot(sig, m.sigma) ||
+      std::abs(dyaw) > 4.0 * std::hypot(std::sqrt(yaw_var_), m.yaw_sigma)) {
+    ++out_.map_poses_rejected;
+    return;
+  }
+  const double a = sig * sig / (sig * sig + m.sigma * m.sigma);
+  pose_.x += a * d.x();
+  pose_.y += a * d.y();
+  sigma_fix_ = std::sqrt(1.0 / (1.0 / (sig * sig) + 1.0 / (m.sigma * m.sigma)));
+  drift_since_fix_ = 0;
+  const double ay = yaw_var_ / (yaw_var_ + m.yaw_sigma * m.yaw_sigma);
+  pose_.yaw = wrap_angle(pose_.yaw + ay * dyaw);
+  yaw_var_ *= 1.0 - ay;
+  out_.last_map_pose = m.t;
+}
+
 double ComplementaryFilter::position_sigma() const {
   // The position lags GNSS by τ: a heading error δψ at speed v leaves it δψ·v·τ off the fixes; dead reckoning
   // since the last fix adds its drift.

@@ -25,6 +25,7 @@ class ComplementaryFilter final : public FusionFilter {
   void on_imu(const ImuSample& s) override;
   void on_speed(const BodySpeed& s) override;
   void on_odometry(const OdometryIncrement& o) override;
+  void on_map_pose(const MapPose& m) override;
   void on_gnss(const GnssFix& f) override;
   void correct(const GnssFix& f, double sigma);
   double position_sigma() const;

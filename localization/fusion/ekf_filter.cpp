@@ -163,6 +163,26 @@ void EkfFilter::on_odometry(const OdometryIncrement& o) {
   if (nis > kGate) ++out_.odometry_rejected;
 }
 
+void EkfFilter::on_map_pose(const MapPose& m) {
+  if (!have_position_ || !heading_known_ || !std::isfinite(m.pose.x) || !std::isfinite(m.pose.y) ||
+      !std::isfinite(m.pose.yaw) || !(m.sigma > 0) || !(m.yaw_sigma > 0))
+    return;
+  Eigen::Matrix<double, 3, kN> H = Eigen::Matrix<double, 3, kN>::Zero();
+  H(0, X) = 1.0;
+  H(1, Y) = 1.0;
+  H(2, Yaw) = 1.0;
+  const double nu_yaw = wrap_angle(m.pose.yaw - x_(Yaw));
+  const Eigen::Vector3d sig2(m.sigma * m.sigma, m.sigma * m.sigma, m.yaw_sigma * m.yaw_sigma);
+  // A match that paired the wrong cones claims a pose the dead reckoning denies: gated at χ²(3 dof) 99.9 %.
+  constexpr double kGate = 16.27;
+  const double nis = update<3>(Eigen::Vector3d(m.pose.x, m.pose.y, x_(Yaw) + nu_yaw),
+                               Eigen::Vector3d(x_(X), x_(Y), x_(Yaw)), H, sig2.asDiagonal().toDenseMatrix(), -1, kGate);
+  if (nis > kGate)
+    ++out_.map_poses_rejected;
+  else
+    out_.last_map_pose = m.t;
+}
+
 void EkfFilter::apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma) {
   const Eigen::Rotation2Dd rot(off.yaw);
   const Vec2 p = off.anchor_fix + rot * (Vec2(x_(X), x_(Y)) - off.anchor_dr);

@@ -43,6 +43,7 @@ class EkfFilter final : public FusionFilter {
   void on_gnss(const GnssFix& f) override;
   void on_gnss_velocity(const GnssFix& f);
   void on_odometry(const OdometryIncrement& o) override;
+  void on_map_pose(const MapPose& m) override;
   void apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma);
 
   FusionConfig cfg_;

@@ -51,6 +51,8 @@ void FusionFilter::add(const Measurement& m) {
           on_speed(v);
         else if constexpr (std::is_same_v<T, GnssFix>)
           on_gnss(v);
+        else if constexpr (std::is_same_v<T, MapPose>)
+          on_map_pose(v);
         else
           on_odometry(v);
       },

@@ -28,6 +28,7 @@ class FusionFilter {
   virtual void on_speed(const BodySpeed& s) = 0;
   virtual void on_gnss(const GnssFix& f) = 0;
   virtual void on_odometry(const OdometryIncrement& o) = 0;
+  virtual void on_map_pose(const MapPose& m) = 0;
 
   Stamp t_ = 0;  // the filter's time
 

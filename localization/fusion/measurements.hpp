@@ -38,12 +38,12 @@ struct BodySpeed {
 struct GnssFix {
   Stamp t = 0;
   Vec2 position = Vec2::Zero();
-  int fix_quality = 1;         // GGA: 0 invalid, 1 single, 2 DGPS, 4 RTK fixed, 5 RTK float
-  double age_s = 0;            // differential age (0 for a single-point fix)
-  double sigma = 0;            // m per horizontal axis
-  bool heading_valid = false;  // a dual-antenna heading
-  double heading = 0;          // rad, ENU
-  bool velocity_valid = false;  // the receiver's velocity over ground (Doppler: RMC/VTG speed and course)
+  int fix_quality = 1;           // GGA: 0 invalid, 1 single, 2 DGPS, 4 RTK fixed, 5 RTK float
+  double age_s = 0;              // differential age (0 for a single-point fix)
+  double sigma = 0;              // m per horizontal axis
+  bool heading_valid = false;    // a dual-antenna heading
+  double heading = 0;            // rad, ENU
+  bool velocity_valid = false;   // the receiver's velocity over ground (Doppler: RMC/VTG speed and course)
   Vec2 velocity = Vec2::Zero();  // m/s, ENU, of the point localization.fusion.ekf.gnss_velocity_lever_x names
 };
 
@@ -61,7 +61,16 @@ struct MeanTwist {
 };
 MeanTwist mean_twist(const OdometryIncrement& o);
 
-using Measurement = std::variant<ImuSample, BodySpeed, GnssFix, OdometryIncrement>;
+// The pose the cone map gives: one perception frame's cones laid onto the mapped ones (localization/map_match),
+// moved to the filter's time. An absolute pose like a GNSS fix, but only as sure as the map it matched.
+struct MapPose {
+  Stamp t = 0;
+  Pose2 pose;               // map frame
+  double sigma = 0.1;       // m per horizontal axis
+  double yaw_sigma = 0.02;  // rad
+};
+
+using Measurement = std::variant<ImuSample, BodySpeed, GnssFix, OdometryIncrement, MapPose>;
 Stamp stamp_of(const Measurement& m);
 
 // How far control can trust the pose: good (GNSS recently accepted, small covariance), degraded (dead reckoning
@@ -101,7 +110,9 @@ struct LocalizationState {
   double gnss_nis = 0;                   // its normalised innovation squared (0 when not computed)
   Stamp last_gnss_accepted = -1;         // < 0: never
   GnssCounters gnss_counters;
-  std::uint64_t odometry_rejected = 0;  // LiDAR odometry increments the innovation gate turned away
+  std::uint64_t odometry_rejected = 0;   // LiDAR odometry increments the innovation gate turned away
+  std::uint64_t map_poses_rejected = 0;  // map poses the gate turned away
+  Stamp last_map_pose = -1;              // the newest map pose applied; < 0: never
 
   double position_sigma() const;  // m: √ of the larger eigenvalue of the position covariance
 };

@@ -156,9 +156,25 @@ TEST(TrackdriveMission, TrackdriveFollowsTheRecordedLapFromLapTwoWhileGnssIsGood
   run.set_config(slower);
   EXPECT_NEAR(half_way.v, std::sqrt(1.0 * config.lap2.mu_margin * 9.81 * kR), 0.02 * v_lap2);
 
-  // GNSS lost: back on the plan, and a fault for as long as it lasts.
+  // GNSS lost while the pose matches the cone map: the recorded lap is kept, with a fault that says so.
   d.faults.clear();
   d.world.gnss_ok = false;
+  d.world.map_matched = true;
+  d.paths.clear();
+  d.drive(kFirstCrossing + kLap + 0.5);
+  for (const auto& [t, p] : d.paths) ASSERT_EQ(p.source, PathSource::Recorded) << t;
+  ASSERT_EQ(d.faults.size() % 2, 0u);
+  for (std::size_t i = 0; i < d.faults.size(); i += 2) {
+    EXPECT_EQ(d.faults[i].what, "fix lost");
+    EXPECT_FALSE(d.faults[i].active);
+    EXPECT_EQ(d.faults[i + 1].what, "fix lost, the pose held to the cone map");
+    EXPECT_EQ(d.faults[i + 1].action, "recorded lap kept");
+    EXPECT_TRUE(d.faults[i + 1].active);
+  }
+
+  // GNSS lost and no match either: back on the plan, and a fault for as long as it lasts.
+  d.faults.clear();
+  d.world.map_matched = false;
   d.paths.clear();
   d.drive(kFirstCrossing + kLap + 1.0);
   for (const auto& [t, p] : d.paths) ASSERT_EQ(p.source, PathSource::Planner) << t;

@@ -30,10 +30,11 @@ namespace {
 
 const std::string kTracks = "../shared/tracks/";
 
-// Lap 2 against the issue's figures: CTE RMS ≤ 0.15 m, max ≤ 0.5 m, within 5 % of the friction-limited time.
+// Lap 2 against the issues' figures: CTE RMS ≤ 0.15 m, max ≤ 0.5 m; each loop within 8 % of its friction-limited
+// time (issue 31 asks the median within 8 % and the worst within 15 %; here every loop is held to the median's bar).
 constexpr double kLap2CteRms = 0.15;
 constexpr double kLap2CteMax = 0.5;
-constexpr double kLap2Margin = 0.05;
+constexpr double kLap2Margin = 0.08;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Which mission each file is for, by its name. Open layouts (no loop) are driven as trackdrive and count one run.
@@ -274,7 +275,7 @@ TEST_P(AllTracks, CompletesItsMission) {
               100.0 * (race2 / l2["time_s"].get<double>() - 1.0));
   // At least 1 % faster, unless the centre line's lap is already within a per cent or two of its friction limit:
   // then the line alone has no such margin left, and it need only reach that limit.
-  EXPECT_LE(race2, std::max(0.99 * l2["time_s"].get<double>(), 1.01 * reference));
+  EXPECT_LE(race2, std::max(0.99 * l2["time_s"].get<double>(), 1.02 * reference));
 }
 
 std::string case_name(const ::testing::TestParamInfo<TrackCase>& info) { return info.param.name; }

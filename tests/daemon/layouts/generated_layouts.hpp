@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -25,8 +26,13 @@
 namespace fsd::test::generated {
 
 struct Case {
+  Case() = default;
+  Case(std::string k, int s, std::string options = {}, std::string cfg = {})
+      : kind(std::move(k)), seed(s), generator_options(std::move(options)), config(std::move(cfg)) {}
   std::string kind;  // trackdrive | autocross | acceleration | skidpad
   int seed = 1;
+  std::string generator_options;  // more `fsd track generate` options (e.g. denser cones)
+  std::string config;             // the run's config file; empty: the truth sources (fast_config())
 };
 
 struct Outcome {
@@ -36,8 +42,9 @@ struct Outcome {
   int rc = -1, cones_hit = 0;
   std::string as_state, reason, command;
   std::vector<double> laps;
-  double reference = 0;  // trackdrive: friction-limited lap time of the true centre line
-  double length = 0;     // and that centre line's length
+  double reference = 0;   // trackdrive: friction-limited lap time of the true centre line
+  double length = 0;      // and that centre line's length
+  nlohmann::json report;  // the whole scorecard
 };
 
 inline std::string fast_config() {
@@ -63,17 +70,20 @@ inline Outcome drive(const Case& c) {
   const std::string stem = "gen_" + c.kind + "_" + std::to_string(c.seed);
   const std::string track = scratch_path(stem + ".csv"), report = scratch_path(stem + ".json");
   std::string log;
-  const std::string gen =
-      "track generate --kind " + c.kind + " --seed " + std::to_string(c.seed) + (c.seed % 2 == 0 ? " --irregular" : "");
+  const std::string gen = "track generate --kind " + c.kind + " --seed " + std::to_string(c.seed) +
+                          (c.seed % 2 == 0 ? " --irregular" : "") +
+                          (c.generator_options.empty() ? "" : " " + c.generator_options);
+  const std::string config = c.config.empty() ? fast_config() : c.config;
   if (run_fsd(gen + " --out " + track, &log) != 0) {
     o.reason = "generator failed: " + log;
     return o;
   }
   const bool td = c.kind == "trackdrive";
-  o.command = "fsd " + gen + " --out t.csv && fsd run --sim --headless --until-finished --config fast.json" +
-              " --mission " + c.kind + (td ? " --laps 2" : "") + " --track t.csv --report r.json";
+  o.command = "fsd " + gen + " --out t.csv && fsd run --sim --headless --until-finished --config " +
+              (c.config.empty() ? std::string("fast.json") : c.config) + " --mission " + c.kind +
+              (td ? " --laps 2" : "") + " --track t.csv --report r.json";
   std::remove(report.c_str());
-  o.rc = run_fsd("run --sim --headless --until-finished --config " + fast_config() + " --mission " + c.kind +
+  o.rc = run_fsd("run --sim --headless --until-finished --config " + config + " --mission " + c.kind +
                      (td ? " --laps 2" : "") + " --track " + track + " --report " + report,
                  &log);
   std::ifstream f(report);
@@ -83,6 +93,7 @@ inline Outcome drive(const Case& c) {
     return o;
   }
   o.ran = true;
+  o.report = r;
   o.finished = r.value("finished", false);
   o.stopped = r.value("stopped_after_finish", false);
   o.cones_hit = r.value("cones_hit", -1);
