@@ -9,7 +9,8 @@
 // 10 skid pads (the rules' figure). Prints one row per layout and the layouts that miss a figure;
 // exits 1 when any does. About 15 min on 2 cores. From the project root:
 //   build/bench/dense_cones_sweep
-// FSD_SWEEP_SEEDS=N: seeds 1..N of each loop kind (N / 3 skid pads, at least 1); FSD_SWEEP_JOBS=J: J runs at a time.
+// FSD_SWEEP_SEEDS=N: seeds 1..N of each loop kind (N / 3 skid pads, at least 1); FSD_SWEEP_JOBS=J: J runs at a time;
+// FSD_BINARY=path: run that fsd (a copy) instead of the build's, which a rebuild meanwhile would replace.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>

@@ -3,15 +3,24 @@
 // (stdout and stderr).
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include <sys/wait.h>
 
 namespace fsd::test {
 
-// Runs `FSD_BINARY args` through the shell (after `shell_prefix`, e.g. a ulimit); returns its exit status, and its output in *out when given.
+// The binary: the environment's FSD_BINARY when set (a long sweep on a copy, while the tree is rebuilt), else the
+// build's own (FSD_BINARY, compiled in).
+inline std::string fsd_binary() {
+  const char* env = std::getenv("FSD_BINARY");
+  return env && *env ? std::string(env) : std::string(FSD_BINARY);
+}
+
+// Runs the fsd binary with `args` through the shell (after `shell_prefix`, e.g. a ulimit); returns its exit status,
+// and its output in *out when given.
 inline int run_fsd_with(const std::string& shell_prefix, const std::string& args, std::string* out = nullptr) {
-  const std::string cmd = shell_prefix + " " + std::string(FSD_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = shell_prefix + " " + fsd_binary() + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return -1;
   std::array<char, 4096> buf{};

@@ -141,51 +141,53 @@ TEST(Recording, ReplayRepeatsTheRunBitForBitAndScoresAsTheLiveRun) {
   EXPECT_EQ(replays[0]["track"], "epfl_acceleration");
 }
 
+// A run recorded with `run_args` (plus --config and --record) and its replay: both scorecards, the replay's log.
+struct LiveAndReplay {
+  json live, replay;
+  std::string log;
+};
+LiveAndReplay record_and_replay(const std::string& name, const std::string& config_text, const std::string& run_args) {
+  LiveAndReplay r;
+  const auto file = test::scratch_path(name + ".mcap");
+  const auto live_report = test::scratch_path(name + "_live.json");
+  const auto report = test::scratch_path(name + "_replay.json");
+  const auto cfg = write_text(name + ".json", config_text);
+  const int live_rc = test::run_fsd("run --sim --headless --until-finished " + run_args + " --config " + cfg +
+                                        " --record " + file + " --report " + live_report,
+                                    &r.log);
+  EXPECT_EQ(live_rc, 0) << r.log;
+  if (live_rc != 0) return r;
+  r.live = read_json(live_report);
+  EXPECT_EQ(test::run_fsd("run --replay " + file + " --headless --until-finished --report " + report, &r.log), 0)
+      << r.log;
+  r.replay = read_json(report);
+  return r;
+}
+
 TEST(Recording, ATwoLapTrackdriveReplaysBitForBit) {
-  const auto file = test::scratch_path("td.mcap");
-  const auto live_report = test::scratch_path("td_live.json");
-  const auto cfg = write_text("fast_td.json", kFast);
-  std::string out;
-  ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --track ../shared/tracks/epfl_track_1.csv --laps 2 "
-                          "--config " +
-                              cfg + " --record " + file + " --report " + live_report,
-                          &out),
-            0)
-      << out;
-  const json live = read_json(live_report);
-  ASSERT_EQ(live["laps"].size(), 2u);
-  const auto report = test::scratch_path("td_replay.json");
-  ASSERT_EQ(test::run_fsd("run --replay " + file + " --headless --until-finished --report " + report, &out), 0) << out;
-  const json replay = read_json(report);
-  EXPECT_EQ(replay["replay"]["command_mismatches"], 0);
-  EXPECT_EQ(replay["replay"]["commands_compared"], live["recording"]["commands_written"]);
-  json replayed = without_wall_time(replay);
+  const auto r = record_and_replay("td", kFast, "--track ../shared/tracks/epfl_track_1.csv --laps 2");
+  ASSERT_FALSE(r.replay.is_null()) << r.log;
+  ASSERT_EQ(r.live["laps"].size(), 2u);
+  EXPECT_EQ(r.replay["replay"]["command_mismatches"], 0);
+  EXPECT_EQ(r.replay["replay"]["commands_compared"], r.live["recording"]["commands_written"]);
+  json replayed = without_wall_time(r.replay);
   replayed.erase("replay");
-  EXPECT_EQ(replayed, without_wall_time(live));
+  EXPECT_EQ(replayed, without_wall_time(r.live));
 }
 
 TEST(Recording, AReplayOnTheLidarScoresWhatTheSensorCouldSeeAsTheLiveRun) {
   // The LiDAR pipeline (camera off): the scorecard's recall over the cones the simulated LiDAR returned points
   // from comes from the recorded truth in the replay, figure for figure.
-  const auto file = test::scratch_path("lidar.mcap");
-  const auto live_report = test::scratch_path("lidar_live.json");
-  const auto cfg = write_text("lidar.json", R"({"sim": {"enable_camera": false},
-                                               "run": {"perception_source": "lidar", "localization_source": "truth"}})");
-  std::string out;
-  ASSERT_EQ(test::run_fsd("run --sim --headless --until-finished --mission acceleration --track "
-                          "../shared/tracks/epfl_acceleration.csv --config " +
-                              cfg + " --record " + file + " --report " + live_report,
-                          &out),
-            0)
-      << out;
-  const json live = read_json(live_report);
-  ASSERT_TRUE(live["perception"].contains("recall_visible_15m")) << live["perception"].dump();
-  EXPECT_GE(live["perception"]["recall_visible_15m"].get<double>(), 0.97) << live["perception"].dump();
-  const auto report = test::scratch_path("lidar_replay.json");
-  ASSERT_EQ(test::run_fsd("run --replay " + file + " --headless --until-finished --report " + report, &out), 0) << out;
-  const json replay = read_json(report);
-  EXPECT_EQ(replay["replay"]["command_mismatches"], 0);
-  EXPECT_EQ(replay["perception"], live["perception"]);
+  const auto r = record_and_replay(
+      "lidar",
+      R"({"sim": {"enable_camera": false}, "run": {"perception_source": "lidar", "localization_source": "truth"}})",
+      "--mission acceleration --track ../shared/tracks/epfl_acceleration.csv");
+  ASSERT_FALSE(r.replay.is_null()) << r.log;
+  const json& live = r.live["perception"];
+  ASSERT_TRUE(live.contains("recall_visible_15m")) << live.dump();
+  EXPECT_GE(live["recall_visible_15m"].get<double>(), 0.97) << live.dump();
+  EXPECT_EQ(r.replay["replay"]["command_mismatches"], 0);
+  EXPECT_EQ(r.replay["perception"], live);
 }
 
 TEST(Recording, AConfigOnTopOfTheRecordedOneChangesTheReplay) {
