@@ -71,6 +71,7 @@ std::optional<MapMatch> match_to_map(const std::vector<Cone>& detections, const 
   if (t.norm() > cfg.max_step || !(out.rms_after <= out.rms_before)) return std::nullopt;
   // A share of it, as a map ← estimated correction: rotate about the car, then shift.
   out.correction = share_of_correction(car, yaw, t, cfg.gain);
+  out.alignment = share_of_correction(car, yaw, t, 1.0);
   return out;
 }
 

@@ -30,6 +30,7 @@ const ConfigSection<MapMatchConfig>& map_match_section();  // "localization.map_
 
 struct MapMatch {
   Pose2 correction;  // map ← estimated: the share `gain` of the alignment
+  Pose2 alignment;   // map ← estimated: the whole alignment (a pose measurement for the fused source)
   int pairs = 0;
   double rms_before = 0, rms_after = 0;  // m, of the pairs, before and after the full alignment
 };

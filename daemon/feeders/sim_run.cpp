@@ -167,7 +167,7 @@ struct SimRun::Impl {
     if (car_settings.run.lidar) {
       std::vector<TruthLidarReturns> returns;
       for (const auto& r : car->take_lidar_cone_returns())
-        returns.push_back({static_cast<std::uint32_t>(r.cone + 1), static_cast<std::uint32_t>(r.returns), r.t});
+        returns.push_back({sim::VirtualCar::cone_id(r.cone), static_cast<std::uint32_t>(r.returns), r.t});
       scoring->add_lidar_returns(returns);
       if (!returns.empty()) stack->feed({RawChannel::TruthLidarReturns, t, encode_truth_lidar_returns(returns)});
     }

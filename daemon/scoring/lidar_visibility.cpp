@@ -7,11 +7,12 @@ namespace fsd {
 
 void LidarVisibility::add(const std::vector<TruthLidarReturns>& returns) {
   known_ = true;
-  for (const auto& r : returns) kept_.push_back(r);
-  if (kept_.empty()) return;
-  Stamp newest = kept_.back().t;
-  for (const auto& r : returns) newest = std::max(newest, r.t);
-  while (!kept_.empty() && (kept_.front().t < newest - cfg_.keep || kept_.size() > cfg_.max_entries)) kept_.pop_front();
+  for (const auto& r : returns) {
+    kept_.push_back(r);
+    newest_ = std::max(newest_, r.t);
+  }
+  while (!kept_.empty() && (kept_.front().t < newest_ - cfg_.keep || kept_.size() > cfg_.max_entries))
+    kept_.pop_front();
 }
 
 std::vector<std::uint32_t> LidarVisibility::visible_at(Stamp t) const {

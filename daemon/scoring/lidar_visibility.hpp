@@ -35,6 +35,7 @@ class LidarVisibility {
  private:
   LidarVisibilityConfig cfg_;
   std::deque<TruthLidarReturns> kept_;
+  Stamp newest_ = -1e300;  // the newest return's time
   bool known_ = false;
 };
 

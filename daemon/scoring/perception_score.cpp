@@ -12,7 +12,7 @@ namespace fsd {
 void PerceptionScore::add_frame(const ConeDetections& detections, const std::vector<Cone>& truth, const Pose2& pose,
                                 const std::vector<std::uint32_t>* visible) {
   ++frames_;
-  visibility_frames_ += visible != nullptr;
+  visibility_known_ = visibility_known_ || visible != nullptr;
   auto is_visible = [visible](const Cone& c) {
     return visible && std::binary_search(visible->begin(), visible->end(), c.id);
   };
@@ -71,7 +71,7 @@ nlohmann::json PerceptionScore::to_json() const {
                       {"named_colour_accuracy_12m", share(named_right_12_, named_12_)},
                       {"colour_accuracy_6m", share(right_colour_6_, pairs_6_)}};
   // Over the frames that knew what the sensor could see (a simulated run with its LiDAR, or its replay).
-  if (visibility_frames_ > 0) j["recall_visible_15m"] = share(found_visible_15_, visible_15_);
+  if (visibility_known_) j["recall_visible_15m"] = share(found_visible_15_, visible_15_);
   return j;
 }
 

@@ -31,7 +31,7 @@ class PerceptionScore {
   int frames_ = 0;
   std::uint64_t detections_ = 0, true_positives_ = 0;
   std::uint64_t truth_15_ = 0, found_15_ = 0, truth_20_ = 0, found_20_ = 0;
-  int visibility_frames_ = 0;  // frames scored with the visible cones known
+  bool visibility_known_ = false;  // some frame was scored with the visible cones known
   std::uint64_t visible_15_ = 0, found_visible_15_ = 0;
   std::uint64_t pairs_12_ = 0, right_colour_12_ = 0;
   std::uint64_t verified_12_ = 0, verified_right_12_ = 0;  // pairs the camera verified

@@ -374,13 +374,11 @@ struct Stack::Impl {
       // Each frame is matched to the cone map (a match: the pose agrees with the map, which keeps lap 2 on the
       // recorded lap through a GNSS loss); while no GNSS fix is recent, the match's whole alignment goes into the
       // filter as a measurement (the lap-1 map holds the pose where the odometry and the wheels alone drift).
-      MapMatchConfig whole = map_match;
-      whole.gain = 1.0;
-      if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), whole)) {
+      if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), map_match)) {
         autopilot->on_map_match(now);
         if (!fused->gnss_recent()) {
           if (const auto moved =
-                  fused->add_map_correction(m->correction, map_match.fused_sigma, map_match.fused_yaw_sigma)) {
+                  fused->add_map_correction(m->alignment, map_match.fused_sigma, map_match.fused_yaw_sigma)) {
             pose = *moved * pose;
             ++map_poses_applied;
           }

@@ -170,7 +170,7 @@ std::vector<Cone> VirtualCar::standing_cones() const {
     Cone c;
     c.position = wc.base;
     c.colour = wc.colour;
-    c.id = static_cast<std::uint32_t>(i + 1);
+    c.id = cone_id(static_cast<int>(i));
     out.push_back(c);
   }
   return out;

@@ -70,6 +70,8 @@ class VirtualCar {
   int cones_hit() const { return world_.cones_hit(); }
   // Upright cones in the map frame with their true colours (the truth perception source and the scorecard).
   std::vector<Cone> standing_cones() const;
+  // The id a world cone (index into World::cones()) carries in standing_cones() and the truth frames.
+  static std::uint32_t cone_id(int index) { return static_cast<std::uint32_t>(index + 1); }
   std::uint64_t lidar_packets() const { return lidar_ ? lidar_->packets_sent() : 0; }
   // The LiDAR's returns from each cone since the last call, as they left the sensor (none in a LiDAR outage, none
   // without the LiDAR model): which cones the sensor could see.

@@ -66,6 +66,11 @@ TEST(MapMatch, AShareOfItPerFrameConvergesOnTheTruePose) {
   const double start = (estimate.position() - truth.position()).norm();
   const auto first = match_to_map(seen_from(truth, map), estimate, map, cfg);
   ASSERT_TRUE(first);
+  // Whatever the share, the whole alignment comes with it (the fused source's pose measurement).
+  const Pose2 aligned = first->alignment * estimate;
+  EXPECT_NEAR(aligned.x, truth.x, 1e-9);
+  EXPECT_NEAR(aligned.y, truth.y, 1e-9);
+  EXPECT_NEAR(aligned.yaw, truth.yaw, 1e-9);
   estimate = first->correction * estimate;
   // The car's position moves 30 % of the way (the rotation is about it); the heading error shrinks by 30 %.
   EXPECT_NEAR((estimate.position() - truth.position()).norm(), 0.7 * start, 0.02 * start);
