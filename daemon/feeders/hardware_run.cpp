@@ -90,6 +90,7 @@ Mission mission_of(const RunSettings& run) {
 
 struct HardwareRun::Impl {
   RunSettings run;
+  DaemonSettings daemon;
   Mission mission;
   bool until_finished = false;
   RealClock clock;
@@ -118,6 +119,7 @@ struct HardwareRun::Impl {
   std::atomic<bool> control_done{false};  // the control thread ended the run (--until-finished)
   std::atomic<std::uint64_t> cycles{0}, overruns{0};
   std::function<void()> loop_hook;   // after each control cycle (the service's watchdog)
+  RunMetrics* metrics = nullptr;     // the dashboard's /metrics (set before the control thread starts)
   std::unique_ptr<dds::RunDds> dds;  // dds.enabled or run.perception_source = dds
 
   // Results. Written by the control thread, read after the joins (and by snapshot() under result_m).
@@ -132,6 +134,7 @@ struct HardwareRun::Impl {
 
   Impl(const Config& cfg, const RunOptions& opt)
       : run(run_section().read(cfg)),
+        daemon(daemon_section().read(cfg)),
         mission(mission_of(run)),
         until_finished(opt.until_finished),
         vlp_cfg(read_vlp16_config(cfg)),
@@ -148,6 +151,8 @@ struct HardwareRun::Impl {
     so.lap_build_worker = true;     // the lap-2 build must not hold up the 100 Hz control thread
     so.plan_worker = true;          // nor lap 1's real-time plans
     so.loop_closure_worker = true;  // nor the loop closure's solve
+    so.scan_worker = true;          // nor the scans' perception and odometry
+    so.worker_priority = worker_priority(daemon);
     so.start = clock.now();
     // The camera stage sees through the calibrated camera; its frames are stamped at capture already.
     if (!cam_cfg.calibration.empty())
@@ -251,10 +256,12 @@ struct HardwareRun::Impl {
   // The control thread: the frames that arrived since the last cycle into the Stack, in order, then one cycle.
   // Never blocks on a driver.
   void control_loop() {
+    make_control_thread_realtime(daemon);
     Stamp next = clock.now();
     while (!halt.load()) {
       next += kControlPeriod;
       clock.sleep_until(next);
+      if (metrics) metrics->on_cycle_start();
       const Stamp now = clock.now();
       if (now - next > kControlPeriod) {  // a whole period late: skip the missed cycles rather than burst
         overruns.fetch_add(1);
@@ -377,6 +384,7 @@ nlohmann::json HardwareRun::report() const { return impl_->report(); }
 int HardwareRun::lidar_port() const { return impl_->lidar_rx->port(); }
 void HardwareRun::set_telemetry(Telemetry* telemetry) { impl_->stack->set_telemetry(telemetry); }
 void HardwareRun::set_metrics(RunMetrics* metrics) {
+  impl_->metrics = metrics;
   impl_->stack->set_metrics(metrics);
   if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
 }

@@ -76,6 +76,7 @@ struct ReplayRun::Impl {
   Config cfg;
   RunSettings run;
   std::unique_ptr<Stack> stack;
+  RunMetrics* metrics = nullptr;  // the dashboard's /metrics
   OutputTap outputs;
   Track track;
   std::unique_ptr<SimScoring> scoring;
@@ -111,6 +112,7 @@ struct ReplayRun::Impl {
     so.lap_build_worker = !headless && !recorded.lockstep;
     so.plan_worker = so.lap_build_worker;
     so.loop_closure_worker = so.lap_build_worker;
+    so.scan_worker = so.lap_build_worker;
     if (recorded.camera_latency) {
       nlohmann::json j;
       try {
@@ -190,6 +192,7 @@ struct ReplayRun::Impl {
       stack->vcu().check_timeout(t);
     }
     outputs.last.reset();
+    if (metrics) metrics->on_cycle_start();
     stack->step(t);
     if (scoring && truth) scoring->after_step(truth->as_state, static_cast<int>(truth->cones_hit));
     if (!any_cycle) t_first = t;
@@ -319,7 +322,10 @@ void ReplayRun::set_telemetry(Telemetry* telemetry) {
     s.truth_cones = impl_->dashboard_cones;
   });
 }
-void ReplayRun::set_metrics(RunMetrics* metrics) { impl_->stack->set_metrics(metrics); }
+void ReplayRun::set_metrics(RunMetrics* metrics) {
+  impl_->metrics = metrics;
+  impl_->stack->set_metrics(metrics);
+}
 void ReplayRun::set_params(ParamRegistry* params) { impl_->stack->set_params(params); }
 
 const Stack& ReplayRun::stack() const { return *impl_->stack; }

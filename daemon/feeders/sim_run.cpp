@@ -57,6 +57,7 @@ Mission mission_of(const RunSettings& run) {
 
 struct SimRun::Impl {
   RunSettings run;
+  DaemonSettings daemon;
   Mission mission;
   bool headless, until_finished;
   bool real_time;  // paced: not headless, or split mode (a perception process keeps real time)
@@ -75,9 +76,11 @@ struct SimRun::Impl {
   int dashboard_cones_hit = -1;
   std::shared_ptr<spdlog::logger> log = logger("run");
   std::function<void()> loop_hook;
+  RunMetrics* metrics = nullptr;  // the dashboard's /metrics
 
   Impl(const Config& cfg, const RunOptions& opt)
       : run(run_section().read(cfg)),
+        daemon(daemon_section().read(cfg)),
         mission(mission_of(run)),
         headless(opt.headless),
         until_finished(opt.until_finished),
@@ -99,6 +102,8 @@ struct SimRun::Impl {
     so.lap_build_worker = real_time || opt.workers;
     so.plan_worker = so.lap_build_worker;
     so.loop_closure_worker = so.lap_build_worker;
+    so.scan_worker = so.lap_build_worker;
+    if (real_time) so.worker_priority = worker_priority(daemon);
     so.paced_workers = headless && opt.workers;
     // The camera stage sees through the virtual camera, calibrated perfectly; its frames arrive after the latency.
     so.camera = StackOptions::Camera{sim::calibration_of(car_settings.camera), car_settings.camera.latency};
@@ -187,6 +192,7 @@ struct SimRun::Impl {
     const auto wall0 = std::chrono::steady_clock::now();
     SimulatedClock pace(1.0);
     if (dds) dds->start(*stack, dds::run_epoch(0.0));
+    if (real_time) make_control_thread_realtime(daemon);  // the virtual car's loop is the control thread
     Stamp t = 0;
     double stopped_since = -1;
     int cycle = 0;
@@ -195,6 +201,7 @@ struct SimRun::Impl {
     while (!stop.load(std::memory_order_relaxed)) {
       t = (++cycle) * kControlPeriod;
       if (real_time && !pace.sleep_until(t)) break;
+      if (metrics) metrics->on_cycle_start();
       car->advance_to(t);
       faults->on_cycle(t);
       scoring->on_truth(car->truth());
@@ -249,6 +256,7 @@ void SimRun::set_telemetry(Telemetry* telemetry) {
   impl_->stack->set_telemetry(telemetry, [this](TelemetrySnapshot& s) { impl_->add_truth(s); });
 }
 void SimRun::set_metrics(RunMetrics* metrics) {
+  impl_->metrics = metrics;
   impl_->stack->set_metrics(metrics, [this](CycleFigures& f) { f.cones_hit = impl_->car->cones_hit(); });
   if (metrics && impl_->recorder) impl_->recorder->set_metrics(metrics->registry());
 }

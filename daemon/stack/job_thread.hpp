@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "common/job_service.hpp"
+#include "common/realtime.hpp"
 
 namespace fsd {
 
@@ -67,6 +68,9 @@ class JobThread {
     return std::exchange(result_, std::nullopt);
   }
 
+  // The thread under SCHED_FIFO at `priority` (common/realtime.hpp); what failed, or nothing.
+  std::optional<std::string> set_realtime(int priority) { return fsd::set_realtime(priority, thread_.native_handle()); }
+
  private:
   void run() {
     std::unique_lock lock(m_);
@@ -99,6 +103,49 @@ class JobThread {
   std::thread thread_;  // last: started once the members it uses are
 };
 
+// A JobThread for the jobs that come every few cycles (lap 1's plans, the scans' processing). Paced by a run clock
+// (pace_by: a simulation faster than real time), a job's result is taken a fixed run time after its hand-over,
+// waiting for it if need be: the run is then the same every time, as a job's milliseconds vary with the machine's
+// load. Unpaced (real time), it is taken as soon as it is ready.
+template <class Result>
+class FixedLatencyJobThread {
+ public:
+  using Job = typename JobThread<Result>::Job;
+  explicit FixedLatencyJobThread(std::function<Result(const std::exception&)> failed) : worker_(std::move(failed)) {}
+
+  // False while a job is out.
+  bool submit(Job job) {
+    const bool taken = worker_.submit(std::move(job));
+    if (taken && run_clock_) {
+      submitted_run_ = run_clock_();
+      out_ = true;
+    }
+    return taken;
+  }
+  std::optional<Result> poll() {
+    if (!run_clock_) return worker_.poll();
+    // (A nanosecond's tolerance: run clocks count cycles of a period that binary fractions do not hold exactly.)
+    if (!out_ || run_clock_() - submitted_run_ < latency_s_ - 1e-9) return std::nullopt;
+    using Clock = typename JobThread<Result>::Clock;
+    while (!worker_.ready_at(Clock::now() + std::chrono::seconds(1))) {
+    }  // waits for the job (bounded: the jobs take milliseconds)
+    out_ = false;
+    return worker_.poll();
+  }
+  std::optional<std::string> set_realtime(int priority) { return worker_.set_realtime(priority); }
+  // Each result taken `latency_s` of run time (read on the calling thread) after its job was handed over.
+  void pace_by(std::function<double()> run_clock, double latency_s) {
+    run_clock_ = std::move(run_clock);
+    latency_s_ = latency_s;
+  }
+
+ private:
+  std::function<double()> run_clock_;
+  double latency_s_ = 0.0, submitted_run_ = 0.0;
+  bool out_ = false;
+  JobThread<Result> worker_;  // last: its thread starts with it
+};
+
 // A JobService whose jobs run on a JobThread: LapBuildThread, LoopSolveThread.
 //
 // Paced by a run clock (pace_by: a simulation that runs faster than real time), a job's result is taken only once
@@ -112,6 +159,7 @@ class JobServiceThread : public JobService<Result> {
 
   explicit JobServiceThread(std::function<Result(const std::exception&)> failed) : worker_(std::move(failed)) {}
 
+  std::optional<std::string> set_realtime(int priority) { return worker_.set_realtime(priority); }
   // `run_clock`: the run's time in seconds (the Stack's step time), read on the calling thread.
   void pace_by(std::function<double()> run_clock) { run_clock_ = std::move(run_clock); }
 

@@ -38,19 +38,29 @@ std::optional<double> mean_over(const std::deque<LidarLocalizationMotion>& q, St
 }
 }  // namespace
 
-LidarLocalization::LidarLocalization(const Config& cfg, const Pose3& body_from_sensor)
-    : odometry_(lidar_odometry::read_lidar_odometry_config(cfg), body_from_sensor),
-      vehicle_motion_(lidar_odometry::odometry_section().read(cfg).vehicle_motion) {
+std::unique_ptr<lidar_odometry::LidarOdometry> make_odometry(const Config& cfg, const Pose3& body_from_sensor) {
+  auto odometry =
+      std::make_unique<lidar_odometry::LidarOdometry>(lidar_odometry::read_lidar_odometry_config(cfg), body_from_sensor);
   // The car stands at the start: a standing first prediction is right.
-  odometry_.start_at(start_pose_section().read(cfg).pose().to_pose3());
+  odometry->start_at(start_pose_section().read(cfg).pose().to_pose3());
+  return odometry;
 }
 
-const lidar_odometry::OdometryOutput& LidarLocalization::add(const Scan& scan) {
+LidarLocalization::LidarLocalization(const Config& cfg)
+    : vehicle_motion_(lidar_odometry::odometry_section().read(cfg).vehicle_motion) {}
+
+bool LidarLocalization::takes(const Scan& scan) const {
+  return !scan.points.empty() && (!have_ || firing_span(scan).last > last_.stamp);
+}
+
+std::optional<lidar_odometry::Vec6> LidarLocalization::motion_over(const Scan& scan) const {
   const FiringSpan span = firing_span(scan);
-  if (scan.points.empty() || (have_ && span.last <= last_.stamp)) return last_;
-  last_ = odometry_.process(scan, measured(span.first, span.last));
+  return measured(span.first, span.last);
+}
+
+void LidarLocalization::accept(const lidar_odometry::OdometryOutput& out) {
+  last_ = out;
   have_ = true;
-  return last_;
 }
 
 void LidarLocalization::add_motion(Stamp t, std::optional<double> speed, std::optional<double> yaw_rate) {

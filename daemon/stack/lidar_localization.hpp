@@ -7,8 +7,14 @@
 // each scan, as LOAM's IMU-aided mode does, and carry the pose from the scan to each control cycle; without them,
 // the newest increment's motion carries it.
 //
+// This is the control thread's side: the motion measurements, the newest scan's output, the loop closures'
+// correction. The odometry's scan match itself runs on the Stack's processing thread (ScanProcessor, made by
+// make_odometry), which takes each scan with the twist measured over it (motion_over) and hands the output back
+// (accept).
+//
 // The fused source uses the same odometry for its increments (localization.fusion.lidar_odometry).
 #include <deque>
+#include <memory>
 #include <optional>
 
 #include "common/config.hpp"
@@ -29,12 +35,19 @@ struct LidarLocalizationMotion {
   double value;
 };
 
+// The odometry's scan matcher, started at localization.start; `body_from_sensor`: the LiDAR's mount (car.lidar.*).
+std::unique_ptr<lidar_odometry::LidarOdometry> make_odometry(const Config& cfg, const Pose3& body_from_sensor);
+
 class LidarLocalization {
  public:
-  // `body_from_sensor`: the LiDAR's mount (car.lidar.*).
-  LidarLocalization(const Config& cfg, const Pose3& body_from_sensor);
-  // One completed scan, in time order (a scan not newer than the last is ignored). The odometry's output.
-  const lidar_odometry::OdometryOutput& add(const Scan& scan);
+  explicit LidarLocalization(const Config& cfg);
+  // Whether the odometry takes this scan: one with points, newer than the last it took (in time order).
+  bool takes(const Scan& scan) const;
+  // The car's measured twist over a scan's firings, for the odometry's deskew and prediction; empty without
+  // localization.lidar_odometry.vehicle_motion or without recent measurements.
+  std::optional<lidar_odometry::Vec6> motion_over(const Scan& scan) const;
+  // The odometry's output for the scan it took last.
+  void accept(const lidar_odometry::OdometryOutput& out);
   // The car's measured motion: the rear axle's forward speed and the yaw rate (either may be absent), by stamp.
   void add_motion(Stamp t, std::optional<double> speed, std::optional<double> yaw_rate);
   // The state at `now`, carried forward from the newest scan's pose with the odometry's twist; empty before the
@@ -51,7 +64,6 @@ class LidarLocalization {
   // The measured twist over the span of a scan, when the car's sensors gave it recently enough.
   std::optional<lidar_odometry::Vec6> measured(Stamp from, Stamp to) const;
 
-  lidar_odometry::LidarOdometry odometry_;
   bool vehicle_motion_ = true;
   std::deque<LidarLocalizationMotion> speeds_, yaw_rates_;  // the last second of each, bounded
   lidar_odometry::OdometryOutput last_;

@@ -1,6 +1,10 @@
 #include "daemon/stack/settings.hpp"
 
+#include <algorithm>
+
 #include "common/car.hpp"
+#include "common/logging.hpp"
+#include "common/realtime.hpp"
 
 #include "control/control_config.hpp"
 #include "daemon/dds/dds_settings.hpp"
@@ -26,8 +30,27 @@ namespace fsd {
 const ConfigSection<DaemonSettings>& daemon_section() {
   static const auto s = ConfigSection<DaemonSettings>("daemon").string(
       "log_level", &DaemonSettings::log_level, {"trace", "debug", "info", "warn", "error", "critical", "off"},
-      "Log level of every component (stderr).");
+      "Log level of every component (stderr).")
+      .integer("realtime_priority", &DaemonSettings::realtime_priority, 0, 99, "",
+               "SCHED_FIFO priority of the control thread (on the virtual car in real time: its loop), so that its "
+               "10 ms period holds whatever else the computer runs; the Stack's workers (the scans' processing, "
+               "the plans, the lap-2 build, the loop closure) run 10 below it. Needs CAP_SYS_NICE or an "
+               "RLIMIT_RTPRIO this high (the service unit's LimitRTPRIO); without, normal scheduling and a warning. "
+               "0: normal scheduling.");
   return s;
+}
+
+int worker_priority(const DaemonSettings& d) {
+  return d.realtime_priority > 0 ? std::max(1, d.realtime_priority - 10) : 0;
+}
+
+void make_control_thread_realtime(const DaemonSettings& d) {
+  if (d.realtime_priority <= 0) return;
+  if (const auto failed = set_realtime(d.realtime_priority))
+    logger("run")->warn("the control thread stays at normal scheduling ({}): its period may stretch under load",
+                        *failed);
+  else
+    logger("run")->info("control thread: SCHED_FIFO {}, the workers {}", d.realtime_priority, worker_priority(d));
 }
 
 const ConfigSection<RunSettings>& run_section() {
@@ -60,7 +83,12 @@ const ConfigSection<RunSettings>& run_section() {
           .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
                   "Headless runs give up after this much simulated time.")
           .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",
-                  "On the car: period of the log line with every driver's rates and error counters.");
+                  "On the car: period of the log line with every driver's rates and error counters.")
+          .number("scan_latency", &RunSettings::scan_latency, 0.0, 0.1, "s",
+                  "fsd run --sim --headless --workers: a scan's processing (perception, the LiDAR odometry) on the "
+                  "processing thread is taken this much simulated time after the scan was handed over, the run "
+                  "waiting for it if need be, as on the car where it takes 10-20 ms (the run stays repeatable). "
+                  "In real time it is taken as soon as it is done.");
   return s;
 }
 

@@ -9,6 +9,7 @@ namespace fsd {
 
 struct DaemonSettings {
   std::string log_level = "info";
+  int realtime_priority = 50;  // SCHED_FIFO of the control thread (0: normal scheduling)
 };
 
 struct RunSettings {
@@ -24,9 +25,14 @@ struct RunSettings {
   std::string localization_source = "fused";
   double max_sim_time = 600.0;
   double stats_period = 5.0;  // s between the per-driver rate lines of `fsd run` on the car
+  double scan_latency = 0.02;  // s: a paced run takes a scan's processing so long after its hand-over
 };
 
 const ConfigSection<DaemonSettings>& daemon_section();
+// The SCHED_FIFO priority of the Stack's workers: 10 below the control thread's, at least 1 (0: normal scheduling).
+int worker_priority(const DaemonSettings& d);
+// The calling thread (the control thread) under SCHED_FIFO at daemon.realtime_priority, said in the log either way.
+void make_control_thread_realtime(const DaemonSettings& d);
 const ConfigSection<RunSettings>& run_section();
 
 // The schema of the whole configuration file: every library's sections.

@@ -9,8 +9,6 @@
 #include <span>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "common/bounded_queue.hpp"
 #include "common/logging.hpp"
 #include "common/params.hpp"
@@ -26,6 +24,7 @@
 #include "daemon/stack/lidar_localization.hpp"
 #include "daemon/stack/loop_solve_thread.hpp"
 #include "daemon/stack/plan_thread.hpp"
+#include "daemon/stack/scan_processor.hpp"
 #include "daemon/stack/settings.hpp"
 #include "daemon/stack/step_log.hpp"
 #include "daemon/telemetry/dashboard_view.hpp"
@@ -35,7 +34,6 @@
 #include "localization/loop_closure/loop_closure_config.hpp"
 #include "localization/map_match.hpp"
 #include "localization/pose_history.hpp"
-#include "perception/lidar_camera_detector.hpp"
 #include "perception/truth_perception.hpp"
 
 namespace fsd {
@@ -48,6 +46,7 @@ constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cyc
 constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
 constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
 constexpr std::size_t kRemoteFramesKept = 8;  // dds: perception frames between two cycles (10 Hz: one)
+constexpr std::uint64_t kScanFailuresLogged = 10;  // scans whose processing failed, logged one by one
 
 double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -95,12 +94,24 @@ struct Stack::Impl {
 
   // Perception and mapping.
   TruthPerception truth_perception;
-  std::unique_ptr<LidarCameraDetector> detector;  // the lidar and lidar_camera sources
-  PoseHistory poses{kPosesKept};                  // the localization's, for deskew, accumulation and the camera
-  std::unique_ptr<FusedLocalization> fused;       // the fused source
-  std::unique_ptr<LidarLocalization> odometry;    // the lidar_odometry source, and the fused one's increments
-  bool odometry_scan = false;                     // a scan the odometry has not taken yet
-  Stamp odometry_vcu_stamp = -1e300;              // the newest VCU status the odometry has taken
+  bool detects = false;                          // the lidar and lidar_camera sources: the stages on each scan
+  bool camera_stage = false;                     // lidar_camera: and the camera stage
+  PoseHistory poses{kPosesKept};                 // the localization's, for deskew, accumulation and the camera
+  std::unique_ptr<FusedLocalization> fused;      // the fused source
+  std::unique_ptr<LidarLocalization> odometry;   // the lidar_odometry source, and the fused one's increments
+  // The scans' stages (perception, the odometry's scan match): touched only through the jobs handed to them, one
+  // scan at a time, on the processing thread (StackOptions::scan_worker; declared after the processor, so it goes
+  // first) or inside the step.
+  std::unique_ptr<ScanProcessor> processor;
+  std::unique_ptr<FixedLatencyJobThread<ScanResult>> scan_worker;
+  std::optional<ScanResult> scan_done;  // without the worker: the scan processed in this step
+  bool scan_waiting = false;            // a scan not handed over yet (the newest; one it replaced is skipped)
+  bool scan_out = false;                // a scan handed over, its result not taken yet
+  double scan_handed_wall = 0;          // the wall time of the cycle that handed it over (end to end)
+  std::uint64_t scans_skipped = 0, scan_failures = 0;
+  LidarCameraCounters detector_counters;  // as of the newest processed scan
+  double perceived_from = 0;              // this cycle: the wall time its perception frame's latency counts from
+  Stamp odometry_vcu_stamp = -1e300;      // the newest VCU status the odometry has taken
   std::optional<Stamp> odometry_scan_end;         // the last firing of the scan the odometry took last
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
@@ -175,7 +186,7 @@ struct Stack::Impl {
     }
     if (localization_source == "fused") fused = std::make_unique<FusedLocalization>(cfg);
     if (localization_source == "lidar_odometry" || (fused && fused->takes_lidar_odometry())) {
-      odometry = std::make_unique<LidarLocalization>(cfg, vlp_cfg.body_from_sensor());
+      odometry = std::make_unique<LidarLocalization>(cfg);
       const StartPose start = start_pose_section().read(cfg);
       log->info("localization: LiDAR odometry from x {:.2f} y {:.2f} yaw {:.3f}{}", start.x, start.y, start.yaw,
                 fused ? ", its increments into the fusion filter" : "");
@@ -203,7 +214,22 @@ struct Stack::Impl {
           "run.perception_source = lidar_camera without the camera's calibration (drivers.camera.calibration): "
           "LiDAR-only detections, colour from reflectivity");
     }
+    std::unique_ptr<LidarCameraDetector> detector;
     if (perception_source == "lidar" || perception_source == "lidar_camera") detector = make_detector(cfg);
+    detects = detector != nullptr;
+    camera_stage = detector && detector->has_camera();
+    if (detector || odometry) {
+      processor = std::make_unique<ScanProcessor>(
+          std::move(detector), odometry ? make_odometry(cfg, vlp_cfg.body_from_sensor()) : nullptr, wall);
+      if (opt.scan_worker) {
+        scan_worker = std::make_unique<FixedLatencyJobThread<ScanResult>>([](const std::exception& e) {
+          ScanResult r;
+          r.failure = e.what();
+          return r;
+        });
+        if (opt.paced_workers) scan_worker->pace_by([this] { return step_now; }, run.scan_latency);
+      }
+    }
     if (perception_source == "dds") {
       remote_max_age = dds::dds_section().read(cfg).max_detection_age;
       log->info("perception: frames of a perception process over DDS (late after {:.2f} s)", remote_max_age);
@@ -213,7 +239,8 @@ struct Stack::Impl {
       last_scan_end = firing_span(scan).last;
       last_scan = std::make_shared<const Scan>(std::move(scan));
       new_scan = true;
-      odometry_scan = true;
+      if (scan_waiting && processor) ++scans_skipped;
+      scan_waiting = true;
     });
     gnss = std::make_unique<GnssDriver>(read_gnss_config(cfg), [this](const GnssSample& s) {
       if (gnss_pending.size() < kMaxGnssPending) gnss_pending.push_back(s);
@@ -238,6 +265,17 @@ struct Stack::Impl {
       plan_worker = std::make_unique<PlanThread>();
       if (opt.paced_workers) plan_worker->pace_by([this] { return step_now; }, plan_budget);
       autopilot->set_plan_service(plan_worker.get());
+    }
+    if (opt.worker_priority > 0) {
+      std::optional<std::string> failed;
+      const auto realtime = [&](auto& worker) {
+        if (worker && !failed) failed = worker->set_realtime(opt.worker_priority);
+      };
+      realtime(scan_worker);
+      realtime(plan_worker);
+      realtime(lap_worker);
+      realtime(loop_worker);
+      if (failed) log->warn("the workers stay at normal scheduling: {}", *failed);
     }
   }
 
@@ -287,7 +325,7 @@ struct Stack::Impl {
         last_jpeg = std::make_shared<const std::vector<std::uint8_t>>(f.bytes.begin(), f.bytes.end());
         ++camera_frames;
         last_camera_frame = f.t;
-        if (detector && detector->has_camera()) {
+        if (camera_stage) {
           if (camera_recent.size() == kCameraFramesKept) camera_recent.pop_front();
           camera_recent.push_back({f.t - opt.camera->latency, last_jpeg});
         }
@@ -345,8 +383,9 @@ struct Stack::Impl {
   }
 
   // The perception source's frame, when one is due: detections (vehicle frame) into the map, the map to control.
+  // (The lidar and lidar_camera sources' frames come with their scans' processing: take_scan.)
   bool perceive(Stamp now) {
-    if (detector) return perceive_sensors(now);
+    if (detects) return false;
     if (perception_source == "dds") return perceive_remote(now);
     const bool due = new_scan || truth_scan;
     new_scan = truth_scan = false;
@@ -356,13 +395,16 @@ struct Stack::Impl {
     const std::optional<Pose2> placed = poses.at(now);
     if (!placed) return false;
     const double w0 = wall();
-    map_detections(now, truth_perception.detect(now, truth_cones, truth->state.pose), *placed, {}, w0);
+    ConeDetections det = truth_perception.detect(now, truth_cones, truth->state.pose);
+    map_detections(now, std::move(det), *placed, {}, wall() - w0);
     return true;
   }
 
-  // One perception frame's detections, taken at `pose`, into the map and the map to control; the stage's time
-  // from `w0` (wall clock) to here.
-  void map_detections(Stamp now, ConeDetections det, Pose2 pose, std::span<const Cone> camera_rejected, double w0) {
+  // One perception frame's detections, taken at `pose`, into the map and the map to control; `stage_s`: the
+  // detector's time (wall clock), to which the mapping's is added for latency_ms.perception.
+  void map_detections(Stamp now, ConeDetections det, Pose2 pose, std::span<const Cone> camera_rejected,
+                      double stage_s) {
+    const double w0 = wall();
     // The LiDAR alone: the pose drawn towards the cone map (map_match.hpp), the map lap 1 built and closed from lap
     // 2 on, and before that the cones mapped so far (the scan-to-scan wobble of the odometry's heading).
     if (odometry && localization_source == "lidar_odometry") {
@@ -394,7 +436,7 @@ struct Stack::Impl {
       latency["loop_closure"].add(closing);
     }
     autopilot->on_cones(now, cone_map.cones());
-    const double dt = wall() - w0 - closing;
+    const double dt = stage_s + (wall() - w0 - closing);
     latency["perception"].add(dt);
     cycle.figures.perception_s = dt;
     if (detections_hook) detections_hook(det, pose);  // the scorecard's, outside the stage's time
@@ -470,22 +512,6 @@ struct Stack::Impl {
     return true;
   }
 
-  // The lidar and lidar_camera sources: the newest scan through the stages, placed by the localization's poses.
-  // Without a pose yet there is nowhere to put the cones: the scan waits for the next.
-  bool perceive_sensors(Stamp now) {
-    if (!new_scan || !last_scan || poses.empty()) return false;
-    new_scan = false;
-    const double w0 = wall();
-    const BodyPoseAt pose_at = [this](Stamp t) { return poses.at(t)->to_pose3(); };
-    std::optional<CameraImage> image = camera_image_near(last_scan_end);
-    LidarDetection d = detector->detect(*last_scan, pose_at, image ? &*image : nullptr);
-    const Pose2 pose = *poses.at(d.detections.stamp);
-    last_cloud = std::make_shared<const LabelledCloud>(
-        LabelledCloud{d.detections.stamp, std::move(d.ground_points), std::move(d.obstacle_points)});
-    map_detections(now, std::move(d.detections), pose, d.camera_rejected, w0);
-    return true;
-  }
-
   // dds: the perception process's frames since the last cycle, each placed by this process's pose of its instant
   // (the stamps carry across). One older than dds.max_detection_age is late: counted, not used.
   bool perceive_remote(Stamp now) {
@@ -499,37 +525,124 @@ struct Stack::Impl {
       }
       const auto pose = poses.at(f.detections.stamp);
       if (!pose) continue;
-      map_detections(now, std::move(f.detections), *pose, f.camera_rejected, wall());
+      map_detections(now, std::move(f.detections), *pose, f.camera_rejected, 0.0);
       any = true;
     }
     return any;
   }
 
-  // The camera frame taken nearest `t`, decoded; empty without a camera stage, a frame, or a frame that decodes.
-  std::optional<CameraImage> camera_image_near(Stamp t) {
-    if (camera_recent.empty()) return std::nullopt;
+  // The scans' processing: a result that is due taken first (which frees the worker), then the newest scan handed
+  // over; without the worker it is processed at once and taken in this same step.
+  bool process_scans(Stamp now, double w_step) {
+    if (!processor) return false;
+    bool perceived = take_scan(now);
+    if (hand_over_scan(w_step)) perceived |= take_scan(now);
+    return perceived;
+  }
+
+  // The newest scan to the stages with copies of what they need. Perception waits for a pose to place it by.
+  bool hand_over_scan(double w_step) {
+    if (!scan_waiting || !last_scan || scan_out) return false;
+    ScanJob job;
+    job.scan = last_scan;
+    job.odometry = odometry && odometry->takes(*last_scan);
+    if (job.odometry) job.measured = odometry->motion_over(*last_scan);
+    job.detect = detects && !poses.empty();
+    if (!job.odometry && !job.detect) return false;
+    if (job.detect) {
+      job.poses = poses;
+      if (const CameraJpeg* c = camera_jpeg_near(last_scan_end)) {
+        job.camera_jpeg = c->jpeg;
+        job.camera_capture = c->capture;
+      }
+    }
+    if (job.odometry && localization_source == "lidar_odometry") {
+      job.settle_from = odometry_scan_end;
+      job.map_from_odometry = odometry->map_from_odometry();
+    }
+    scan_waiting = false;
+    scan_handed_wall = w_step;
+    scan_out = true;
+    if (scan_worker) {
+      if (!scan_worker->submit([p = processor.get(), job = std::move(job)]() mutable { return p->process(std::move(job)); }))
+        scan_out = false;  // not reached: one scan out at a time
+      return scan_out;
+    }
+    try {
+      scan_done = processor->process(std::move(job));
+    } catch (const std::exception& e) {
+      scan_done = ScanResult{};
+      scan_done->failure = e.what();
+    }
+    return true;
+  }
+
+  // A processed scan, once due: the odometry's output into the localization, the detections into the map.
+  bool take_scan(Stamp now) {
+    if (!scan_out) return false;
+    std::optional<ScanResult> r = scan_worker ? scan_worker->poll() : std::exchange(scan_done, std::nullopt);
+    if (!r) return false;
+    scan_out = false;
+    if (!r->failure.empty()) {
+      if (++scan_failures <= kScanFailuresLogged)
+        log->error("a scan's processing failed ({} so far; the next scan is processed as usual): {}", scan_failures,
+                   r->failure);
+      return false;
+    }
+    if (r->camera_decode_failed) ++camera_decode_failures;
+    if (r->detector_counters) detector_counters = *r->detector_counters;
+    if (r->odometry) take_odometry(now, *r->odometry, r->odometry_s);
+    if (!r->detection) return false;
+    LidarDetection& d = *r->detection;
+    const std::optional<Pose2> pose = poses.at(d.detections.stamp);
+    if (!pose) return false;
+    last_cloud = std::make_shared<const LabelledCloud>(
+        LabelledCloud{d.detections.stamp, std::move(d.ground_points), std::move(d.obstacle_points)});
+    perceived_from = scan_handed_wall;
+    map_detections(now, std::move(d.detections), *pose, d.camera_rejected, r->perception_s);
+    return true;
+  }
+
+  // The odometry's output for a scan: its increment into the fusion filter, or (the LiDAR alone) the poses carried
+  // since the previous scan settled onto it; the state at `now` again from either.
+  void take_odometry(Stamp now, const lidar_odometry::OdometryOutput& out, double stage_s) {
+    latency["odometry"].add(stage_s);
+    odometry->accept(out);
+    if (odometry_hook) odometry_hook(out);
+    const double steering = vcu_steering();
+    if (fused) {
+      if (const auto increment = odometry->increment()) {
+        fused->add({}, std::nullopt, increment);
+        take_state(fused->state(steering));
+      }
+    }
+    if (localization_source == "lidar_odometry") {
+      settle_carried_poses(out.stamp, steering);
+      take_state(odometry->state(now, steering));
+    }
+  }
+
+  // A state as new as the one held (or newer) replaces it.
+  void take_state(const std::optional<VehicleState>& v) {
+    if (!v || (state && v->stamp < state->stamp)) return;
+    state = v;
+    autopilot->on_state(*state);
+    poses.add(state->stamp, state->pose);
+  }
+
+  // The camera frame taken nearest `t`; none without a camera stage or a frame.
+  const CameraJpeg* camera_jpeg_near(Stamp t) const {
+    if (camera_recent.empty()) return nullptr;
     const CameraJpeg* best = &camera_recent.front();
     for (const auto& c : camera_recent)
       if (std::abs(c.capture - t) < std::abs(best->capture - t)) best = &c;
-    CameraImage img;
-    img.capture = best->capture;
-    try {
-      img.bgr = cv::imdecode(*best->jpeg, cv::IMREAD_COLOR);
-    } catch (const cv::Exception&) {
-      img.bgr.release();
-    }
-    if (img.bgr.empty()) {
-      ++camera_decode_failures;
-      return std::nullopt;
-    }
-    return img;
+    return best;
   }
 
+  // This cycle's measurements into the localization (the scans' odometry comes with their processing: take_scan).
   void localize(Stamp now) {
     const double steering = vcu_steering();
-    // The LiDAR odometry first: its increment goes to the fusion filter with this cycle's other measurements. The
-    // car's measured motion (GNSS-INS yaw rate, rear wheels) deskews and predicts its scans.
-    std::optional<fusion::OdometryIncrement> increment;
+    // The car's measured motion (GNSS-INS yaw rate, rear wheels) deskews and predicts the odometry's scans.
     if (odometry) {
       for (const auto& s : gnss_pending)
         if (s.yaw_rate_valid) odometry->add_motion(s.stamp, std::nullopt, s.yaw_rate);
@@ -537,15 +650,6 @@ struct Stack::Impl {
         odometry_vcu_stamp = st->stamp;
         odometry->add_motion(st->stamp, st->rear_axle_speed(), std::nullopt);
       }
-    }
-    if (odometry && odometry_scan && last_scan) {
-      odometry_scan = false;
-      const double w0 = wall();
-      const auto& out = odometry->add(*last_scan);
-      latency["odometry"].add(wall() - w0);
-      if (odometry_hook) odometry_hook(out);
-      increment = odometry->increment();
-      if (localization_source == "lidar_odometry") settle_carried_poses(out.stamp, steering);
     }
     for (const auto& s : gnss_pending) {
       autopilot->on_gnss(s.stamp, s.good);
@@ -556,7 +660,7 @@ struct Stack::Impl {
       }
     }
     if (fused) {
-      fused->add(gnss_pending, vcu->status(), increment);
+      fused->add(gnss_pending, vcu->status());
       if (const auto v = fused->state(steering); v && (!state || v->stamp > state->stamp)) {
         state = v;
         autopilot->on_state(*state);
@@ -601,13 +705,15 @@ struct Stack::Impl {
     ++cycles;
     if (const auto st = vcu->status()) autopilot->on_vcu(*st);
     // The camera stage's frames: the supervisor watches for a camera that stops (control.supervisor.camera_timeout).
-    if (detector && detector->has_camera() && last_camera_frame) autopilot->on_camera(*last_camera_frame);
+    if (camera_stage && last_camera_frame) autopilot->on_camera(*last_camera_frame);
     if (opt.simulator && truth) autopilot->set_planner_stalled(truth->planner_stalled);
     const double w_perception = wall();
+    perceived_from = w_perception;
     collect_loop_closure(now);
     localize(now);  // first: the sensor sources place this cycle's scan by the newest pose
     if (state && !first_pose) first_pose = state->pose;
-    cycle.perceived = perceive(now);
+    cycle.perceived = process_scans(now, w_perception);
+    cycle.perceived |= perceive(now);
     apply_param_changes(now);
 
     const double w0 = wall(), c0 = cpu();
@@ -639,7 +745,7 @@ struct Stack::Impl {
     fig.control_s = w2 - w1;
     latency["control"].add(fig.control_s);
     if (cycle.perceived) {
-      fig.end_to_end_s = w3 - w_perception;
+      fig.end_to_end_s = w3 - perceived_from;
       latency["end_to_end"].add(fig.end_to_end_s);
     }
     fig.planned = out.planned;
@@ -745,10 +851,10 @@ struct Stack::Impl {
     counters.camera_frames = camera_frames;
     counters.camera_decode_failures = camera_decode_failures;
     counters.perception_frames = perception_frames;
-    if (detector) {
-      counters.camera_verified = detector->counters().camera.verified;
-      counters.camera_rejected = detector->counters().camera.rejected;
-    }
+    counters.camera_verified = detector_counters.camera.verified;
+    counters.camera_rejected = detector_counters.camera.rejected;
+    counters.scans_skipped = scans_skipped;
+    counters.scan_failures = scan_failures;
     counters.truth_frames_rejected = truth_rejected;
     counters.remote_frames_late = remote_late;
     counters.map_poses_applied = map_poses_applied;

@@ -5,12 +5,16 @@
 // run.localization_source; the autopilot (planning, missions, following, supervision); the dashboard's view.
 // Three feeders drive it: the car's driver threads (daemon/hardware_run), the virtual car's lockstep or real-time
 // loop (daemon/sim_run) and the replayer of a recording. They own the transports, threads and clocks; the Stack
-// owns none of them but the workers of the lap-2 build and the loop closure's solve.
+// owns none of them but its workers (StackOptions): the processing thread of the LiDAR scans (perception and the
+// odometry's scan match: ScanProcessor), lap 1's plans, the lap-2 build and the loop closure's solve.
 //
 // One thread (the feeder's control thread) calls everything, in this order each control cycle:
 //   feed(frame) ...       every raw frame that arrived since the last cycle, in arrival order
 //   vcu().tick(...)       (lockstep feeders) the VCU Command due now; on the car the link's sender thread does it
 //   step(now)             one control cycle: sources, mapping, planning, control, the command to the VCU session
+// With the workers, step() never waits for them (but in a paced run, below): it hands a job over and takes its
+// result at a later cycle. A scan's detections and odometry are then taken a cycle or two after it completed
+// (latency_ms.end_to_end counts from the cycle that handed it over).
 // Taps see the frames and cycles in exactly this order, so replaying a recording repeats the run.
 //
 // Sources:
@@ -62,9 +66,14 @@ struct StackOptions {
   bool lap_build_worker = false;     // lap 2 built on a thread of the Stack's (real time); else inside the step
   bool plan_worker = false;          // lap 1's real-time plans so; else inside the step
   bool loop_closure_worker = false;  // the loop's solve so (that thread reads wall_clock: the solve's time)
-  // The feeder runs faster than real time (a headless simulation with workers): a worker's result is taken once
-  // as much run time has passed as the job took on the wall clock, the step waiting while the run is ahead of it
-  // (JobServiceThread::pace_by), so that the car drives on meanwhile as long as on the car, not for seconds.
+  bool scan_worker = false;          // the scans' processing (perception, the odometry's scan match) so
+  // (wall_clock is read on that thread too: the stages' figures)
+  // > 0: the workers' threads under SCHED_FIFO at this priority (below the control thread's: daemon.realtime_priority)
+  int worker_priority = 0;
+  // The feeder runs faster than real time (a headless simulation with workers): a once-a-lap job's result is taken
+  // once as much run time has passed as the job took on the wall clock, the step waiting while the run is ahead of
+  // it (JobServiceThread::pace_by), so that the car drives on meanwhile as long as on the car, not for seconds; a
+  // plan's control.planner.time_budget and a scan's run.scan_latency after its hand-over (FixedLatencyJobThread).
   bool paced_workers = false;
   bool simulator = false;  // the feeder sends the simulator's truth frames (the truth sources need them)
   Stamp start = 0;         // the run clock when the VCU session starts waiting for its first status
@@ -102,6 +111,8 @@ struct StackCounters {
   std::uint64_t truth_frames_rejected = 0;
   std::uint64_t cycles = 0;
   std::uint64_t late_plans = 0;  // plans whose CPU time exceeded control.planner.time_budget (a warning)
+  std::uint64_t scans_skipped = 0;  // scans not processed: the processing thread was busy until a newer one came
+  std::uint64_t scan_failures = 0;  // scans whose processing threw (logged; the next scan is processed as usual)
 };
 
 // What one control cycle did.

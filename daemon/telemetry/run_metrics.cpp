@@ -47,10 +47,14 @@ RunMetrics::RunMetrics(web::Metrics& m)
   cones_hit_.set(-1);
 }
 
+void RunMetrics::on_cycle_start() {
+  const auto now = clock::now();
+  if (last_start_ != clock::time_point{}) period_.observe(std::chrono::duration<double>(now - last_start_).count());
+  last_start_ = now;
+}
+
 void RunMetrics::on_cycle(const CycleFigures& f) {
   const auto now = clock::now();
-  if (last_cycle_ != clock::time_point{}) period_.observe(std::chrono::duration<double>(now - last_cycle_).count());
-  last_cycle_ = now;
   if (window_start_ == clock::time_point{}) window_start_ = now;
   ++window_cycles_;
   const double window = std::chrono::duration<double>(now - window_start_).count();

@@ -32,6 +32,8 @@ struct CycleFigures {
 class RunMetrics {
  public:
   explicit RunMetrics(web::Metrics& metrics);
+  // Called by the feeder's control loop as each cycle starts (it woke up for it): the loop's period.
+  void on_cycle_start();
   // Called by the control loop once per cycle, at its end. Wait-free.
   void on_cycle(const CycleFigures& f);
   // The registry, for the run's other parts that count something (the recorder).
@@ -44,7 +46,7 @@ class RunMetrics {
   web::Counter &cycles_, &plans_, &plans_one_boundary_, &plans_colour_blind_, &plans_cut_short_, &late_plans_;
   web::Gauge &rate_, &as_state_, &laps_, &cones_hit_, &sim_time_;
   web::Gauge* as_active_[5];
-  clock::time_point last_cycle_{}, window_start_{};
+  clock::time_point last_start_{}, window_start_{};
   std::uint64_t window_cycles_ = 0;
 };
 
