@@ -151,7 +151,10 @@ struct HardwareRun::Impl {
     so.lap_build_worker = true;     // the lap-2 build must not hold up the 100 Hz control thread
     so.plan_worker = true;          // nor lap 1's real-time plans
     so.loop_closure_worker = true;  // nor the loop closure's solve
-    so.scan_worker = true;          // nor the scans' perception and odometry
+    // The scans' processing stays inside the step on the car for now: a car run's recording must replay bit for bit
+    // (HardwareRun.InspectionAgainstFsdSim...), and which cycle took each scan's result on the processing thread is
+    // not recorded yet. The virtual car in real time runs it on the processing thread.
+    so.scan_worker = false;
     so.worker_priority = worker_priority(daemon);
     so.start = clock.now();
     // The camera stage sees through the calibrated camera; its frames are stamped at capture already.
