@@ -1,8 +1,9 @@
 #pragma once
 // Path following (paper §IV, its reference [1]): pure pursuit, Stanley, or a kinematic LQR, selected by
-// config. Each cycle predicts the pose forward by the actuation latency (kinematic bicycle on the measured
-// steering), projects it on the path, computes the front wheel angle with the selected law and takes the
-// target speed from the path a little ahead. Output: ControlCommand (steering angle, target speed).
+// config. Each cycle predicts the pose forward (kinematic bicycle on the measured steering) by the state's age
+// (now − its stamp) and the actuation latency, projects it on the path, computes the front wheel angle with the
+// selected law and takes the target speed from the path a little ahead. Output: ControlCommand (steering angle,
+// target speed).
 #include <optional>
 #include <string>
 

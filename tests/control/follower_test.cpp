@@ -132,6 +132,35 @@ TEST(Follower, LatencyPredictionIsTheBicycleArc) {
   EXPECT_NEAR(p.yaw, std::numbers::pi / 2, 1e-9);
 }
 
+TEST(Follower, AnOlderStateIsCarriedToNowBeforeTheLawSteers) {
+  // A straight along x; the car, steering δ = 0.2 rad at 10 m/s, turns off it on an arc of radius R = L/tan δ.
+  // A state 20 ms old is the car that far back on that arc: carried to now it is the car as it stands now (the
+  // arc, worked out by hand), so it gets the same command; the old pose taken as the car's now gets another.
+  Path line;
+  for (int i = 0; i <= 400; ++i) line.points.push_back({Vec2(0.25 * i - 20.0, 0.0), 0, 0, 0, 10.0});
+  compute_geometry(line);
+  const double v = 10.0, delta = 0.2, age = 0.02, now = 5.0;
+  for (const char* law : {"pure_pursuit", "stanley", "lqr"}) {
+    FollowerConfig fc;
+    fc.type = law;
+    fc.latency = 0.06;
+    const double R = fc.wheelbase / std::tan(delta), th = v * age / R;
+    VehicleState old, current;
+    old.vx = current.vx = v;
+    old.steering = current.steering = delta;
+    old.stamp = now - age;
+    old.pose = {0.0, 0.0, 0.0};
+    current.stamp = now;
+    current.pose = {R * std::sin(th), R * (1 - std::cos(th)), th};
+    const double from_current = PathFollower(fc).follow(line, current, now, 30.0).command.steering;
+    const double from_old = PathFollower(fc).follow(line, old, now, 30.0).command.steering;
+    EXPECT_NEAR(from_old, from_current, 1e-6) << law;
+    old.stamp = now;  // the old pose taken as the car's now
+    const double stale = PathFollower(fc).follow(line, old, now, 30.0).command.steering;
+    EXPECT_GT(std::abs(stale - from_current), 5e-3) << law;
+  }
+}
+
 TEST(Follower, NoPathOrFarOffMeansStraightWheelsAndStop) {
   PathFollower follower;
   VehicleState s;
