@@ -5,7 +5,9 @@
 // reason and the commands that reproduce it, then a summary table and the lap-2 figures. Exits 1 when fewer than
 // 99.5 % are clean (the target). About 23 min. From the project root:
 //   build/bench/generated_layouts_sweep
-// FSD_SWEEP_SEEDS=N: seeds 1–N of every kind; FSD_SWEEP_JOBS=J: J runs at a time (2 by default).
+// FSD_SWEEP_SEEDS=N: seeds 1–N of every kind; FSD_SWEEP_JOBS=J: J runs at a time (2 by default);
+// FSD_SWEEP_CONFIG=FILE: every run on that configuration instead (`{}`: the defaults, the real pipeline);
+// FSD_BINARY=path: run that fsd (a copy) instead of the build's, which a rebuild meanwhile would replace.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -23,11 +25,13 @@ int main() {
   const char* jobs_env = std::getenv("FSD_SWEEP_JOBS");
   const int loops = seeds_env ? std::atoi(seeds_env) : 200, events = seeds_env ? loops : 100;
   const int jobs = std::max(1, jobs_env ? std::atoi(jobs_env) : 2);
+  const char* config_env = std::getenv("FSD_SWEEP_CONFIG");
+  const std::string config = config_env ? config_env : "";
   std::vector<Case> cases;
-  for (int s = 1; s <= loops; ++s) cases.push_back({"trackdrive", s});
-  for (int s = 1; s <= loops; ++s) cases.push_back({"autocross", s});
-  for (int s = 1; s <= events; ++s) cases.push_back({"acceleration", s});
-  for (int s = 1; s <= events; ++s) cases.push_back({"skidpad", s});
+  for (const char* kind : {"trackdrive", "autocross", "acceleration", "skidpad"}) {
+    const bool loop = std::string(kind) == "trackdrive" || std::string(kind) == "autocross";
+    for (int s = 1; s <= (loop ? loops : events); ++s) cases.push_back(Case(kind, s, "", config));
+  }
   const std::vector<Outcome> out = fsd::test::generated::drive_all(cases, jobs);
   std::printf("\nFailures:\n");
   for (const auto& o : out)
