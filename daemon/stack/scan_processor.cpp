@@ -8,8 +8,7 @@ ScanProcessor::ScanProcessor(std::unique_ptr<LidarCameraDetector> detector,
                              std::unique_ptr<lidar_odometry::LidarOdometry> odometry, std::function<double()> wall)
     : detector_(std::move(detector)),
       odometry_(std::move(odometry)),
-      wall_(std::move(wall)),
-      camera_(detector_ && detector_->has_camera()) {}
+      wall_(std::move(wall)) {}
 
 ScanProcessor::~ScanProcessor() = default;
 

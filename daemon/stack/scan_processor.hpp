@@ -8,6 +8,7 @@
 //
 // One scan at a time, in time order. No I/O, no clock but the wall clock it is given (the stages' figures).
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -47,6 +48,12 @@ struct ScanResult {
   std::optional<LidarCameraCounters> detector_counters;  // the detector's, after this scan
   double odometry_s = 0, perception_s = 0;               // wall time of each
   std::string failure;                                    // the processing threw: what (nothing else is set)
+
+  static ScanResult failed(const std::exception& e) {
+    ScanResult r;
+    r.failure = e.what();
+    return r;
+  }
 };
 
 class ScanProcessor {
@@ -58,15 +65,10 @@ class ScanProcessor {
 
   ScanResult process(ScanJob job);
 
-  bool detects() const { return detector_ != nullptr; }
-  bool has_camera() const { return camera_; }  // the detector has a camera stage
-  bool has_odometry() const { return odometry_ != nullptr; }
-
  private:
   std::unique_ptr<LidarCameraDetector> detector_;
   std::unique_ptr<lidar_odometry::LidarOdometry> odometry_;
   std::function<double()> wall_;
-  bool camera_ = false;
 };
 
 }  // namespace fsd

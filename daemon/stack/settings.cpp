@@ -87,7 +87,8 @@ const ConfigSection<RunSettings>& run_section() {
           .number("scan_latency", &RunSettings::scan_latency, 0.0, 0.1, "s",
                   "fsd run --sim --headless --workers: a scan's processing (perception, the LiDAR odometry) on the "
                   "processing thread is taken this much simulated time after the scan was handed over, the run "
-                  "waiting for it if need be, as on the car where it takes 10-20 ms (the run stays repeatable). "
+                  "waiting for it if need be, as long as the processing takes in real time (10-20 ms); the run stays "
+                  "repeatable. "
                   "In real time it is taken as soon as it is done.");
   return s;
 }

@@ -222,11 +222,7 @@ struct Stack::Impl {
       processor = std::make_unique<ScanProcessor>(
           std::move(detector), odometry ? make_odometry(cfg, vlp_cfg.body_from_sensor()) : nullptr, wall);
       if (opt.scan_worker) {
-        scan_worker = std::make_unique<FixedLatencyJobThread<ScanResult>>([](const std::exception& e) {
-          ScanResult r;
-          r.failure = e.what();
-          return r;
-        });
+        scan_worker = std::make_unique<FixedLatencyJobThread<ScanResult>>(ScanResult::failed);
         if (opt.paced_workers) scan_worker->pace_by([this] { return step_now; }, run.scan_latency);
       }
     }
@@ -571,8 +567,7 @@ struct Stack::Impl {
     try {
       scan_done = processor->process(std::move(job));
     } catch (const std::exception& e) {
-      scan_done = ScanResult{};
-      scan_done->failure = e.what();
+      scan_done = ScanResult::failed(e);
     }
     return true;
   }
@@ -604,30 +599,25 @@ struct Stack::Impl {
   }
 
   // The odometry's output for a scan: its increment into the fusion filter, or (the LiDAR alone) the poses carried
-  // since the previous scan settled onto it; the state at `now` again from either.
+  // since the previous scan settled onto it; the state at `now` again from either, replacing one as old (the same
+  // instant estimated again with the scan).
   void take_odometry(Stamp now, const lidar_odometry::OdometryOutput& out, double stage_s) {
     latency["odometry"].add(stage_s);
     odometry->accept(out);
     if (odometry_hook) odometry_hook(out);
     const double steering = vcu_steering();
+    std::optional<VehicleState> v;
     if (fused) {
       if (const auto increment = odometry->increment()) {
         fused->add({}, std::nullopt, increment);
-        take_state(fused->state(steering));
+        v = fused->state(steering);
       }
     }
     if (localization_source == "lidar_odometry") {
       settle_carried_poses(out.stamp, steering);
-      take_state(odometry->state(now, steering));
+      v = odometry->state(now, steering);
     }
-  }
-
-  // A state as new as the one held (or newer) replaces it.
-  void take_state(const std::optional<VehicleState>& v) {
-    if (!v || (state && v->stamp < state->stamp)) return;
-    state = v;
-    autopilot->on_state(*state);
-    poses.add(state->stamp, state->pose);
+    if (v && (!state || v->stamp >= state->stamp)) set_state(*v);
   }
 
   // The camera frame taken nearest `t`; none without a camera stage or a frame.
@@ -653,33 +643,25 @@ struct Stack::Impl {
     }
     for (const auto& s : gnss_pending) {
       autopilot->on_gnss(s.stamp, s.good);
-      if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value())) {
-        state = state_from_gnss(s, steering);
-        autopilot->on_state(*state);
-        poses.add(state->stamp, state->pose);
-      }
+      if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value()))
+        set_state(state_from_gnss(s, steering));
     }
     if (fused) {
       fused->add(gnss_pending, vcu->status());
-      if (const auto v = fused->state(steering); v && (!state || v->stamp > state->stamp)) {
-        state = v;
-        autopilot->on_state(*state);
-        poses.add(state->stamp, state->pose);
-      }
+      if (const auto v = fused->state(steering); v && (!state || v->stamp > state->stamp)) set_state(*v);
     }
     gnss_pending.clear();
     if (localization_source == "lidar_odometry") {
-      if (const auto v = odometry->state(now, steering); v && (!state || v->stamp > state->stamp)) {
-        state = v;
-        autopilot->on_state(*state);
-        poses.add(state->stamp, state->pose);
-      }
+      if (const auto v = odometry->state(now, steering); v && (!state || v->stamp > state->stamp)) set_state(*v);
     }
-    if (localization_source == "truth" && truth) {
-      state = truth->state;
-      autopilot->on_state(*state);
-      poses.add(state->stamp, state->pose);
-    }
+    if (localization_source == "truth" && truth) set_state(truth->state);
+  }
+
+  // The localization's state: to the autopilot and into the pose history.
+  void set_state(const VehicleState& v) {
+    state = v;
+    autopilot->on_state(v);
+    poses.add(v.stamp, v.pose);
   }
 
   // The LiDAR alone: the poses held since the previous scan were carried forward from it (state() between scans);
