@@ -12,85 +12,118 @@ namespace fsd {
 
 namespace {
 
-// Algebraic (Kåsa) circle fit: |p|² = 2c·p + (r² − |c|²), linear in c and the constant.
-std::optional<Vec2> kasa_centre(const std::vector<Vec2>& pts) {
-  if (pts.size() < 3) return std::nullopt;
-  Eigen::MatrixXd A(static_cast<Eigen::Index>(pts.size()), 3);
-  Eigen::VectorXd b(static_cast<Eigen::Index>(pts.size()));
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const auto k = static_cast<Eigen::Index>(i);
-    A(k, 0) = 2 * pts[i].x();
-    A(k, 1) = 2 * pts[i].y();
-    A(k, 2) = 1;
-    b(k) = pts[i].squaredNorm();
+// The rules' skid pad: rings of 15.25 and 21.25 m diameter round each centre, the centres 18.25 m apart.
+constexpr double kRulesInner = 7.625, kRulesOuter = 10.625, kRulesCentres = 18.25;  // m
+
+// Where a circle's centre is, found by voting (a Hough transform for circles of known radius): every cone votes for
+// the cells its rings could be centred on, each cell counts the cones that voted for it. A least-squares fit from
+// the cones' mean is pulled by metres by one cone that is on neither ring (an entry-lane cone whose colour was
+// misread, a ghost) when only the near arcs are seen; the vote is not.
+constexpr double kVoteCell = 0.5;       // m
+constexpr double kVoteTolerance = 0.4;  // m: a cone votes for cells whose centre is this close to one of its rings
+
+std::optional<Vec2> vote_centre(const std::vector<Vec2>& pts) {
+  if (pts.empty()) return std::nullopt;
+  Vec2 lo = pts.front(), hi = pts.front();
+  for (const auto& p : pts) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
   }
-  const Eigen::Vector3d x = A.colPivHouseholderQr().solve(b);
-  if (!x.allFinite()) return std::nullopt;
-  return Vec2(x(0), x(1));
+  const double reach = kRulesOuter + kVoteTolerance;
+  lo.array() -= reach;
+  hi.array() += reach;
+  const int nx = static_cast<int>(std::ceil((hi.x() - lo.x()) / kVoteCell));
+  const int ny = static_cast<int>(std::ceil((hi.y() - lo.y()) / kVoteCell));
+  if (nx <= 0 || ny <= 0 || static_cast<long>(nx) * ny > 4'000'000) return std::nullopt;  // cones kilometres apart
+  std::vector<int> votes(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0);
+  const int span = static_cast<int>(std::ceil(reach / kVoteCell));
+  for (const auto& p : pts) {
+    const int ix0 = static_cast<int>((p.x() - lo.x()) / kVoteCell), iy0 = static_cast<int>((p.y() - lo.y()) / kVoteCell);
+    for (int iy = std::max(0, iy0 - span); iy <= std::min(ny - 1, iy0 + span); ++iy)
+      for (int ix = std::max(0, ix0 - span); ix <= std::min(nx - 1, ix0 + span); ++ix) {
+        const Vec2 c = lo + kVoteCell * Vec2(ix + 0.5, iy + 0.5);
+        const double d = (p - c).norm();
+        if (std::abs(d - kRulesInner) <= kVoteTolerance || std::abs(d - kRulesOuter) <= kVoteTolerance)
+          ++votes[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix)];
+      }
+  }
+  const auto best = std::max_element(votes.begin(), votes.end()) - votes.begin();
+  return lo + kVoteCell * Vec2(best % nx + 0.5, best / nx + 0.5);
 }
 
-// Two concentric rings: the split into inner and outer by distance from the current centre, then one linear
-// fit of the shared centre and both radii; a few rounds settle the split. A cone that is not on either ring (a
-// ghost, a cone of the entry or exit lane, one whose colour was misread so that it counts on the wrong side) would
-// pull a least-squares fit by metres: each round leaves out the cones farther from their ring than three times the
-// median distance (at least `kRingTolerance`), and the fit is refused when fewer than three stay on a ring.
+// Two concentric rings from the voted centre: each round splits the cones into inner and outer by the nearer ring,
+// leaves out those farther from it than three times the median distance (at least `kRingTolerance`), and fits the
+// shared centre and both radii to the rest (Gauss-Newton on the distances to the rings). Both radii carry the rules'
+// value as a prior worth about one cone: a fit to a short arc keeps the rules' size, a skid pad marked a little off
+// the rules (every cone of it) moves the radii. Refused when fewer than three cones stay on a ring.
 constexpr double kRingTolerance = 0.5;                    // m
+constexpr double kConeSigma = 0.1, kRadiusSigma = 0.1;    // m: a cone's place on its ring; the ring against the rules
 constexpr double kMaxUnseenArc = 0.6 * std::numbers::pi;  // rad of a circle with no cone kept on it
 
 std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
-  auto centre = kasa_centre(pts);
-  if (!centre || pts.size() < 6) return std::nullopt;
-  SkidpadCircle c;
+  if (pts.size() < 6) return std::nullopt;
+  const auto voted = vote_centre(pts);
+  if (!voted) return std::nullopt;
+  Eigen::Vector4d x(voted->x(), voted->y(), kRulesInner, kRulesOuter);  // centre, inner and outer radius
   std::vector<bool> use(pts.size(), true);
-  double split = 0;
-  for (int round = 0; round < 8; ++round) {
-    std::vector<double> d;
-    for (const auto& p : pts) d.push_back((p - *centre).norm());
-    if (round == 0) {  // between the quartiles of the distances: a stray cone at the centre or far out does not move it
-      std::vector<double> sorted = d;
-      std::sort(sorted.begin(), sorted.end());
-      split = 0.5 * (sorted[sorted.size() / 4] + sorted[sorted.size() * 3 / 4]);
-    } else {  // between the fitted radii; and what lies off both rings is left out, the bound shrinking as it settles
-      split = 0.5 * (c.inner_radius + c.outer_radius);
-      std::vector<double> res(pts.size()), kept;
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        res[i] = std::abs(d[i] - (d[i] < split ? c.inner_radius : c.outer_radius));
-        if (use[i]) kept.push_back(res[i]);
-      }
-      std::nth_element(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2), kept.end());
-      const double bound = std::max(kRingTolerance, 3.0 * kept[kept.size() / 2]);
-      for (std::size_t i = 0; i < pts.size(); ++i) use[i] = res[i] <= bound;
-    }
-    Eigen::MatrixXd A(static_cast<Eigen::Index>(pts.size()), 4);
-    Eigen::VectorXd b(static_cast<Eigen::Index>(pts.size()));
-    int inner = 0, outer = 0;
+  constexpr double prior = kConeSigma / kRadiusSigma;
+  for (int round = 0; round < 6; ++round) {
+    const Vec2 c(x(0), x(1));
+    const double split = 0.5 * (x(2) + x(3));
+    std::vector<double> res(pts.size()), kept;
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const auto k = static_cast<Eigen::Index>(i);
-      const bool in = d[i] < split;
-      const double w = use[i] ? 1.0 : 0.0;
-      inner += use[i] && in;
-      outer += use[i] && !in;
-      A.row(k) << w * 2 * pts[i].x(), w * 2 * pts[i].y(), w * (in ? 1.0 : 0.0), w * (in ? 0.0 : 1.0);
-      b(k) = w * pts[i].squaredNorm();
+      const double d = (pts[i] - c).norm();
+      res[i] = std::abs(d - (d < split ? x(2) : x(3)));
+      if (use[i]) kept.push_back(res[i]);
+    }
+    std::nth_element(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2), kept.end());
+    const double bound = std::max(kRingTolerance, 3.0 * kept[kept.size() / 2]);
+    int inner = 0, outer = 0;
+    std::vector<bool> in(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      use[i] = res[i] <= bound;
+      in[i] = (pts[i] - c).norm() < split;
+      inner += use[i] && in[i];
+      outer += use[i] && !in[i];
     }
     if (inner < 3 || outer < 3) return std::nullopt;
-    const Eigen::Vector4d x = A.colPivHouseholderQr().solve(b);
-    if (!x.allFinite()) return std::nullopt;
-    *centre = Vec2(x(0), x(1));
-    const double r2_in = x(2) + centre->squaredNorm(), r2_out = x(3) + centre->squaredNorm();
-    if (r2_in <= 0 || r2_out <= 0) return std::nullopt;
-    c.inner_radius = std::sqrt(r2_in);
-    c.outer_radius = std::sqrt(r2_out);
+    for (int it = 0; it < 5; ++it) {
+      Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+      Eigen::Vector4d g = Eigen::Vector4d::Zero();
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        if (!use[i]) continue;
+        const Vec2 v = pts[i] - Vec2(x(0), x(1));
+        const double d = v.norm();
+        if (d < 1e-6) continue;
+        Eigen::Vector4d J(-v.x() / d, -v.y() / d, in[i] ? -1.0 : 0.0, in[i] ? 0.0 : -1.0);
+        const double e = d - (in[i] ? x(2) : x(3));
+        H += J * J.transpose();
+        g += J * e;
+      }
+      for (int k : {2, 3}) {
+        const double e = prior * (x(k) - (k == 2 ? kRulesInner : kRulesOuter));
+        H(k, k) += prior * prior;
+        g(k) += prior * e;
+      }
+      const Eigen::Vector4d step = H.ldlt().solve(-g);
+      if (!step.allFinite()) return std::nullopt;
+      x += step;
+      if (step.norm() < 1e-6) break;
+    }
+    if (x(2) <= 0 || x(3) <= x(2)) return std::nullopt;
   }
+  SkidpadCircle c;
+  c.centre = Vec2(x(0), x(1));
+  c.inner_radius = x(2);
+  c.outer_radius = x(3);
   // Rings fitted to a short arc can have any size and centre: no arc wider than kMaxUnseenArc may be without a cone.
   std::vector<double> angles;
   for (std::size_t i = 0; i < pts.size(); ++i)
-    if (use[i]) angles.push_back(std::atan2(pts[i].y() - centre->y(), pts[i].x() - centre->x()));
+    if (use[i]) angles.push_back(std::atan2(pts[i].y() - c.centre.y(), pts[i].x() - c.centre.x()));
   std::sort(angles.begin(), angles.end());
   double widest_gap = angles.front() + 2 * std::numbers::pi - angles.back();
   for (std::size_t i = 1; i < angles.size(); ++i) widest_gap = std::max(widest_gap, angles[i] - angles[i - 1]);
   if (widest_gap > kMaxUnseenArc) return std::nullopt;
-  c.centre = *centre;
   c.cones = static_cast<int>(angles.size());
   return c;
 }
@@ -126,11 +159,12 @@ std::optional<SkidpadGeometry> fit_skidpad(const std::vector<Cone>& cones, const
   // The rules fix the skid pad (centres 18.25 m apart, a 3 m lane between rings of 15.25 and 21.25 m diameter): a
   // fit far from that is of too little of the rings (from the entry lane the near arcs fit rings of any size), and
   // is refused until more of them is seen.
-  if (std::abs(d - 18.25) > 2.0) return fail("circle centres " + std::to_string(d) + " m apart (expected ~18.25 m)");
+  if (std::abs(d - kRulesCentres) > 2.0)
+    return fail("circle centres " + std::to_string(d) + " m apart (expected ~" + std::to_string(kRulesCentres) + " m)");
   g.forward = Vec2(across.y(), -across.x()) / d;
   if (g.forward.dot(Vec2(std::cos(start.yaw), std::sin(start.yaw))) < 0) g.forward = -g.forward;
   for (const auto* c : {&g.right, &g.left})
-    if (std::abs(c->outer_radius - c->inner_radius - 3.0) > 1.0)
+    if (std::abs(c->outer_radius - c->inner_radius - (kRulesOuter - kRulesInner)) > 1.0)
       return fail("ring radii implausible (" + std::to_string(c->inner_radius) + ", " +
                   std::to_string(c->outer_radius) + ")");
   return g;
