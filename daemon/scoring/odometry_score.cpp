@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <nlohmann/json.hpp>
 
@@ -49,6 +50,9 @@ void OdometryScore::add_state(const Pose2& truth, const Pose2& estimate) {
   const double e = dist(truth, estimate);
   sum_sq_ += e * e;
   max_ = std::max(max_, e);
+  const double yaw = std::abs(wrap_angle(estimate.yaw - truth.yaw));
+  yaw_sum_sq_ += yaw * yaw;
+  yaw_max_ = std::max(yaw_max_, yaw);
   ++samples_;
 }
 
@@ -61,6 +65,8 @@ nlohmann::json OdometryScore::to_json(const std::string& source) const {
   nlohmann::json j = {{"source", source},
                       {"ate_m", r4(samples_ ? std::sqrt(sum_sq_ / double(samples_)) : 0.0)},
                       {"ate_max_m", r4(max_)},
+                      {"yaw_rms_deg", r4(samples_ ? std::sqrt(yaw_sum_sq_ / double(samples_)) * 180 / std::numbers::pi : 0.0)},
+                      {"yaw_max_deg", r4(yaw_max_ * 180 / std::numbers::pi)},
                       {"samples", samples_}};
   if (scans_ > 0) {
     const Drift d = drift_of(lidar_);

@@ -1,7 +1,8 @@
 #pragma once
 // The scorecard's "odometry" section (DESIGN.md §8): how far the estimated poses are from the simulator's true
 // ones. Two tracks of (true, estimated) pose pairs:
-// - the localization source's state each cycle (whatever drives the car): ATE, the RMS and worst planar distance;
+// - the localization source's state each cycle (whatever drives the car): ATE, the RMS and worst planar distance,
+//   and the RMS and worst heading error (a heading off by 0.5° puts a cone 10 m away 9 cm off in the map);
 // - the LiDAR odometry's pose at each scan, when it runs: its drift per distance, at the end of the run (end-point
 //   error over the path length) and KITTI-style (the mean relative planar error over every 50 m segment, per
 //   distance: a closed lap cannot flatter it).
@@ -35,7 +36,7 @@ class OdometryScore {
   void add_state(const Pose2& truth, const Pose2& estimate);
   // The LiDAR odometry's pose at a scan against the truth at the scan's instant.
   void add_lidar(const Pose2& truth, const Pose2& estimate);
-  // {"source", "ate_m", "ate_max_m", "samples"} and, when the LiDAR odometry ran, "lidar": {"distance_m",
+  // {"source", "ate_m", "ate_max_m", "yaw_rms_deg", "yaw_max_deg", "samples"} and, when the LiDAR odometry ran, "lidar": {"distance_m",
   // "end_error_m", "drift_pct" (end-point), "segment_drift_pct" (50 m), "scans"}; "drift_pct" at the top is the
   // LiDAR odometry's end-point drift (absent without it).
   nlohmann::json to_json(const std::string& source) const;
@@ -43,7 +44,8 @@ class OdometryScore {
  private:
   static void keep(std::vector<PosePair>& track, const PosePair& p, double spacing);
   double spacing_;
-  double sum_sq_ = 0, max_ = 0;
+  double sum_sq_ = 0, max_ = 0;          // planar distance
+  double yaw_sum_sq_ = 0, yaw_max_ = 0;  // heading error (rad)
   long samples_ = 0, scans_ = 0;
   std::vector<PosePair> lidar_;
 };

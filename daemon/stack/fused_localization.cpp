@@ -48,6 +48,7 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
     f.age_s = s.age_s;
     f.heading_valid = s.heading_valid;
     f.heading = s.heading;
+    f.heading_sigma = s.heading_sigma;
     // Speed and course: the velocity over ground (a course is only given when moving).
     f.velocity_valid = s.velocity_valid && s.speed > 0.5 && std::isfinite(s.speed) && std::isfinite(s.course);
     if (f.velocity_valid) f.velocity = s.speed * Vec2(std::cos(s.course), std::sin(s.course));

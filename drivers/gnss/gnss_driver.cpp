@@ -43,6 +43,8 @@ void fill_motion(const Epoch& e, GnssSample& s) {
   if (heading) {
     s.heading = enu_yaw_from_north_deg(*heading);
     s.heading_valid = true;
+    if (e.pashr && e.pashr->heading_sigma_deg && *e.pashr->heading_sigma_deg > 0)
+      s.heading_sigma = deg2rad(*e.pashr->heading_sigma_deg);
   }
   if (e.pashr && e.pashr->roll_deg && e.pashr->pitch_deg) {
     s.roll = deg2rad(*e.pashr->roll_deg);     // both conventions: right side down positive

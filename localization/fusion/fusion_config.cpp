@@ -51,7 +51,9 @@ const ConfigSection<GnssGateConfig>& gnss_gate_section() {
                   "A fix may move this much more than the dead-reckoned motion since the previous fix ...")
           .number("jump_fraction", &C::jump_fraction, 0.0, 10.0, "", "... plus this share of that motion; else a jump.")
           .number("recover_after_s", &C::recover_after_s, 0.1, 600.0, "s",
-                  "Fixes rejected by the gate (not jumps) for this long are accepted again.");
+                  "Fixes rejected by the gate (not jumps) for this long are accepted again.")
+          .number("heading_sigma", &C::heading_sigma, 1e-4, 1.0, "rad",
+                  "σ of the receiver's dual-antenna heading when it does not state one (HDT; PASHR states it).");
   return s;
 }
 

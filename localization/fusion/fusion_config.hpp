@@ -34,6 +34,7 @@ struct GnssGateConfig {
   double jump_min_m = 1.5;         // a fix may differ from the dead-reckoned motion since the previous fix by this
   double jump_fraction = 0.2;      // ... plus this share of that motion
   double recover_after_s = 3.0;    // fixes rejected (not jumps) for this long, mutually consistent: accepted again
+  double heading_sigma = 0.005;    // rad: a dual-antenna heading's σ when the receiver does not state one (HDT)
 };
 const ConfigSection<GnssGateConfig>& gnss_gate_section();
 

@@ -43,6 +43,7 @@ struct GnssFix {
   double sigma = 0;              // m per horizontal axis
   bool heading_valid = false;    // a dual-antenna heading
   double heading = 0;            // rad, ENU
+  double heading_sigma = 0;      // rad, as the receiver states it; ≤ 0: localization.fusion.gnss.heading_sigma
   bool velocity_valid = false;   // the receiver's velocity over ground (Doppler: RMC/VTG speed and course)
   Vec2 velocity = Vec2::Zero();  // m/s, ENU, of the point localization.fusion.ekf.gnss_velocity_lever_x names
 };
@@ -112,6 +113,7 @@ struct LocalizationState {
   GnssCounters gnss_counters;
   std::uint64_t odometry_rejected = 0;   // LiDAR odometry increments the innovation gate turned away
   std::uint64_t map_poses_rejected = 0;  // map poses the gate turned away
+  std::uint64_t headings_rejected = 0;   // receiver headings the gate turned away
   Stamp last_map_pose = -1;              // the newest map pose applied; < 0: never
 
   double position_sigma() const;  // m: √ of the larger eigenvalue of the position covariance

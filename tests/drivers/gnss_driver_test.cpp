@@ -82,6 +82,7 @@ void expect_epochs_a_b(const std::vector<GnssSample>& s) {
   EXPECT_DOUBLE_EQ(a.alt_m, 5.18 + 35.78);
   EXPECT_TRUE(a.heading_valid);  // from PASHR: the epoch has no HDT
   EXPECT_NEAR(a.heading, deg2rad(90.0 - 27.23), 1e-12);
+  EXPECT_NEAR(a.heading_sigma, deg2rad(4.831), 1e-12);  // PASHR's heading accuracy, 1σ in degrees
   EXPECT_FALSE(a.velocity_valid);  // VTG and RMC without speed
   EXPECT_FALSE(a.attitude_valid);  // PASHR without pitch
   EXPECT_FALSE(a.yaw_rate_valid);  // ROT status V
@@ -95,6 +96,7 @@ void expect_epochs_a_b(const std::vector<GnssSample>& s) {
   EXPECT_NEAR(b.speed, 0.20 / 3.6, 1e-12);  // VTG km/h preferred over knots
   EXPECT_NEAR(b.course, deg2rad(90.0 - 166.99), 1e-12);
   EXPECT_NEAR(b.heading, deg2rad(90.0 - 319.50 + 360.0), 1e-12);
+  EXPECT_NEAR(b.heading_sigma, deg2rad(2.234), 1e-12);
   const double lat = 57.0 + 42.5522736 / 60.0;
   const Radii r = radii(lat);
   EXPECT_NEAR(b.enu.y(), r.m * deg2rad((42.5507032 - 42.5522736) / 60.0), 1e-3);

@@ -79,5 +79,16 @@ TEST(OdometryScore, PairsAreThinnedByDistanceAndTheEndIsExact) {
   EXPECT_FALSE(OdometryScore().to_json("truth").contains("lidar"));
 }
 
+// The heading error: 2° on one state, none on the other (RMS √2°), and across ±π it is the short way round.
+TEST(OdometryScore, HeadingErrorIsTheShortWayRound) {
+  OdometryScore score;
+  const double deg = std::numbers::pi / 180;
+  score.add_state({0, 0, std::numbers::pi - 1 * deg}, {0, 0, -std::numbers::pi + 1 * deg});
+  score.add_state({1, 0, 0.3}, {1, 0, 0.3});
+  const auto j = score.to_json("fused");
+  EXPECT_NEAR(j["yaw_max_deg"].get<double>(), 2.0, 1e-3);
+  EXPECT_NEAR(j["yaw_rms_deg"].get<double>(), std::sqrt(2.0), 1e-3);
+}
+
 }  // namespace
 }  // namespace fsd
