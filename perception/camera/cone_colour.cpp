@@ -335,8 +335,12 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
     if (height_hint > 0) {
       big = height_hint >= cfg_.big_cone_height;
     } else if (v.px_per_m > 0) {
+      // The paint's top is good to a pixel, the projected base to a couple (a third of a degree of the camera's pitch
+      // at 460 px of focal length): a small cone 15 m away (40 px/m) measured up to 0.47 m on the virtual car. Big
+      // only when taller than the bar by that much: the small cone is the common one.
+      constexpr double kRowsUncertain = 2.0;
       result.height = paint_height(px, winner, v);
-      big = result.height >= cfg_.big_cone_height;
+      big = result.height - kRowsUncertain / v.px_per_m >= cfg_.big_cone_height;
     } else {
       result.stripes = stripes_on_axis(px, winner, cfg_);
       big = result.stripes >= 2;

@@ -154,6 +154,45 @@ TEST(CameraColourScale, BigOrangeFromTheProjectedScaleOrTheLidarHeight) {
     }
 }
 
+// Far away the stage's ROI is a few pixels across and the paint's height is good to a pixel or so, the projected
+// base less so (the car's pitch, the mount: the virtual car's small cones measured up to 0.47 m): cones 15 m away
+// (40 px/m, an ROI of 18 x 26 px) with the base row up to 4 px off either way. A small orange cone is never taken for
+// a big one (the bar is 0.415 m); a big one is big orange at least half the time, else orange.
+TEST(CameraColourScale, AFarSmallOrangeConeIsNotTakenForABigOne) {
+  const ConeColourClassifier classifier;
+  const double px_per_m = 40;
+  const cv::Size roi(18, 26);
+  const double base_row = 0.58 * px_per_m;
+  cv::RNG rng(21);
+  int small_as_big = 0, big_as_big = 0, big_total = 0;
+  for (const bool big : {false, true})
+    for (const double offset : {-4.0, -3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 3.0, 4.0})
+      for (int k = 0; k < 6; ++k) {
+        DrawnCone d;
+        test::paint_cone(d, big ? ConeColour::BigOrange : ConeColour::Orange, rng);
+        d.crop = roi;
+        d.fill = (big ? 0.505 : 0.325) * px_per_m / roi.height;
+        d.base = base_row / roi.height;
+        d.centre = rng.uniform(0.45, 0.55);
+        d.light = rng.uniform(0.7, 1.2);
+        d.noise = 2.0;
+        d.seed = static_cast<std::uint64_t>(100 + k);
+        const ConeView view{cv::Point2d(roi.width / 2.0, base_row + offset), px_per_m};
+        const ColourResult r = classifier.classify(test::draw_cone(d), view);
+        if (r.colour == ConeColour::Unknown) continue;
+        EXPECT_TRUE(r.colour == ConeColour::Orange || r.colour == ConeColour::BigOrange);
+        if (big) {
+          ++big_total;
+          big_as_big += r.colour == ConeColour::BigOrange;
+        } else {
+          small_as_big += r.colour == ConeColour::BigOrange;
+          EXPECT_NE(r.colour, ConeColour::BigOrange) << "offset " << offset << " px, measured " << r.height << " m";
+        }
+      }
+  EXPECT_EQ(small_as_big, 0);
+  EXPECT_GE(big_as_big, big_total / 2) << big_as_big << " of " << big_total;
+}
+
 // FSG events have no red cones: with red off, a red hue reads as orange rather than naming a colour not on track.
 TEST(CameraColourDrawn, RedFoldsIntoOrangeWhenRedIsOff) {
   ConeColourConfig no_red;
