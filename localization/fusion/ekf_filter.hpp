@@ -1,6 +1,6 @@
 #pragma once
 // The EKF of the fusion (issue #17). State (map frame, body velocity at the reference point):
-//   x, y, yaw, vx, vy, yaw rate r, gyro bias b, optical speed scale k.
+//   x, y, yaw, vx, vy, yaw rate r, gyro bias b, optical speed scale k, rear slip compliance c.
 // Between measurements a constant-velocity, constant-turn model (vx, vy, r random walks); each gyro sample
 // measures r + b, each optical sample k·(v + r × lever), the wheels vx + r × lever (only while no optical sample
 // comes), a LiDAR odometry increment the mean (vx, vy, r) over its interval, a GNSS fix the position (through
@@ -20,8 +20,8 @@ namespace fsd::fusion {
 
 class EkfFilter final : public FusionFilter {
  public:
-  static constexpr int kN = 8;
-  enum Index { X = 0, Y, Yaw, Vx, Vy, R, Bias, Scale };
+  static constexpr int kN = 9;
+  enum Index { X = 0, Y, Yaw, Vx, Vy, R, Bias, Scale, Slip };
   using Vec = Eigen::Matrix<double, kN, 1>;
   using Mat = Eigen::Matrix<double, kN, kN>;
 

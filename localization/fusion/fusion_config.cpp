@@ -74,6 +74,9 @@ const ConfigSection<EkfConfig>& ekf_section() {
           .number("scale_walk", &C::scale_walk, 0.0, 0.1, "1/√s", "Random walk of the optical speed scale.")
           .number("position_noise", &C::position_noise, 0.0, 10.0, "m/√s", "Position noise the kinematic model misses.")
           .number("initial_bias_sigma", &C::initial_bias_sigma, 1e-6, 1.0, "rad/s", "Initial σ of the gyro bias.")
+          .number("initial_slip_sigma", &C::initial_slip_sigma, 1e-6, 0.1, "rad/(m/s²)",
+                  "Initial σ of the rear axle's slip compliance (its slip angle per lateral acceleration; from 0).")
+          .number("slip_walk", &C::slip_walk, 0.0, 0.01, "rad/(m/s²)/√s", "Random walk of the rear slip compliance.")
           .number("initial_scale_sigma", &C::initial_scale_sigma, 1e-6, 1.0, "",
                   "Initial σ of the optical speed scale.")
           .number("standstill_rate_sigma", &C::standstill_rate_sigma, 1e-6, 1.0, "rad/s",

@@ -51,6 +51,8 @@ struct EkfConfig {
   double position_noise = 0.1;        // m/√s: what the kinematic model misses (slip of the contact patch, lever arms)
   double initial_bias_sigma = 0.01;   // rad/s
   double initial_scale_sigma = 0.03;  // optical speed scale
+  double initial_slip_sigma = 0.005;  // rad/(m/s²): the rear slip compliance, from 0 (a kinematic rear axle)
+  double slip_walk = 1e-5;            // rad/(m/s²)/√s
   double standstill_rate_sigma = 0.001;  // rad/s: a standing car does not turn (the gyro's bias shows)
   // The GNSS receiver's velocity over ground measures the sideslip the wheels cannot: a sliding car.
   bool gnss_velocity = true;
