@@ -394,18 +394,19 @@ TEST(FusionEkf, TheGnssVelocityKeepsTheFilterWithASlidingCar) {
 
 
 // Round a skid pad at the grip limit: 9.8 m/s, −1.09 rad/s (clockwise), the rear axle sliding 0.45 m/s outwards
-// (2.6° of sideslip, what the virtual car's tyres give there). The wheels give vx alone (their row holds vy near 0),
-// the gyro the yaw rate, the receiver (RTK, 50 Hz) its position, Doppler velocity and a dual-antenna heading of
-// 0.1° noise. The yaw's RMS error over the last 5 s of circling: with the heading at its accuracy (the receiver's
-// stated σ, or localization.fusion.gnss.heading_sigma when it states none) the yaw is the heading's, within 0.3°;
-// weighted as loosely as a heading from the GNSS track, the yaw followed the course and was off by 1.3° (a cone 8 m
-// away 0.17 m off in the map).
-double yaw_rms_round_a_circle(double stated_sigma) {
-  auto f = make_fusion_filter("ekf");
+// (2.6° of sideslip, what the virtual car's tyres give there). The wheels give vx alone, the gyro the yaw rate, the
+// receiver (RTK, 50 Hz) its position, Doppler velocity (at its lever, as the filter reads it) and a dual-antenna
+// heading of 0.1° noise, until `fix_lost_at`; then the gyro and the wheels alone, to 16 s.
+struct Circling {
+  double yaw_rms_deg = 0;  // over the fixes from 11 s on
+  double end_error_m = 0;  // the position at 16 s
+};
+Circling round_a_circle(const FusionConfig& cfg, double stated_heading_sigma, double fix_lost_at = 1e9) {
+  auto f = make_fusion_filter("ekf", cfg);
   std::mt19937 rng(5);
   std::normal_distribution<double> n01(0.0, 1.0);
   constexpr double vx = 9.8, vy = 0.45, r = -1.09, heading_noise = 0.0017;
-  const double lever = FusionConfig{}.ekf.gnss_velocity_lever_x;  // where the receiver's velocity is measured
+  const double lever = cfg.ekf.gnss_velocity_lever_x;
   Pose2 truth{0, 0, 0.4};
   double sum_sq = 0;
   int n = 0;
@@ -418,90 +419,55 @@ double yaw_rms_round_a_circle(double stated_sigma) {
       BodySpeed w;
       w.t = t;
       w.source = BodySpeed::Source::Wheels;
-      w.vx = moving ? vx : 0.0;
+      w.vx = moving ? vx + 0.01 * n01(rng) : 0.0;
       w.has_vy = false;
       f->add(w);
     }
-    if (i % 20 == 7) {
+    if (i % 20 == 7 && t < fix_lost_at) {
       GnssFix g;
       g.t = t;
       g.position = truth.position() + 0.02 * Vec2(n01(rng), n01(rng));
       g.fix_quality = 4;
       g.heading_valid = true;
       g.heading = wrap_angle(truth.yaw + heading_noise * n01(rng));
-      g.heading_sigma = stated_sigma;
+      g.heading_sigma = stated_heading_sigma;
       g.velocity_valid = moving;
       g.velocity = Eigen::Rotation2Dd(truth.yaw) * Vec2(vx, vy + r * lever) + 0.02 * Vec2(n01(rng), n01(rng));
       f->add(g);
-      const auto s = f->state();
       if (t >= 11.0) {
-        sum_sq += std::pow(wrap_angle(s.pose.yaw - truth.yaw), 2);
+        sum_sq += std::pow(wrap_angle(f->state().pose.yaw - truth.yaw), 2);
         ++n;
       }
     }
     if (moving) truth = truth * Pose2{vx * dt, vy * dt, r * dt};
   }
-  return std::sqrt(sum_sq / n) * 180 / std::numbers::pi;
+  return {n ? std::sqrt(sum_sq / n) * 180 / std::numbers::pi : 0.0,
+          (f->state().pose.position() - truth.position()).norm()};
 }
 
+// With the heading at its accuracy (the receiver's stated σ, or localization.fusion.gnss.heading_sigma when it states
+// none) the yaw is the heading's, within 0.3°; weighted as loosely as a heading from the GNSS track, the yaw followed
+// the course and was off by the sideslip (a cone 8 m away 0.17 m off in the map).
 TEST(FusionEkf, TheReceiversHeadingHoldsTheYawOfASlidingCar) {
-  EXPECT_LT(yaw_rms_round_a_circle(0.0017), 0.3);  // PASHR states its σ
-  EXPECT_LT(yaw_rms_round_a_circle(0.0), 0.3);     // HDT does not: the configured σ
+  EXPECT_LT(round_a_circle({}, 0.0017).yaw_rms_deg, 0.3);  // PASHR states its σ
+  EXPECT_LT(round_a_circle({}, 0.0).yaw_rms_deg, 0.3);     // HDT does not: the configured σ
+}
+
+// The fix lost after 14 s for 2 s. The wheels' row holds the rear axle's lateral speed to what the slip compliance
+// learnt from the receiver predicts (0.45 m/s here); held to 0 instead, the pose slides sideways by the slip.
+TEST(FusionEkf, TheLearntRearSlipCarriesASlidingCarThroughAnOutage) {
+  FusionConfig held_to_zero;
+  held_to_zero.ekf.initial_slip_sigma = 1e-6;
+  const double learnt = round_a_circle({}, 0.0017, 14.0).end_error_m;
+  const double zero = round_a_circle(held_to_zero, 0.0017, 14.0).end_error_m;
+  EXPECT_LT(learnt, 0.3) << "held to 0: " << zero;
+  EXPECT_GT(zero, 0.6) << "the outage does not test what it should";
 }
 
 // A car standing for 10 s with its sensors' noise: the wheels 0.007 m/s, the receiver's RTK fixes 0.02 m at 50 Hz and
 // its heading 0.1°. The supervisor takes the car for standing below 0.1 m/s for 0.5 s (AS Finished waits for it):
 // the estimated speed must stay well below that. Held by the wheels' loose row alone it reached 0.045 m/s here,
 // 0.08 m/s on the virtual car.
-// The same circle, the receiver's fix lost after 14 s for 2 s (no position, velocity or heading: the gyro and the
-// wheels alone). The wheels' row holds the rear axle's lateral speed to what the slip compliance it learnt from
-// the receiver predicts (0.45 m/s here); held to 0 instead, the pose slides sideways by the slip: 0.9 m in 2 s.
-double drift_after_losing_the_fix_round_a_circle(double initial_slip_sigma) {
-  FusionConfig cfg;
-  cfg.ekf.initial_slip_sigma = initial_slip_sigma;
-  auto f = make_fusion_filter("ekf", cfg);
-  std::mt19937 rng(8);
-  std::normal_distribution<double> n01(0.0, 1.0);
-  constexpr double vx = 9.8, vy = 0.45, r = -1.09;
-  const double lever = cfg.ekf.gnss_velocity_lever_x;  // where the receiver's velocity is measured
-  Pose2 truth{0, 0, 0.4};
-  const double dt = 0.001;
-  for (int i = 0; i <= 16000; ++i) {
-    const double t = i * dt;
-    const bool moving = t >= 1.0, fix = t < 14.0;
-    if (i % 5 == 0) f->add(ImuSample{t, Vec3(0, 0, (moving ? r : 0.0) + 0.002 * n01(rng)), Vec3::Zero()});
-    if (i % 10 == 3) {
-      BodySpeed w;
-      w.t = t;
-      w.source = BodySpeed::Source::Wheels;
-      w.vx = moving ? vx + 0.01 * n01(rng) : 0.0;
-      w.has_vy = false;
-      f->add(w);
-    }
-    if (i % 20 == 7 && fix) {
-      GnssFix g;
-      g.t = t;
-      g.position = truth.position() + 0.02 * Vec2(n01(rng), n01(rng));
-      g.fix_quality = 4;
-      g.heading_valid = true;
-      g.heading = wrap_angle(truth.yaw + 0.0017 * n01(rng));
-      g.heading_sigma = 0.0017;
-      g.velocity_valid = moving;
-      g.velocity = Eigen::Rotation2Dd(truth.yaw) * Vec2(vx, vy + r * lever) + 0.02 * Vec2(n01(rng), n01(rng));
-      f->add(g);
-    }
-    if (moving) truth = truth * Pose2{vx * dt, vy * dt, r * dt};
-  }
-  return (f->state().pose.position() - truth.position()).norm();
-}
-
-TEST(FusionEkf, TheLearntRearSlipCarriesASlidingCarThroughAnOutage) {
-  const double learnt = drift_after_losing_the_fix_round_a_circle(FusionConfig{}.ekf.initial_slip_sigma);
-  const double held_to_zero = drift_after_losing_the_fix_round_a_circle(1e-6);
-  EXPECT_LT(learnt, 0.3) << "held to 0: " << held_to_zero;
-  EXPECT_GT(held_to_zero, 0.6) << "the outage does not test what it should";
-}
-
 TEST(FusionEkf, AStandingCarsSpeedStaysAtZero) {
   auto f = make_fusion_filter("ekf");
   std::mt19937 rng(3);
