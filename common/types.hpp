@@ -114,7 +114,7 @@ struct GnssSample {
   double age_s = 0;  // differential age
   bool heading_valid = false;
   double heading_sigma = 0;  // rad, 1σ of the heading as the receiver states it (PASHR); 0 when it does not
-  bool good = false;  // usable for lap-2 tracking (fix quality, satellites, HDOP, age)
+  bool good = false;         // usable for lap-2 tracking (fix quality, satellites, HDOP, age)
 };
 
 // Autonomous-system state owned by the VCU (FS rules).

@@ -38,7 +38,8 @@ std::optional<Vec2> vote_centre(const std::vector<Vec2>& pts) {
   std::vector<int> votes(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0);
   const int span = static_cast<int>(std::ceil(reach / kVoteCell));
   for (const auto& p : pts) {
-    const int ix0 = static_cast<int>((p.x() - lo.x()) / kVoteCell), iy0 = static_cast<int>((p.y() - lo.y()) / kVoteCell);
+    const int ix0 = static_cast<int>((p.x() - lo.x()) / kVoteCell),
+              iy0 = static_cast<int>((p.y() - lo.y()) / kVoteCell);
     for (int iy = std::max(0, iy0 - span); iy <= std::min(ny - 1, iy0 + span); ++iy)
       for (int ix = std::max(0, ix0 - span); ix <= std::min(nx - 1, ix0 + span); ++ix) {
         const Vec2 c = lo + kVoteCell * Vec2(ix + 0.5, iy + 0.5);

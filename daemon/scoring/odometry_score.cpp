@@ -62,12 +62,13 @@ void OdometryScore::add_lidar(const Pose2& truth, const Pose2& estimate) {
 }
 
 nlohmann::json OdometryScore::to_json(const std::string& source) const {
-  nlohmann::json j = {{"source", source},
-                      {"ate_m", r4(samples_ ? std::sqrt(sum_sq_ / double(samples_)) : 0.0)},
-                      {"ate_max_m", r4(max_)},
-                      {"yaw_rms_deg", r4(samples_ ? std::sqrt(yaw_sum_sq_ / double(samples_)) * 180 / std::numbers::pi : 0.0)},
-                      {"yaw_max_deg", r4(yaw_max_ * 180 / std::numbers::pi)},
-                      {"samples", samples_}};
+  nlohmann::json j = {
+      {"source", source},
+      {"ate_m", r4(samples_ ? std::sqrt(sum_sq_ / double(samples_)) : 0.0)},
+      {"ate_max_m", r4(max_)},
+      {"yaw_rms_deg", r4(samples_ ? std::sqrt(yaw_sum_sq_ / double(samples_)) * 180 / std::numbers::pi : 0.0)},
+      {"yaw_max_deg", r4(yaw_max_ * 180 / std::numbers::pi)},
+      {"samples", samples_}};
   if (scans_ > 0) {
     const Drift d = drift_of(lidar_);
     j["drift_pct"] = r4(d.end_pct);

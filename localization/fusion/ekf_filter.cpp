@@ -281,9 +281,9 @@ void EkfFilter::on_gnss(const GnssFix& f) {
     Eigen::Matrix<double, 1, kN> Hh = Eigen::Matrix<double, 1, kN>::Zero();
     Hh(0, Yaw) = 1.0;
     const double nu = wrap_angle(f.heading - x_(Yaw));
-    const double nis =
-        update<1>(Eigen::Matrix<double, 1, 1>(x_(Yaw) + nu), Eigen::Matrix<double, 1, 1>(x_(Yaw)), Hh,
-                  Eigen::Matrix<double, 1, 1>(sigma * sigma), -1, insisted ? std::numeric_limits<double>::infinity() : kGate);
+    const double nis = update<1>(Eigen::Matrix<double, 1, 1>(x_(Yaw) + nu), Eigen::Matrix<double, 1, 1>(x_(Yaw)), Hh,
+                                 Eigen::Matrix<double, 1, 1>(sigma * sigma), -1,
+                                 insisted ? std::numeric_limits<double>::infinity() : kGate);
     if (nis > kGate && !insisted) {
       ++out_.headings_rejected;
       if (heading_rejected_since_ < 0) heading_rejected_since_ = f.t;

@@ -83,8 +83,7 @@ const ConfigSection<EkfConfig>& ekf_section() {
                   "σ of the zero yaw rate a standing car is held to.")
           .boolean("gnss_velocity", &C::gnss_velocity,
                    "Take the GNSS receiver's velocity over ground (speed and course): it measures the sideslip.")
-          .number("gnss_velocity_sigma", &C::gnss_velocity_sigma, 1e-3, 10.0, "m/s",
-                  "GNSS velocity noise per axis.")
+          .number("gnss_velocity_sigma", &C::gnss_velocity_sigma, 1e-3, 10.0, "m/s", "GNSS velocity noise per axis.")
           .number("gnss_velocity_lever_x", &C::gnss_velocity_lever_x, -5.0, 5.0, "m",
                   "Where the receiver gives its velocity: this far ahead of the reference point (rear axle).")
           .number("gnss_velocity_gate", &C::gnss_velocity_gate, 1.0, 1e6, "",

@@ -56,7 +56,7 @@ struct EkfConfig {
   double standstill_rate_sigma = 0.001;  // rad/s: a standing car does not turn (the gyro's bias shows)
   // The GNSS receiver's velocity over ground measures the sideslip the wheels cannot: a sliding car.
   bool gnss_velocity = true;
-  double gnss_velocity_sigma = 0.1;    // m/s per axis
+  double gnss_velocity_sigma = 0.1;     // m/s per axis
   double gnss_velocity_lever_x = 0.72;  // m ahead of the reference point: where the velocity is given (the virtual
                                         // car's unit reports its centre of gravity)
   double gnss_velocity_gate = 100.0;    // NIS (2 dof) beyond which a velocity is not taken (a broken one)

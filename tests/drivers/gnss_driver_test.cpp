@@ -83,9 +83,9 @@ void expect_epochs_a_b(const std::vector<GnssSample>& s) {
   EXPECT_TRUE(a.heading_valid);  // from PASHR: the epoch has no HDT
   EXPECT_NEAR(a.heading, deg2rad(90.0 - 27.23), 1e-12);
   EXPECT_NEAR(a.heading_sigma, deg2rad(4.831), 1e-12);  // PASHR's heading accuracy, 1σ in degrees
-  EXPECT_FALSE(a.velocity_valid);  // VTG and RMC without speed
-  EXPECT_FALSE(a.attitude_valid);  // PASHR without pitch
-  EXPECT_FALSE(a.yaw_rate_valid);  // ROT status V
+  EXPECT_FALSE(a.velocity_valid);                       // VTG and RMC without speed
+  EXPECT_FALSE(a.attitude_valid);                       // PASHR without pitch
+  EXPECT_FALSE(a.yaw_rate_valid);                       // ROT status V
   EXPECT_TRUE(a.good);
   EXPECT_NEAR(a.enu.norm(), 0.0, 1e-9);
 

@@ -289,7 +289,6 @@ TEST(FusionFilters, FactoryKnowsBothNames) {
   EXPECT_EQ(make_fusion_filter("ekf")->state().quality, Quality::Lost) << "nothing known yet";
 }
 
-
 }  // namespace
 }  // namespace fsd::fusion
 
@@ -391,7 +390,6 @@ TEST(FusionEkf, TheGnssVelocityKeepsTheFilterWithASlidingCar) {
   EXPECT_LT(with, 0.3) << "without the velocity " << without;
   EXPECT_GT(without, 1.0) << "the slide does not test what it should";
 }
-
 
 // Round a skid pad at the grip limit: 9.8 m/s, −1.09 rad/s (clockwise), the rear axle sliding 0.45 m/s outwards
 // (2.6° of sideslip, what the virtual car's tyres give there). The wheels give vx alone, the gyro the yaw rate, the
