@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/car.hpp"
+
 namespace fsd {
 
 FusedLocalization::FusedLocalization(const Config& cfg) {
@@ -10,6 +12,7 @@ FusedLocalization::FusedLocalization(const Config& cfg) {
   filter_ = fusion::make_fusion_filter(fc.common.filter, fc);
   lidar_odometry_ = fc.common.lidar_odometry;
   good_gnss_timeout_ = fc.common.good_gnss_timeout_s;
+  wheelbase_ = read_car(cfg).wheelbase;
 }
 
 bool FusedLocalization::gnss_recent() const {
@@ -61,6 +64,8 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
     b.source = fusion::BodySpeed::Source::Wheels;
     b.vx = vcu->rear_axle_speed();  // the reference point's speed
     b.has_vy = false;
+    if (wheelbase_ > 0 && std::isfinite(vcu->steering_measured))
+      b.kinematic_yaw_rate = b.vx * std::tan(vcu->steering_measured) / wheelbase_;
     ms.emplace_back(b);
   }
   std::stable_sort(ms.begin(), ms.end(), [](const fusion::Measurement& a, const fusion::Measurement& b) {

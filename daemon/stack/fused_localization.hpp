@@ -38,6 +38,7 @@ class FusedLocalization {
   Stamp newest_ = -1e300;  // the newest stamp handed to the filter
   bool lidar_odometry_ = false;
   double good_gnss_timeout_ = 1.0;
+  double wheelbase_ = 0;  // m: the wheels' kinematic yaw rate
 };
 
 }  // namespace fsd

@@ -72,6 +72,7 @@ double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matr
 void EkfFilter::on_imu(const ImuSample& s) {
   if (!std::isfinite(s.gyro.z())) return;
   last_motion_ = s.t;
+  last_gyro_ = s.t;
   Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
   H(0, R) = 1.0;
   H(0, Bias) = 1.0;
@@ -137,6 +138,18 @@ void EkfFilter::on_speed(const BodySpeed& s) {
     H(1, Slip) = vv * r;
     update<2>(Eigen::Vector2d(s.vx, 0.0), Eigen::Vector2d(vx - r * ly, vy + r * lx + c * vv * r), H,
               Eigen::Vector2d(sig * sig, lat * lat).asDiagonal().toDenseMatrix());
+  }
+  // No gyro for a while (the GNSS-INS, the car's only one, fell silent): the wheels' kinematic yaw rate stands in,
+  // loosely. Without it the yaw rate lived on the LiDAR increments alone, a scan behind the turn, and the scans'
+  // deskew lost the car's turn.
+  constexpr double kGyroStale = 0.1;  // s
+  if (s.source == BodySpeed::Source::Wheels && std::isfinite(s.kinematic_yaw_rate) && s.t - last_gyro_ > kGyroStale) {
+    const double sig =
+        cfg_.ekf.kinematic_rate_sigma + cfg_.ekf.kinematic_rate_fraction * std::abs(s.kinematic_yaw_rate);
+    Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
+    H(0, R) = 1.0;
+    update<1>(Eigen::Matrix<double, 1, 1>(s.kinematic_yaw_rate), Eigen::Matrix<double, 1, 1>(x_(R)), H,
+              Eigen::Matrix<double, 1, 1>(sig * sig));
   }
   if (speed_ < cfg_.common.standstill_speed) {
     // A standing car neither turns nor moves: what the gyro reads is its bias. Held only by the wheels' loose row

@@ -55,6 +55,7 @@ class EkfFilter final : public FusionFilter {
   bool heading_known_ = false;
   double speed_ = 0;  // latest measured ground speed (m/s), for standstill and moving tests
   Stamp last_motion_ = -1e300, last_optical_ = -1e300;
+  Stamp last_gyro_ = -1e300;
   Stamp heading_rejected_since_ = -1;     // first of the receiver headings rejected in a row (-1: none)
   Vec2 motion_since_fix_ = Vec2::Zero();  // dead-reckoned displacement since the previous fix (jump test)
   LocalizationState out_;                 // GNSS verdicts and counters

@@ -77,6 +77,10 @@ const ConfigSection<EkfConfig>& ekf_section() {
           .number("initial_slip_sigma", &C::initial_slip_sigma, 1e-6, 0.1, "rad/(m/s²)",
                   "Initial σ of the rear axle's slip compliance (its slip angle per lateral acceleration; from 0).")
           .number("slip_walk", &C::slip_walk, 0.0, 0.01, "rad/(m/s²)/√s", "Random walk of the rear slip compliance.")
+          .number("kinematic_rate_sigma", &C::kinematic_rate_sigma, 1e-3, 10.0, "rad/s",
+                  "While no gyro sample comes: σ of the wheels' kinematic yaw rate (speed and steering) ...")
+          .number("kinematic_rate_fraction", &C::kinematic_rate_fraction, 0.0, 1.0, "",
+                  "... plus this share of it (the tyres' slip makes the car turn less than its steering says).")
           .number("initial_scale_sigma", &C::initial_scale_sigma, 1e-6, 1.0, "",
                   "Initial σ of the optical speed scale.")
           .number("standstill_rate_sigma", &C::standstill_rate_sigma, 1e-6, 1.0, "rad/s",

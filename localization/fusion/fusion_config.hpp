@@ -53,7 +53,9 @@ struct EkfConfig {
   double initial_scale_sigma = 0.03;  // optical speed scale
   double initial_slip_sigma = 0.005;  // rad/(m/s²): the rear slip compliance, from 0 (a kinematic rear axle)
   double slip_walk = 1e-5;            // rad/(m/s²)/√s
-  double standstill_rate_sigma = 0.001;  // rad/s: a standing car does not turn (the gyro's bias shows)
+  double kinematic_rate_sigma = 0.05;     // rad/s: the wheels' kinematic yaw rate, while no gyro sample comes ...
+  double kinematic_rate_fraction = 0.25;  // ... plus this share of it (understeer at the limit)
+  double standstill_rate_sigma = 0.001;   // rad/s: a standing car does not turn (the gyro's bias shows)
   // The GNSS receiver's velocity over ground measures the sideslip the wheels cannot: a sliding car.
   bool gnss_velocity = true;
   double gnss_velocity_sigma = 0.1;     // m/s per axis

@@ -3,6 +3,7 @@
 // z up at the filter's reference point (the rear-axle centre on the car, the IMU in the AMZ 2017 logs); map frame a
 // local ENU. All stamps on the run's clock, in seconds.
 #include <cstdint>
+#include <limits>
 #include <string_view>
 #include <variant>
 
@@ -31,6 +32,10 @@ struct BodySpeed {
   double vx = 0, vy = 0;  // m/s at the sensor
   bool has_vy = true;     // wheels measure no lateral speed
   Vec2 lever = Vec2::Zero();
+  // Wheels only: the kinematic yaw rate of their speed and the measured steering, vx·tan(δ)/L (NaN: unknown). The
+  // filter takes it only while no gyro sample comes: a rough gyro (the tyres' slip makes the car turn less at the
+  // limit) for when the GNSS-INS, the car's only gyro, falls silent.
+  double kinematic_yaw_rate = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A GNSS position of the reference point in the map frame (lever arm already removed), with what the receiver

@@ -90,5 +90,19 @@ TEST(RealStackFaults, GnssFixLostForGoodOnLapTwoTheLapIsDrivenOnThePoseHeldToThe
   EXPECT_LE(r.report["laps"][1]["time_s"].get<double>(), 0.65 * r.report["laps"][0]["time_s"].get<double>());
 }
 
+TEST(RealStackFaults, GnssInsSilentOnLapTwoTheWheelsStandInForItsGyro) {
+  // The whole GNSS-INS unit goes quiet 3 s into lap 2 and stays so: no fix, no heading, and no yaw rate, the car's
+  // only gyro. The wheels' kinematic yaw rate (speed and measured steering) stands in for it in the fusion, the pose
+  // is held to the lap-1 cone map, and lap 2 stays on the recorded lap (without the stand-in the scans' deskew lost
+  // the car's turn and it hit 3 cones).
+  const FsdRun r =
+      run_with_faults("real_gnss_silent", {{"gnss", {{"lap", 2}, {"at_s", 3.0}, {"mode", "silent"}}}}, Sources::Real);
+  expect_clean_two_laps(r);
+  const auto gnss = faults_of(r, "gnss");
+  ASSERT_EQ(gnss.size(), 1u) << r.report["faults"].dump();
+  EXPECT_EQ(gnss[0]["what"], "fix lost, the pose held to the cone map");
+  EXPECT_LE(r.report["laps"][1]["cte_rms_m"].get<double>(), 0.15);
+}
+
 }  // namespace
 }  // namespace fsd
