@@ -72,18 +72,18 @@ std::optional<SkidpadCircle> fit_rings(const std::vector<Vec2>& pts) {
     const Vec2 c(x(0), x(1));
     const double split = 0.5 * (x(2) + x(3));
     std::vector<double> res(pts.size()), kept;
+    std::vector<bool> in(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const double d = (pts[i] - c).norm();
-      res[i] = std::abs(d - (d < split ? x(2) : x(3)));
+      in[i] = d < split;
+      res[i] = std::abs(d - (in[i] ? x(2) : x(3)));
       if (use[i]) kept.push_back(res[i]);
     }
     std::nth_element(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2), kept.end());
     const double bound = std::max(kRingTolerance, 3.0 * kept[kept.size() / 2]);
     int inner = 0, outer = 0;
-    std::vector<bool> in(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
       use[i] = res[i] <= bound;
-      in[i] = (pts[i] - c).norm() < split;
       inner += use[i] && in[i];
       outer += use[i] && !in[i];
     }

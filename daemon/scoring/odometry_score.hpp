@@ -36,9 +36,9 @@ class OdometryScore {
   void add_state(const Pose2& truth, const Pose2& estimate);
   // The LiDAR odometry's pose at a scan against the truth at the scan's instant.
   void add_lidar(const Pose2& truth, const Pose2& estimate);
-  // {"source", "ate_m", "ate_max_m", "yaw_rms_deg", "yaw_max_deg", "samples"} and, when the LiDAR odometry ran, "lidar": {"distance_m",
-  // "end_error_m", "drift_pct" (end-point), "segment_drift_pct" (50 m), "scans"}; "drift_pct" at the top is the
-  // LiDAR odometry's end-point drift (absent without it).
+  // {"source", "ate_m", "ate_max_m", "yaw_rms_deg", "yaw_max_deg", "samples"} and, when the LiDAR odometry ran,
+  // "lidar": {"distance_m", "end_error_m", "drift_pct" (end-point), "segment_drift_pct" (50 m), "scans"};
+  // "drift_pct" at the top is the LiDAR odometry's end-point drift (absent without it).
   nlohmann::json to_json(const std::string& source) const;
 
  private:
