@@ -6,6 +6,9 @@
 //   for each steering law, the car stepping round the lap.
 //   Lap build: lap 2's path from lap 1's recorded poses (the centre line driven at 0.3 m spacing) and the map,
 //   on the centre line or the minimum-curvature line: once per run, on the control thread.
+//   Skid pad fit: the figure of eight's two ring fits (vote + Gauss-Newton) on amz_fssim_skidpad's cones, all of
+//   them and those within 20 m of the start (the view from the entry): on the control thread, each fresh map until
+//   the car drives the left circle.
 //   Run: build/bench/control_bench  (from the project root, so that ../shared resolves)
 #include <benchmark/benchmark.h>
 
@@ -15,6 +18,7 @@
 
 #include "common/thread_cpu.hpp"
 #include "common/track.hpp"
+#include "control/missions/skidpad.hpp"
 #include "control/planning/realtime_planner.hpp"
 #include "control/planning/recorded_trajectory.hpp"
 #include "control/planning/smoothing.hpp"
@@ -93,6 +97,25 @@ void BM_RealtimePlan(benchmark::State& state) {
   state.counters["failed"] = static_cast<double>(failed);
 }
 BENCHMARK(BM_RealtimePlan)->Arg(1)->Arg(0)->ArgName("colours")->Iterations(500)->Unit(benchmark::kMicrosecond);
+
+void BM_SkidpadFit(benchmark::State& state) {
+  const Track t = load_track("../shared/tracks/amz_fssim_skidpad.csv");
+  std::vector<Cone> cones;
+  for (const Cone& c : cones_of(t))
+    if (state.range(0) == 0 || (c.position.head<2>() - t.start.position()).norm() <= 20.0) cones.push_back(c);
+  std::vector<double> us;
+  std::size_t failed = 0;
+  for (auto _ : state) {
+    const double t0 = thread_cpu_us();
+    const auto g = fit_skidpad(cones, t.start, t.convention);
+    us.push_back(thread_cpu_us() - t0);
+    failed += !g;
+    benchmark::DoNotOptimize(g);
+  }
+  report(state, us);
+  state.counters["failed"] = static_cast<double>(failed);
+}
+BENCHMARK(BM_SkidpadFit)->Arg(0)->Arg(1)->ArgName("entry_view")->Iterations(300)->Unit(benchmark::kMicrosecond);
 
 void BM_Follow(benchmark::State& state) {
   const Fixture& f = fixture();

@@ -40,13 +40,36 @@ std::optional<Vec2> vote_centre(const std::vector<Vec2>& pts) {
   for (const auto& p : pts) {
     const int ix0 = static_cast<int>((p.x() - lo.x()) / kVoteCell),
               iy0 = static_cast<int>((p.y() - lo.y()) / kVoteCell);
-    for (int iy = std::max(0, iy0 - span); iy <= std::min(ny - 1, iy0 + span); ++iy)
-      for (int ix = std::max(0, ix0 - span); ix <= std::min(nx - 1, ix0 + span); ++ix) {
-        const Vec2 c = lo + kVoteCell * Vec2(ix + 0.5, iy + 0.5);
-        const double d = (p - c).norm();
-        if (std::abs(d - kRulesInner) <= kVoteTolerance || std::abs(d - kRulesOuter) <= kVoteTolerance)
-          ++votes[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix)];
+    for (int iy = std::max(0, iy0 - span); iy <= std::min(ny - 1, iy0 + span); ++iy) {
+      const double dy = lo.y() + kVoteCell * (iy + 0.5) - p.y();
+      // Only the cells of this row that can lie on a ring's band (|d − r| ≤ tolerance) are looked at: the two bands
+      // are metres apart, so each cell is counted at most once, and a row's two arcs of one band once if they meet.
+      for (const double r : {kRulesInner, kRulesOuter}) {
+        const double outer = r + kVoteTolerance, inner = r - kVoteTolerance;
+        if (std::abs(dy) > outer) continue;
+        const double xo = std::sqrt(outer * outer - dy * dy);
+        const double xi = inner > std::abs(dy) ? std::sqrt(inner * inner - dy * dy) : 0.0;
+        const auto column = [&](double dx) { return (p.x() + dx - lo.x()) / kVoteCell - 0.5; };  // a cell at dx
+        const auto vote = [&](int from, int to) {
+          for (int ix = std::max({0, ix0 - span, from}); ix <= std::min({nx - 1, ix0 + span, to}); ++ix) {
+            const Vec2 c = lo + kVoteCell * Vec2(ix + 0.5, iy + 0.5);
+            if (std::abs((p - c).norm() - r) <= kVoteTolerance)
+              ++votes[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix)];
+          }
+        };
+        // The band's cells on this row: dx in [−xo, −xi] and [xi, xo], one run where the two meet.
+        const int left_from = static_cast<int>(std::floor(column(-xo)));
+        const int left_to = static_cast<int>(std::ceil(column(-xi)));
+        const int right_from = static_cast<int>(std::floor(column(xi)));
+        const int right_to = static_cast<int>(std::ceil(column(xo)));
+        if (left_to >= right_from) {
+          vote(left_from, right_to);
+        } else {
+          vote(left_from, left_to);
+          vote(right_from, right_to);
+        }
       }
+    }
   }
   const auto best = std::max_element(votes.begin(), votes.end()) - votes.begin();
   return lo + kVoteCell * Vec2(best % nx + 0.5, best / nx + 0.5);
