@@ -168,6 +168,7 @@ MissionInput Autopilot::mission_input(Stamp now, bool plan_ok) const {
   in.plan = plan_ ? &*plan_ : nullptr;
   in.plan_ok = plan_ok;
   in.gnss_ok = gnss_good_ && gnss_good_since_ && now - *gnss_good_since_ <= config_.gnss_timeout;
+  in.gnss_seen = gnss_good_since_.has_value();
   in.map_matched = map_matched_ && now - *map_matched_ <= config_.map_match_timeout;
   in.odometer = odometer_;
   in.progress_s = progress_s_;

@@ -17,7 +17,6 @@ const ConfigSection<MapMatchConfig>& map_match_section() {
                   "A detection pairs with the nearest mapped cone this close to where the pose puts it.")
           .number("max_range", &MapMatchConfig::max_range, 1.0, 100.0, "m", "Detections farther away are not used.")
           .integer("min_pairs", &MapMatchConfig::min_pairs, 2, 1000, "", "Fewer pairs: no correction.")
-          .number("gain", &MapMatchConfig::gain, 0.0, 1.0, "", "Share of each frame's alignment applied to the pose.")
           .number("max_step", &MapMatchConfig::max_step, 0.01, 10.0, "m",
                   "An alignment moving the pose more than this is taken for a wrong pairing and not applied.")
           .number("fused_sigma", &MapMatchConfig::fused_sigma, 0.005, 10.0, "m",
@@ -69,8 +68,7 @@ std::optional<MapMatch> match_to_map(const std::vector<Cone>& detections, const 
   out.rms_before = std::sqrt(before / static_cast<double>(pairs.size()));
   out.rms_after = std::sqrt(after / static_cast<double>(pairs.size()));
   if (t.norm() > cfg.max_step || !(out.rms_after <= out.rms_before)) return std::nullopt;
-  // A share of it, as a map ← estimated correction: rotate about the car, then shift.
-  out.correction = share_of_correction(car, yaw, t, cfg.gain);
+  // As a map ← estimated correction: rotate about the car, then shift.
   out.alignment = share_of_correction(car, yaw, t, 1.0);
   return out;
 }

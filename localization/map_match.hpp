@@ -1,11 +1,9 @@
 #pragma once
-// Localization against the cone map (run.localization_source = lidar_odometry, and the fused source while no GNSS
-// fix is recent: daemon/stack/fused_localization.hpp): each perception frame's cones are
-// paired with the mapped cones near where the pose puts them, and the rigid motion that lays the pairs onto the
-// map corrects the pose, a share of it per frame. The LiDAR odometry alone drifts again within a lap after the
-// loop closure corrected the start, and its heading wobbles scan to scan; the map (from lap 2 on the one lap 1
-// built and closed) is the reference it lacks. The cones of this frame are then mapped by the corrected pose.
-// Pure: no I/O, no clock.
+// Localization against the cone map: each perception frame's cones are paired with the mapped cones near where the
+// pose puts them, and the rigid motion that lays the pairs onto the map is a pose measurement of the fusion filter
+// while no GNSS fix is recent (daemon/stack/fused_localization.hpp): always without satellites, where the map (from
+// lap 2 on the one lap 1 built and closed) is the only absolute reference. A match also tells control that the pose
+// agrees with the map. Pure: no I/O, no clock.
 #include <optional>
 #include <vector>
 
@@ -20,17 +18,15 @@ struct MapMatchConfig {
   double gate = 0.7;        // m: a detection pairs with the nearest mapped cone this close (where the pose puts it)
   double max_range = 15.0;  // m: detections farther away are not used (their position is less sure)
   int min_pairs = 4;        // fewer pairs: no correction (a straight of one row constrains nothing across)
-  double gain = 0.3;        // share of the frame's alignment applied (the odometry is smooth; a match may be off)
   double max_step = 0.3;    // m: an alignment moving the pose more than this is no match (a wrong pairing)
-  // The fused source (GNSS lost): a frame's whole alignment is a pose measurement of the fusion filter, this sure.
+  // No GNSS fix recent: a frame's alignment is a pose measurement of the fusion filter, this sure.
   double fused_sigma = 0.10;      // m per axis
   double fused_yaw_sigma = 0.02;  // rad
 };
 const ConfigSection<MapMatchConfig>& map_match_section();  // "localization.map_match"
 
 struct MapMatch {
-  Pose2 correction;  // map ← estimated: the share `gain` of the alignment
-  Pose2 alignment;   // map ← estimated: the whole alignment (a pose measurement for the fused source)
+  Pose2 alignment;  // map ← estimated: the pose measurement (applied to the estimate it was matched at)
   int pairs = 0;
   double rms_before = 0, rms_after = 0;  // m, of the pairs, before and after the full alignment
 };

@@ -39,22 +39,6 @@ class PoseHistory {
   void correct(const std::function<Pose2(Stamp)>& correction) {
     for (auto& s : poses_) s.pose = correction(s.t) * s.pose;
   }
-  // The pose at `to` is now known to be `at_to` (the LiDAR odometry matched the scan that ended then), and the
-  // poses held since `from` (the previous such match) were carried forward from there: each pose after `to` moves
-  // by the whole correction, one between the two by the share of the span elapsed (the carry's error grows with
-  // time), about the pose held at `to`; those up to `from` stay. False (nothing moved) without a pose at `to` to
-  // correct or with `to` not after `from`.
-  bool settle(Stamp from, Stamp to, const Pose2& at_to) {
-    if (poses_.empty() || !(to > from) || poses_.back().t < to) return false;
-    const Pose2 held = *at(to);
-    const double dyaw = wrap_angle(at_to.yaw - held.yaw);
-    const Vec2 shift = at_to.position() - held.position();
-    correct([&](Stamp t) {
-      const double u = std::clamp((t - from) / (to - from), 0.0, 1.0);
-      return share_of_correction(held.position(), dyaw, shift, u);
-    });
-    return true;
-  }
   std::optional<Stamp> newest() const {
     if (poses_.empty()) return std::nullopt;
     return poses_.back().t;

@@ -48,6 +48,7 @@ struct MissionInput {
   const Path* plan = nullptr;                // the newest real-time plan (missions that use the planner)
   bool plan_ok = false;                      // the planner made that plan in this cycle
   bool gnss_ok = false;                      // a good GNSS fix within control.gnss_timeout
+  bool gnss_seen = false;                    // a good GNSS fix ever (without satellites: never)
   bool map_matched = false;                  // the pose matched to the cone map within control.map_match_timeout
   double odometer = 0;                       // m driven since the first state
   double progress_s = 0;                     // m: arc length of the car on the path it last followed

@@ -97,10 +97,13 @@ MissionPath TrackdriveMission::update_path(const MissionInput& in) {
   // The recorded lap from shortly before the first line, while the pose is anchored: a good GNSS fix, or without
   // one the pose matched to the cone map lap 1 built (the LiDAR odometry carries it between matches).
   if (lap_path_ && lap_counter_ && target_laps() > 1) {
+    // Without satellites (no good fix ever) the cone map alone anchors the pose: its loss is the fault.
     const bool anchored = in.gnss_ok || in.map_matched;
-    out.faults.push_back({"gnss", "fix lost", "fallback to real-time planning", !anchored});
-    out.faults.push_back(
-        {"gnss", "fix lost, the pose held to the cone map", "recorded lap kept", !in.gnss_ok && anchored});
+    out.faults.push_back({"gnss", "fix lost", "fallback to real-time planning", in.gnss_seen && !anchored});
+    out.faults.push_back({"gnss", "fix lost, the pose held to the cone map", "recorded lap kept",
+                          in.gnss_seen && !in.gnss_ok && anchored});
+    out.faults.push_back({"localization", "pose not matched to the cone map", "fallback to real-time planning",
+                          !in.gnss_seen && !anchored});
     if (anchored) {
       out.source = PathSource::Recorded;
       out.path = &*lap_path_;

@@ -4,13 +4,23 @@
 #include <cmath>
 
 #include "common/car.hpp"
+#include "daemon/stack/lidar_localization.hpp"
 
 namespace fsd {
 
-FusedLocalization::FusedLocalization(const Config& cfg) {
+namespace {
+// How well the start pose is known without satellites: it is the map frame's definition, so only the staging's
+// error counts (a car placed on the start line by hand: a centimetre, a tenth of a degree).
+constexpr double kStartSigma = 0.01;      // m
+constexpr double kStartYawSigma = 0.002;  // rad
+}  // namespace
+
+FusedLocalization::FusedLocalization(const Config& cfg, Satellites satellites) : satellites_(satellites) {
   const auto fc = fusion::read_fusion_config(cfg);
   filter_ = fusion::make_fusion_filter(fc.common.filter, fc);
-  lidar_odometry_ = fc.common.lidar_odometry;
+  lidar_odometry_ = fc.common.lidar_odometry || satellites == Satellites::Denied;
+  if (satellites == Satellites::Denied)
+    filter_->start_at(start_pose_section().read(cfg).pose(), kStartSigma, kStartYawSigma);
   good_gnss_timeout_ = fc.common.good_gnss_timeout_s;
   wheelbase_ = read_car(cfg).wheelbase;
 }
@@ -32,18 +42,13 @@ std::optional<Pose2> FusedLocalization::add_map_correction(const Pose2& correcti
 void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::optional<VcuStatus>& vcu,
                             const std::optional<fusion::OdometryIncrement>& odometry) {
   std::vector<fusion::Measurement> ms;
-  if (odometry && lidar_odometry_) {
-    // A scan is complete only when the next one's first packet arrives, so its last firing can be a few ms older
-    // than what the filter has taken (dropped as out of order). The mean velocity over the scan is what the
-    // increment says: it is applied at the filter's time, its interval kept.
-    fusion::OdometryIncrement o = *odometry;
-    const double late = newest_ - o.t1;
-    if (late > 0) o.t0 += late, o.t1 += late;
-    ms.emplace_back(o);
-  }
+  // A scan is complete only when the next one's first packet arrives and is processed after: its increment is
+  // older than what the filter has taken, and the filter reads it against its own motion over the same interval.
+  if (odometry && lidar_odometry_) ms.emplace_back(*odometry);
   for (const auto& s : gnss) {
     if (s.yaw_rate_valid && std::isfinite(s.yaw_rate))
       ms.emplace_back(fusion::ImuSample{s.stamp, Vec3(0, 0, s.yaw_rate), Vec3::Zero()});
+    if (satellites_ == Satellites::Denied) continue;
     fusion::GnssFix f;
     f.t = s.stamp;
     f.position = s.enu.head<2>();
@@ -71,10 +76,7 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
   std::stable_sort(ms.begin(), ms.end(), [](const fusion::Measurement& a, const fusion::Measurement& b) {
     return fusion::stamp_of(a) < fusion::stamp_of(b);
   });
-  for (const auto& m : ms) {
-    newest_ = std::max(newest_, fusion::stamp_of(m));
-    filter_->add(m);
-  }
+  for (const auto& m : ms) filter_->add(m);
 }
 
 std::optional<VehicleState> FusedLocalization::state(double steering_measured) const {

@@ -39,8 +39,8 @@ std::optional<double> mean_over(const std::deque<LidarLocalizationMotion>& q, St
 }  // namespace
 
 std::unique_ptr<lidar_odometry::LidarOdometry> make_odometry(const Config& cfg, const Pose3& body_from_sensor) {
-  auto odometry =
-      std::make_unique<lidar_odometry::LidarOdometry>(lidar_odometry::read_lidar_odometry_config(cfg), body_from_sensor);
+  auto odometry = std::make_unique<lidar_odometry::LidarOdometry>(lidar_odometry::read_lidar_odometry_config(cfg),
+                                                                  body_from_sensor);
   // The car stands at the start: a standing first prediction is right.
   odometry->start_at(start_pose_section().read(cfg).pose().to_pose3());
   return odometry;
@@ -77,34 +77,6 @@ std::optional<lidar_odometry::Vec6> LidarLocalization::measured(Stamp from, Stam
   twist[0] = *v;
   twist[5] = *r;
   return twist;
-}
-
-std::optional<VehicleState> LidarLocalization::state(Stamp now, double steering) const {
-  if (!have_) return std::nullopt;
-  // From the scan's last firing to now (at most a scan period, ~0.8 m at 8 m/s): the car's measured motion, else
-  // the newest increment's own (the odometry's low-passed twist lags braking and turn-in by half a second).
-  double vx = 0, vy = 0, r = 0;
-  const auto m = measured(last_.stamp, now);
-  if (m) {
-    vx = (*m)[0];
-    r = (*m)[5];
-  } else if (last_.has_increment) {
-    const fusion::MeanTwist t = fusion::mean_twist(last_.increment);
-    vx = t.vx, vy = t.vy, r = t.yaw_rate;
-  }
-  const double ahead = std::max(0.0, now - last_.stamp);
-  const Pose2 at_scan = map_from_odometry_ * to_pose2(last_.pose);
-  const double half = 0.5 * r * ahead;  // along the chord of the arc
-  const Vec2 step = Eigen::Rotation2Dd(half) * Vec2(vx * ahead, vy * ahead);
-  VehicleState s;
-  s.stamp = std::max(now, last_.stamp);
-  s.pose = at_scan * Pose2{step.x(), step.y(), r * ahead};
-  s.vx = vx;
-  s.vy = vy;
-  s.yaw_rate = r;
-  s.ay = s.kinematic_ay();
-  s.steering = std::isfinite(steering) ? steering : 0.0;
-  return s;
 }
 
 std::optional<fusion::OdometryIncrement> LidarLocalization::increment() const {

@@ -1,18 +1,14 @@
 #pragma once
-// run.localization_source = lidar_odometry: the pose from the LiDAR alone. Each VLP-16 scan goes through the
-// LOAM-style odometry (localization/lidar_odometry), integrated from the start pose (localization.start.*: where
-// the car stands at the start, in the map frame; the map frame's origin by default, DESIGN.md §5). The odometry
-// gives a pose at each scan's last firing (10 Hz). With localization.lidar_odometry.vehicle_motion the car's own
-// motion sensors (the rear wheels' speed, the GNSS-INS unit's yaw rate: never its position) deskew and predict
-// each scan, as LOAM's IMU-aided mode does, and carry the pose from the scan to each control cycle; without them,
-// the newest increment's motion carries it.
+// The LiDAR odometry's side on the control thread: each VLP-16 scan goes through the LOAM-style odometry
+// (localization/lidar_odometry), integrated from the start pose (localization.start: where the car stands at the
+// start, in the map frame; the map frame's origin by default, DESIGN.md §5). With
+// localization.lidar_odometry.vehicle_motion the car's own motion sensors (the rear wheels' speed, the GNSS-INS
+// unit's yaw rate: never its position) deskew and predict each scan, as LOAM's IMU-aided mode does.
 //
-// This is the control thread's side: the motion measurements, the newest scan's output, the loop closures'
-// correction. The odometry's scan match itself runs on the Stack's processing thread (ScanProcessor, made by
-// make_odometry), which takes each scan with the twist measured over it (motion_over) and hands the output back
-// (accept).
-//
-// The fused source uses the same odometry for its increments (localization.fusion.lidar_odometry).
+// The odometry's scan match itself runs on the Stack's processing thread (ScanProcessor, made by make_odometry),
+// which takes each scan with the twist measured over it (motion_over) and hands the output back (accept); its
+// increments go into the fusion filter (FusedLocalization), with the satellites (the fused source) or without
+// them (the lidar_odometry source).
 #include <deque>
 #include <memory>
 #include <optional>
@@ -50,13 +46,6 @@ class LidarLocalization {
   void accept(const lidar_odometry::OdometryOutput& out);
   // The car's measured motion: the rear axle's forward speed and the yaw rate (either may be absent), by stamp.
   void add_motion(Stamp t, std::optional<double> speed, std::optional<double> yaw_rate);
-  // The state at `now`, carried forward from the newest scan's pose with the odometry's twist; empty before the
-  // first scan. `steering`: the VCU's measured steering angle (not the LiDAR's to know).
-  std::optional<VehicleState> state(Stamp now, double steering) const;
-  // A loop closure: the odometry's poses are off by `map_from_estimate` (map ← the pose as state() gave it); state()
-  // gives corrected poses from now on. The odometry itself and its increments stay as they are (output(): raw).
-  void correct(const Pose2& map_from_estimate) { map_from_odometry_ = map_from_estimate * map_from_odometry_; }
-  const Pose2& map_from_odometry() const { return map_from_odometry_; }
   // The newest scan's increment, if it had one (the first scan has none).
   std::optional<fusion::OdometryIncrement> increment() const;
 
@@ -68,7 +57,6 @@ class LidarLocalization {
   std::deque<LidarLocalizationMotion> speeds_, yaw_rates_;  // the last second of each, bounded
   lidar_odometry::OdometryOutput last_;
   bool have_ = false;
-  Pose2 map_from_odometry_;  // the loop closures' corrections so far
 };
 
 }  // namespace fsd

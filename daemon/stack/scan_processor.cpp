@@ -6,9 +6,7 @@ namespace fsd {
 
 ScanProcessor::ScanProcessor(std::unique_ptr<LidarCameraDetector> detector,
                              std::unique_ptr<lidar_odometry::LidarOdometry> odometry, std::function<double()> wall)
-    : detector_(std::move(detector)),
-      odometry_(std::move(odometry)),
-      wall_(std::move(wall)) {}
+    : detector_(std::move(detector)), odometry_(std::move(odometry)), wall_(std::move(wall)) {}
 
 ScanProcessor::~ScanProcessor() = default;
 
@@ -20,8 +18,6 @@ ScanResult ScanProcessor::process(ScanJob job) {
     const double w0 = wall_();
     r.odometry = odometry_->process(*job.scan, job.measured);
     r.odometry_s = wall_() - w0;
-    if (job.settle_from && job.poses.reaches_back_to(*job.settle_from))
-      job.poses.settle(*job.settle_from, r.odometry->stamp, job.map_from_odometry * to_pose2(r.odometry->pose));
   }
   if (job.detect && detector_ && !job.poses.empty()) {
     const double w0 = wall_();

@@ -33,11 +33,6 @@ struct ScanJob {
   // The camera frame taken nearest the scan, as the camera sent it (decoded here).
   std::shared_ptr<const std::vector<std::uint8_t>> camera_jpeg;
   Stamp camera_capture = 0;
-  // The LiDAR alone: the poses carried since the previous scan's match (`settle_from`) move onto this scan's
-  // odometry pose (map ← odometry: `map_from_odometry`) before the stages place the scan, as the control thread
-  // moves its own when the result comes back (PoseHistory::settle).
-  std::optional<Stamp> settle_from;
-  Pose2 map_from_odometry;
 };
 
 struct ScanResult {
@@ -47,7 +42,7 @@ struct ScanResult {
   bool camera_decode_failed = false;  // a camera frame was given and did not decode (the LiDAR stages alone ran)
   std::optional<LidarCameraCounters> detector_counters;  // the detector's, after this scan
   double odometry_s = 0, perception_s = 0;               // wall time of each
-  std::string failure;                                    // the processing threw: what (nothing else is set)
+  std::string failure;                                   // the processing threw: what (nothing else is set)
 
   static ScanResult failed(const std::exception& e) {
     ScanResult r;

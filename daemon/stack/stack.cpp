@@ -40,12 +40,12 @@ namespace fsd {
 
 namespace {
 
-constexpr int kTelemetryEvery = 4;            // control cycles between dashboard snapshots (25 Hz at 100 Hz)
-constexpr std::size_t kMaxLinkFaults = 256;   // VCU link events kept for the report
-constexpr std::size_t kMaxGnssPending = 256;  // samples decoded between two cycles (50 Hz: one or two)
-constexpr std::size_t kCameraFramesKept = 4;  // the newest camera frames, for the one nearest each scan (20 Hz)
-constexpr std::size_t kPosesKept = 512;       // the localization's poses: over 2 s at 100 Hz + 50 Hz
-constexpr std::size_t kRemoteFramesKept = 8;  // dds: perception frames between two cycles (10 Hz: one)
+constexpr int kTelemetryEvery = 4;                 // control cycles between dashboard snapshots (25 Hz at 100 Hz)
+constexpr std::size_t kMaxLinkFaults = 256;        // VCU link events kept for the report
+constexpr std::size_t kMaxGnssPending = 256;       // samples decoded between two cycles (50 Hz: one or two)
+constexpr std::size_t kCameraFramesKept = 4;       // the newest camera frames, for the one nearest each scan (20 Hz)
+constexpr std::size_t kPosesKept = 512;            // the localization's poses: over 2 s at 100 Hz + 50 Hz
+constexpr std::size_t kRemoteFramesKept = 8;       // dds: perception frames between two cycles (10 Hz: one)
 constexpr std::uint64_t kScanFailuresLogged = 10;  // scans whose processing failed, logged one by one
 
 double steady_seconds() {
@@ -94,11 +94,11 @@ struct Stack::Impl {
 
   // Perception and mapping.
   TruthPerception truth_perception;
-  bool detects = false;                          // the lidar and lidar_camera sources: the stages on each scan
-  bool camera_stage = false;                     // lidar_camera: and the camera stage
-  PoseHistory poses{kPosesKept};                 // the localization's, for deskew, accumulation and the camera
-  std::unique_ptr<FusedLocalization> fused;      // the fused source
-  std::unique_ptr<LidarLocalization> odometry;   // the lidar_odometry source, and the fused one's increments
+  bool detects = false;                         // the lidar and lidar_camera sources: the stages on each scan
+  bool camera_stage = false;                    // lidar_camera: and the camera stage
+  PoseHistory poses{kPosesKept};                // the localization's, for deskew, accumulation and the camera
+  std::unique_ptr<FusedLocalization> fused;     // the fused and lidar_odometry (satellites denied) sources
+  std::unique_ptr<LidarLocalization> odometry;  // the LiDAR odometry's scans, its increments into `fused`
   // The scans' stages (perception, the odometry's scan match): touched only through the jobs handed to them, one
   // scan at a time, on the processing thread (StackOptions::scan_worker; declared after the processor, so it goes
   // first) or inside the step.
@@ -112,7 +112,6 @@ struct Stack::Impl {
   LidarCameraCounters detector_counters;  // as of the newest processed scan
   double perceived_from = 0;              // this cycle: the wall time its perception frame's latency counts from
   Stamp odometry_vcu_stamp = -1e300;      // the newest VCU status the odometry has taken
-  std::optional<Stamp> odometry_scan_end;         // the last firing of the scan the odometry took last
   std::function<void(const lidar_odometry::OdometryOutput&)> odometry_hook;
   std::uint64_t perception_frames = 0;
   struct RemoteFrame {
@@ -124,8 +123,7 @@ struct Stack::Impl {
   std::uint64_t remote_late = 0;
   std::uint64_t map_poses_applied = 0;  // fused: cone-map matches the filter took while no GNSS fix was recent
   ConeMap cone_map;
-  MapMatchConfig map_match;                               // the LiDAR alone: the pose drawn towards the cone map
-  std::optional<double> lidar_odometry_max_speed;         // the LiDAR alone: control.speed.v_max capped to it
+  MapMatchConfig map_match;                               // the pose drawn towards the cone map
   std::unique_ptr<loop_closure::LoopCloser> loop_closer;  // lidar_odometry: each lap's loop on the start's cones
   std::unique_ptr<LoopSolveThread> loop_worker;           // real time: the loop's solve off the control thread
   double loop_step_s = 0;  // the control thread's time of the closing frame whose solve is out
@@ -185,14 +183,17 @@ struct Stack::Impl {
       log->info("no ground truth on the car: run.localization_source = truth drives on the GNSS-INS pose");
     }
     if (localization_source == "fused") fused = std::make_unique<FusedLocalization>(cfg);
-    if (localization_source == "lidar_odometry" || (fused && fused->takes_lidar_odometry())) {
-      odometry = std::make_unique<LidarLocalization>(cfg);
+    if (localization_source == "lidar_odometry") {
+      fused = std::make_unique<FusedLocalization>(cfg, FusedLocalization::Satellites::Denied);
       const StartPose start = start_pose_section().read(cfg);
-      log->info("localization: LiDAR odometry from x {:.2f} y {:.2f} yaw {:.3f}{}", start.x, start.y, start.yaw,
-                fused ? ", its increments into the fusion filter" : "");
+      log->info(
+          "localization: without satellites, from x {:.2f} y {:.2f} yaw {:.3f}: the LiDAR odometry, the wheels "
+          "and the gyro fused, held to the cone map",
+          start.x, start.y, start.yaw);
     }
-    // Only the LiDAR odometry drifts without bound: the fused pose is held by GNSS-INS fixes, the truth and gnss
-    // sources have nothing to close.
+    if (fused && fused->takes_lidar_odometry()) odometry = std::make_unique<LidarLocalization>(cfg);
+    // Only without satellites does the pose drift without bound: the fused pose is held by GNSS-INS fixes, the
+    // truth and gnss sources have nothing to close.
     if (localization_source == "lidar_odometry") {
       const auto lc = loop_closure::read_loop_closure_config(cfg);
       if (lc.enabled) loop_closer = std::make_unique<loop_closure::LoopCloser>(lc);
@@ -246,9 +247,6 @@ struct Stack::Impl {
     vcu->set_mission(opt.mission);
 
     control = opt.control ? *opt.control : read_control(cfg);
-    if (localization_source == "lidar_odometry")
-      lidar_odometry_max_speed = lidar_odometry::odometry_section().read(cfg).max_speed;
-    within_localization(control);
     control.mission.laps = opt.laps;
     plan_budget = control.planner.time_budget;
     autopilot = std::make_unique<Autopilot>(control, opt.mission, convention);
@@ -367,15 +365,9 @@ struct Stack::Impl {
       for (auto* tap : taps) tap->on_param(now, *change);
     }
     if (!any) return;
-    within_localization(control);
     control.mission.laps = opt.laps;
     plan_budget = control.planner.time_budget;
     autopilot->set_config(control);
-  }
-
-  // The LiDAR alone keeps track only so fast (localization.lidar_odometry.max_speed): the car drives no faster.
-  void within_localization(AutopilotConfig& c) const {
-    if (lidar_odometry_max_speed) c.speed.v_max = std::min(c.speed.v_max, *lidar_odometry_max_speed);
   }
 
   // The perception source's frame, when one is due: detections (vehicle frame) into the map, the map to control.
@@ -401,17 +393,11 @@ struct Stack::Impl {
   void map_detections(Stamp now, ConeDetections det, Pose2 pose, std::span<const Cone> camera_rejected,
                       double stage_s) {
     const double w0 = wall();
-    // The LiDAR alone: the pose drawn towards the cone map (map_match.hpp), the map lap 1 built and closed from lap
-    // 2 on, and before that the cones mapped so far (the scan-to-scan wobble of the odometry's heading).
-    if (odometry && localization_source == "lidar_odometry") {
-      if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), map_match)) {
-        odometry->correct(m->correction);
-        pose = m->correction * pose;
-      }
-    } else if (fused) {
+    if (fused) {
       // Each frame is matched to the cone map (a match: the pose agrees with the map, which keeps lap 2 on the
-      // recorded lap through a GNSS loss); while no GNSS fix is recent, the match's whole alignment goes into the
-      // filter as a measurement (the lap-1 map holds the pose where the odometry and the wheels alone drift).
+      // recorded lap through a GNSS loss); while no GNSS fix is recent (always, without satellites), the match's
+      // whole alignment goes into the filter as a measurement (the cones mapped so far hold the pose where the
+      // odometry and the wheels alone drift).
       if (const auto m = match_to_map(det.cones, pose, cone_map.cones(), map_match)) {
         autopilot->on_map_match(now);
         if (!fused->gnss_recent()) {
@@ -479,7 +465,7 @@ struct Stack::Impl {
     const auto closed = loop_closer->finish(solved.result);
     if (!closed) return false;
     const auto at = [&closed](Stamp t) { return closed->correction_at(t); };
-    odometry->correct(closed->correction);
+    fused->relocate(closed->correction);
     poses.correct(at);
     const int merged = cone_map.correct(at);
     autopilot->relocate(at, now);
@@ -552,15 +538,12 @@ struct Stack::Impl {
         job.camera_capture = c->capture;
       }
     }
-    if (job.odometry && localization_source == "lidar_odometry") {
-      job.settle_from = odometry_scan_end;
-      job.map_from_odometry = odometry->map_from_odometry();
-    }
     scan_waiting = false;
     scan_handed_wall = w_step;
     scan_out = true;
     if (scan_worker) {
-      if (!scan_worker->submit([p = processor.get(), job = std::move(job)]() mutable { return p->process(std::move(job)); }))
+      if (!scan_worker->submit(
+              [p = processor.get(), job = std::move(job)]() mutable { return p->process(std::move(job)); }))
         scan_out = false;  // not reached: one scan out at a time
       return scan_out;
     }
@@ -586,7 +569,7 @@ struct Stack::Impl {
     }
     if (r->camera_decode_failed) ++camera_decode_failures;
     if (r->detector_counters) detector_counters = *r->detector_counters;
-    if (r->odometry) take_odometry(now, *r->odometry, r->odometry_s);
+    if (r->odometry) take_odometry(*r->odometry, r->odometry_s);
     if (!r->detection) return false;
     LidarDetection& d = *r->detection;
     const std::optional<Pose2> pose = poses.at(d.detections.stamp);
@@ -598,26 +581,16 @@ struct Stack::Impl {
     return true;
   }
 
-  // The odometry's output for a scan: its increment into the fusion filter, or (the LiDAR alone) the poses carried
-  // since the previous scan settled onto it; the state at `now` again from either, replacing one as old (the same
-  // instant estimated again with the scan).
-  void take_odometry(Stamp now, const lidar_odometry::OdometryOutput& out, double stage_s) {
+  // The odometry's output for a scan: its increment into the fusion filter, and the state again, replacing one as
+  // old (the same instant estimated again with the scan).
+  void take_odometry(const lidar_odometry::OdometryOutput& out, double stage_s) {
     latency["odometry"].add(stage_s);
     odometry->accept(out);
     if (odometry_hook) odometry_hook(out);
-    const double steering = vcu_steering();
-    std::optional<VehicleState> v;
-    if (fused) {
-      if (const auto increment = odometry->increment()) {
-        fused->add({}, std::nullopt, increment);
-        v = fused->state(steering);
-      }
-    }
-    if (localization_source == "lidar_odometry") {
-      settle_carried_poses(out.stamp, steering);
-      v = odometry->state(now, steering);
-    }
-    if (v && (!state || v->stamp >= state->stamp)) set_state(*v);
+    const auto increment = odometry->increment();
+    if (!increment) return;
+    fused->add({}, std::nullopt, increment);
+    if (const auto v = fused->state(vcu_steering()); v && (!state || v->stamp >= state->stamp)) set_state(*v);
   }
 
   // The camera frame taken nearest `t`; none without a camera stage or a frame.
@@ -630,7 +603,7 @@ struct Stack::Impl {
   }
 
   // This cycle's measurements into the localization (the scans' odometry comes with their processing: take_scan).
-  void localize(Stamp now) {
+  void localize() {
     const double steering = vcu_steering();
     // The car's measured motion (GNSS-INS yaw rate, rear wheels) deskews and predicts the odometry's scans.
     if (odometry) {
@@ -642,7 +615,8 @@ struct Stack::Impl {
       }
     }
     for (const auto& s : gnss_pending) {
-      autopilot->on_gnss(s.stamp, s.good);
+      // Without satellites the receiver's fixes are not the pose's: lap 2 is anchored by the cone map alone.
+      if (!(fused && fused->satellites_denied())) autopilot->on_gnss(s.stamp, s.good);
       if (localization_source == "gnss" && gnss_pose_usable(s, gnss->origin().has_value()))
         set_state(state_from_gnss(s, steering));
     }
@@ -651,9 +625,6 @@ struct Stack::Impl {
       if (const auto v = fused->state(steering); v && (!state || v->stamp > state->stamp)) set_state(*v);
     }
     gnss_pending.clear();
-    if (localization_source == "lidar_odometry") {
-      if (const auto v = odometry->state(now, steering); v && (!state || v->stamp > state->stamp)) set_state(*v);
-    }
     if (localization_source == "truth" && truth) set_state(truth->state);
   }
 
@@ -662,17 +633,6 @@ struct Stack::Impl {
     state = v;
     autopilot->on_state(v);
     poses.add(v.stamp, v.pose);
-  }
-
-  // The LiDAR alone: the poses held since the previous scan were carried forward from it (state() between scans);
-  // the scan just matched says where the car was at its last firing. Move them onto it, the correction growing
-  // from nothing at the previous scan to all of it at this one (the carry's error grows with time), so that the
-  // scan is deskewed and stacked on the odometry's own scan-to-scan motion, not on carries that jump at each scan.
-  void settle_carried_poses(Stamp scan_end, double steering) {
-    const std::optional<Stamp> from = odometry_scan_end;
-    odometry_scan_end = scan_end;
-    const auto at_scan = odometry->state(scan_end, steering);
-    if (from && at_scan && poses.reaches_back_to(*from)) poses.settle(*from, scan_end, at_scan->pose);
   }
 
   double vcu_steering() const {
@@ -692,7 +652,7 @@ struct Stack::Impl {
     const double w_perception = wall();
     perceived_from = w_perception;
     collect_loop_closure(now);
-    localize(now);  // first: the sensor sources place this cycle's scan by the newest pose
+    localize();  // first: the sensor sources place this cycle's scan by the newest pose
     if (state && !first_pose) first_pose = state->pose;
     cycle.perceived = process_scans(now, w_perception);
     cycle.perceived |= perceive(now);

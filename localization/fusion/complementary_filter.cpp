@@ -218,6 +218,20 @@ void ComplementaryFilter::on_gnss(const GnssFix& f) {
     ++out_.gnss_counters.down_weighted;
 }
 
+void ComplementaryFilter::start_at(const Pose2& pose, double sigma, double yaw_sigma) {
+  pose_ = Pose2{pose.x, pose.y, wrap_angle(pose.yaw)};
+  sigma_fix_ = sigma;
+  drift_since_fix_ = 0;
+  yaw_var_ = yaw_sigma * yaw_sigma;
+  have_position_ = heading_known_ = true;
+  motion_since_fix_.setZero();
+}
+
+void ComplementaryFilter::relocate(const Pose2& map_from_estimate) {
+  pose_ = map_from_estimate * pose_;
+  pose_.yaw = wrap_angle(pose_.yaw);
+}
+
 LocalizationState ComplementaryFilter::state() const {
   LocalizationState s = out_;
   s.stamp = t_;

@@ -17,6 +17,8 @@ namespace fsd::fusion {
 class ComplementaryFilter final : public FusionFilter {
  public:
   explicit ComplementaryFilter(const FusionConfig& cfg = {});
+  void start_at(const Pose2& pose, double sigma, double yaw_sigma) override;
+  void relocate(const Pose2& map_from_estimate) override;
   LocalizationState state() const override;
   std::string_view name() const override { return "complementary"; }
 

@@ -52,15 +52,16 @@ void EkfFilter::predict(Stamp t) {
 
 template <int M>
 double EkfFilter::update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, int consider,
-                         double gate) {
+                         const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm,
+                         unsigned consider, double gate) {
   const Eigen::Matrix<double, M, 1> nu = z - h;  // no angles here: heading residuals come in wrapped
   const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + Rm;
   const Eigen::Matrix<double, M, M> S_inv = S.inverse();
   const double nis = nu.dot(S_inv * nu);
   if (nis > gate) return nis;
   Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S_inv;
-  if (consider >= 0) K.row(consider).setZero();
+  for (int i = 0; i < kN; ++i)
+    if (consider & (1u << i)) K.row(i).setZero();
   x_ += K * nu;
   x_(Yaw) = wrap_angle(x_(Yaw));
   // Joseph form: stays symmetric positive definite with the many small updates of a 200 Hz gyro.
@@ -78,7 +79,7 @@ void EkfFilter::on_imu(const ImuSample& s) {
   H(0, Bias) = 1.0;
   const double g = cfg_.ekf.gyro_sigma;
   update<1>(Eigen::Matrix<double, 1, 1>(s.gyro.z()), Eigen::Matrix<double, 1, 1>(x_(R) + x_(Bias)), H,
-            Eigen::Matrix<double, 1, 1>(g * g));
+            Eigen::Matrix<double, 1, 1>(g * g), kPosition);
 }
 
 void EkfFilter::on_speed(const BodySpeed& s) {
@@ -110,14 +111,14 @@ void EkfFilter::on_speed(const BodySpeed& s) {
       H(1, R) = k * lx;
       H(1, Scale) = sy;
       update<2>(Eigen::Vector2d(s.vx, s.vy), Eigen::Vector2d(k * sx, k * sy), H, Eigen::Matrix2d::Identity() * sig2,
-                Scale);
+                kPose | (1u << Scale));
     } else {
       Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
       H(0, Vx) = k;
       H(0, R) = -k * ly;
       H(0, Scale) = sx;
       update<1>(Eigen::Matrix<double, 1, 1>(s.vx), Eigen::Matrix<double, 1, 1>(k * sx), H,
-                Eigen::Matrix<double, 1, 1>(sig2), Scale);
+                Eigen::Matrix<double, 1, 1>(sig2), kPose | (1u << Scale));
     }
   } else {
     // Without an optical sensor nothing measures vy: the car's own kinematics do. The rear axle slides outwards
@@ -137,7 +138,7 @@ void EkfFilter::on_speed(const BodySpeed& s) {
     H(1, Vx) = 2.0 * c * std::abs(vx) * r;
     H(1, Slip) = vv * r;
     update<2>(Eigen::Vector2d(s.vx, 0.0), Eigen::Vector2d(vx - r * ly, vy + r * lx + c * vv * r), H,
-              Eigen::Vector2d(sig * sig, lat * lat).asDiagonal().toDenseMatrix());
+              Eigen::Vector2d(sig * sig, lat * lat).asDiagonal().toDenseMatrix(), kPose);
   }
   // No gyro for a while (the GNSS-INS, the car's only one, fell silent): the wheels' kinematic yaw rate stands in,
   // loosely. Without it the yaw rate lived on the LiDAR increments alone, a scan behind the turn, and the scans'
@@ -149,7 +150,7 @@ void EkfFilter::on_speed(const BodySpeed& s) {
     Eigen::Matrix<double, 1, kN> H = Eigen::Matrix<double, 1, kN>::Zero();
     H(0, R) = 1.0;
     update<1>(Eigen::Matrix<double, 1, 1>(s.kinematic_yaw_rate), Eigen::Matrix<double, 1, 1>(x_(R)), H,
-              Eigen::Matrix<double, 1, 1>(sig * sig));
+              Eigen::Matrix<double, 1, 1>(sig * sig), kPose);
   }
   if (speed_ < cfg_.common.standstill_speed) {
     // A standing car neither turns nor moves: what the gyro reads is its bias. Held only by the wheels' loose row
@@ -161,7 +162,7 @@ void EkfFilter::on_speed(const BodySpeed& s) {
     H(2, Vy) = 1.0;
     const double rs = cfg_.ekf.standstill_rate_sigma;
     update<3>(Eigen::Vector3d::Zero(), Eigen::Vector3d(x_(R), x_(Vx), x_(Vy)), H,
-              Eigen::Vector3d(rs * rs, 1e-4, 1e-4).asDiagonal().toDenseMatrix());
+              Eigen::Vector3d(rs * rs, 1e-4, 1e-4).asDiagonal().toDenseMatrix(), kPose);
   }
 }
 
@@ -170,7 +171,8 @@ void EkfFilter::on_odometry(const OdometryIncrement& o) {
   if (!(dt > 1e-3) || !std::isfinite(o.delta.x) || !std::isfinite(o.delta.y) || !std::isfinite(o.delta.yaw) ||
       !o.covariance.allFinite())
     return;
-  last_motion_ = o.t1;
+  last_motion_ = std::max(last_motion_, o.t1);
+  // The mean motion over [t0, t1], which ended a scan's processing ago, read as the velocities now.
   const MeanTwist v = mean_twist(o);
   Eigen::Matrix<double, 3, kN> H = Eigen::Matrix<double, 3, kN>::Zero();
   H(0, Vx) = 1.0;
@@ -181,8 +183,8 @@ void EkfFilter::on_odometry(const OdometryIncrement& o) {
   // A registration that slipped (few cones, a degenerate scan) claims a motion the wheels and the gyro deny, with a
   // covariance that does not know it: gated like GNSS, at χ²(3 dof) 99.9 %, so one bad scan cannot turn the heading.
   constexpr double kGate = 16.27;
-  const double nis =
-      update<3>(Eigen::Vector3d(v.vx, v.vy, v.yaw_rate), Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)), H, Rm, -1, kGate);
+  const double nis = update<3>(Eigen::Vector3d(v.vx, v.vy, v.yaw_rate), Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)), H, Rm,
+                               kPosition, kGate);
   if (nis > kGate) ++out_.odometry_rejected;
 }
 
@@ -199,7 +201,7 @@ void EkfFilter::on_map_pose(const MapPose& m) {
   // A match that paired the wrong cones claims a pose the dead reckoning denies: gated at χ²(3 dof) 99.9 %.
   constexpr double kGate = 16.27;
   const double nis = update<3>(Eigen::Vector3d(m.pose.x, m.pose.y, x_(Yaw) + nu_yaw),
-                               Eigen::Vector3d(x_(X), x_(Y), x_(Yaw)), H, sig2.asDiagonal().toDenseMatrix(), -1, kGate);
+                               Eigen::Vector3d(x_(X), x_(Y), x_(Yaw)), H, sig2.asDiagonal().toDenseMatrix(), 0, kGate);
   if (nis > kGate)
     ++out_.map_poses_rejected;
   else
@@ -295,7 +297,7 @@ void EkfFilter::on_gnss(const GnssFix& f) {
     Hh(0, Yaw) = 1.0;
     const double nu = wrap_angle(f.heading - x_(Yaw));
     const double nis = update<1>(Eigen::Matrix<double, 1, 1>(x_(Yaw) + nu), Eigen::Matrix<double, 1, 1>(x_(Yaw)), Hh,
-                                 Eigen::Matrix<double, 1, 1>(sigma * sigma), -1,
+                                 Eigen::Matrix<double, 1, 1>(sigma * sigma), 0,
                                  insisted ? std::numeric_limits<double>::infinity() : kGate);
     if (nis > kGate && !insisted) {
       ++out_.headings_rejected;
@@ -333,7 +335,32 @@ void EkfFilter::on_gnss_velocity(const GnssFix& f) {
   H(1, R) = c * lx;
   const Vec2 h(c * bx - s * by, s * bx + c * by);
   const double sig2 = cfg_.ekf.gnss_velocity_sigma * cfg_.ekf.gnss_velocity_sigma;
-  update<2>(f.velocity, h, H, Eigen::Matrix2d::Identity() * sig2, -1, cfg_.ekf.gnss_velocity_gate);
+  update<2>(f.velocity, h, H, Eigen::Matrix2d::Identity() * sig2, 0, cfg_.ekf.gnss_velocity_gate);
+}
+
+void EkfFilter::start_at(const Pose2& pose, double sigma, double yaw_sigma) {
+  x_(X) = pose.x;
+  x_(Y) = pose.y;
+  x_(Yaw) = wrap_angle(pose.yaw);
+  for (int i : {X, Y, Yaw}) {
+    P_.row(i).setZero();
+    P_.col(i).setZero();
+  }
+  P_(X, X) = P_(Y, Y) = sigma * sigma;
+  P_(Yaw, Yaw) = yaw_sigma * yaw_sigma;
+  have_position_ = heading_known_ = true;
+  motion_since_fix_.setZero();
+}
+
+void EkfFilter::relocate(const Pose2& map_from_estimate) {
+  const Pose2 p = map_from_estimate * Pose2{x_(X), x_(Y), x_(Yaw)};
+  x_(X) = p.x;
+  x_(Y) = p.y;
+  x_(Yaw) = wrap_angle(p.yaw);
+  // The position's uncertainty turns with the frame; the yaw's and the rest are unchanged.
+  Mat J = Mat::Identity();
+  J.block<2, 2>(X, X) = Eigen::Rotation2Dd(map_from_estimate.yaw).toRotationMatrix();
+  P_ = J * P_ * J.transpose();
 }
 
 LocalizationState EkfFilter::state() const {

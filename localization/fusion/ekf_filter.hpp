@@ -24,8 +24,19 @@ class EkfFilter final : public FusionFilter {
   enum Index { X = 0, Y, Yaw, Vx, Vy, R, Bias, Scale, Slip };
   using Vec = Eigen::Matrix<double, kN, 1>;
   using Mat = Eigen::Matrix<double, kN, kN>;
+  // What a measurement of the motion leaves alone. Only absolute measurements (fixes, headings, map poses) move the
+  // position; the motion moves it through the prediction. Without satellites the position's variance grows, and
+  // with it its correlation with the heading and the velocities, over a lever as long as the distance driven since
+  // the start: an innovation of the yaw rate then moved the pose sideways by decimetres at every scan (20 m per
+  // radian), enough to hit cones in lap 1. The gyro and the LiDAR increments still turn the yaw (its error over the
+  // last samples is theirs to correct: held off, the yaw integrated the filtered rate's lag at every turn-in); the
+  // wheels, the standstill and the kinematic yaw rate, rougher, move neither.
+  static constexpr unsigned kPosition = (1u << X) | (1u << Y);
+  static constexpr unsigned kPose = kPosition | (1u << Yaw);
 
   explicit EkfFilter(const FusionConfig& cfg = {});
+  void start_at(const Pose2& pose, double sigma, double yaw_sigma) override;
+  void relocate(const Pose2& map_from_estimate) override;
   LocalizationState state() const override;
   std::string_view name() const override { return "ekf"; }
 
@@ -33,10 +44,10 @@ class EkfFilter final : public FusionFilter {
   void advance(Stamp t) override { predict(t); }
   void predict(Stamp t);
   // The measurement z of prediction h; returns its normalised innovation squared (NIS), and applies it only when
-  // that is at most `gate`. `consider`: a state this update must not move.
+  // that is at most `gate`. `consider`: the states this update must not move (a mask of 1 << Index).
   template <int M>
   double update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& h,
-                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, int consider = -1,
+                const Eigen::Matrix<double, M, kN>& H, const Eigen::Matrix<double, M, M>& Rm, unsigned consider = 0,
                 double gate = std::numeric_limits<double>::infinity());
   void on_imu(const ImuSample& s) override;
   void on_speed(const BodySpeed& s) override;

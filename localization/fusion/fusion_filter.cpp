@@ -36,8 +36,11 @@ void FusionFilter::add(const Measurement& m) {
     started_ = true;
     t_ = t;
   }
-  const bool is_gnss = std::holds_alternative<GnssFix>(m);
-  if (t < t_ - kOutOfOrder && !is_gnss) {
+  // A GNSS fix goes to the gate, which judges its age; a LiDAR increment (a scan is complete only when the next one
+  // starts, and processed after) is the mean motion over its interval, taken at the filter's time. Anything else
+  // older than the filter's time is dropped.
+  const bool late_allowed = std::holds_alternative<GnssFix>(m) || std::holds_alternative<OdometryIncrement>(m);
+  if (t < t_ - kOutOfOrder && !late_allowed) {
     ++dropped_;
     return;
   }

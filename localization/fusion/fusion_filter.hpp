@@ -18,6 +18,12 @@ class FusionFilter {
   // counted and dropped, a stale GNSS fix is rejected by the gate. The filter is brought to the measurement's
   // time (advance), then the measurement applied by its kind.
   void add(const Measurement& m);
+  // The pose is known before any measurement, to σ per horizontal axis and `yaw_sigma`: the car staged at the start
+  // of a run without satellites, whose pose there defines the map frame. The filter is initialised at once.
+  virtual void start_at(const Pose2& pose, double sigma, double yaw_sigma) = 0;
+  // The map frame was corrected (a loop closure): the pose moves by `map_from_estimate` (map ← the pose as state()
+  // gave it); the body velocities, the rates and what the filter learnt stay.
+  virtual void relocate(const Pose2& map_from_estimate) = 0;
   virtual LocalizationState state() const = 0;
   virtual std::string_view name() const = 0;
   std::uint64_t dropped_out_of_order() const { return dropped_; }

@@ -44,9 +44,6 @@ const ConfigSection<OdometryConfig>& odometry_section() {
           .boolean("vehicle_motion", &C::vehicle_motion,
                    "The daemon's LiDAR odometry deskews and predicts each scan with the car's measured motion (rear "
                    "wheel speed, the GNSS-INS yaw rate) instead of the scans' own low-passed increments.")
-          .number("max_speed", &C::max_speed, 1.0, 60.0, "m/s",
-                  "run.localization_source = lidar_odometry: the car drives at most this fast (control.speed.v_max "
-                  "is capped to it); faster, at lap 2's 12-17 m/s, the odometry loses track.")
           .boolean("hold_degenerate", &C::hold_degenerate,
                    "A scan whose matches leave a direction free keeps the constant-velocity prediction as its pose.")
           .integer("deskew_passes", &C::deskew_passes, 1, 5, "",

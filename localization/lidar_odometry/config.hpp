@@ -30,8 +30,6 @@ struct OdometryConfig {
   double min_information = 1.0;     // eigenvalue of the normal matrix (rotation per 10 m) below which: degenerate
   double degenerate_sigma = 10.0;   // m or rad: the σ reported along a degenerate direction
   bool vehicle_motion = true;       // the daemon hands the odometry the wheel speed and yaw rate (deskew, prediction)
-  double max_speed = 10.0;          // m/s: the daemon drives at most this fast on the odometry alone (it loses track
-                                    // at lap 2's 12-17 m/s)
   bool hold_degenerate = true;      // a degenerate scan keeps the constant-velocity prediction as its pose
   int deskew_passes = 2;            // registrations per scan, each deskewed with the motion the previous one found
                                     // (one with a measured twist: that is the scan's motion)

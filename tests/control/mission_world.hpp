@@ -21,6 +21,7 @@ struct MissionWorld {
   std::optional<Path> plan;
   bool plan_ok = false;
   bool gnss_ok = true;
+  bool gnss_seen = true;  // false: a car without satellites
   bool map_matched = false;
   double odometer = 0;
   double progress_s = 0;
@@ -51,6 +52,7 @@ struct MissionWorld {
     in.plan = plan ? &*plan : nullptr;
     in.plan_ok = plan_ok;
     in.gnss_ok = gnss_ok;
+    in.gnss_seen = gnss_seen;
     in.map_matched = map_matched;
     in.odometer = odometer;
     in.progress_s = progress_s;

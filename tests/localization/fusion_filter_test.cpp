@@ -151,6 +151,60 @@ TEST_P(EachFilter, PosesFromTheConeMapHoldThePoseThroughAnOutageAndAWrongOneIsGa
   EXPECT_LT(std::hypot(after.pose.x - end.pose.x, after.pose.y - end.pose.y), 1e-9);
 }
 
+TEST_P(EachFilter, StartedAtAKnownPoseItDrivesWithoutSatellites) {
+  // No fix at all: the filter is started at the staged pose and dead reckons on the gyro and the speed sensor from
+  // there, held by poses from the cone map once they come (as the lidar_odometry source runs).
+  SyntheticDrive d;
+  d.duration_s = 40.0;
+  d.gnss_filter = [](GnssFix&) { return false; };
+  d.generate();
+  auto f = make_fusion_filter(GetParam());
+  const Pose2 start = d.truth.front().pose;
+  f->start_at(start, 0.01, 0.002);
+  ASSERT_TRUE(f->state().initialised);  // at once, before any measurement
+  EXPECT_EQ(f->state().pose.x, start.x);
+  EXPECT_EQ(f->state().pose.yaw, start.yaw);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> xy(0.0, 0.05), yaw(0.0, 0.01);
+  double next_map = 1030.0, worst_dr = 0, worst_held = 0;
+  for (const auto& m : d.measurements) {
+    const Stamp t = stamp_of(m);
+    f->add(m);
+    const auto& tr = d.at(t);
+    if (t < 1030.0) {
+      // Dead reckoning: within the speed sensor's unknown 2 % scale (and a little of the heading's drift) of the
+      // distance driven, and the start's few centimetres.
+      worst_dr = std::max(worst_dr, position_error(f->state(), d) - (0.05 + 0.025 * tr.travelled));
+    } else if (t >= next_map) {
+      next_map += 0.1;
+      f->add(MapPose{t, Pose2{tr.pose.x + xy(rng), tr.pose.y + xy(rng), tr.pose.yaw + yaw(rng)}, 0.10, 0.02});
+      if (t > 1031.0) worst_held = std::max(worst_held, position_error(f->state(), d));
+    }
+  }
+  EXPECT_LE(worst_dr, 0.0);
+  EXPECT_LE(worst_held, 0.15);
+  EXPECT_EQ(f->state().gnss_counters.fixes, 0u);
+}
+
+TEST_P(EachFilter, ALoopClosuresCorrectionMovesThePoseAndKeepsTheMotion) {
+  // Started at (3, 4, 0.1) and moving at 5 m/s; the map frame corrected by (1, -2, 90°): by hand, the position
+  // turns to (-4, 3) and shifts to (-3, 1), the heading becomes 0.1 + 90°, the body's speed stays.
+  auto f = make_fusion_filter(GetParam());
+  f->start_at(Pose2{3.0, 4.0, 0.1}, 0.01, 0.002);
+  f->add(BodySpeed{100.0, BodySpeed::Source::Optical, 5.0, 0.0});
+  const LocalizationState before = f->state();
+  f->relocate(Pose2{1.0, -2.0, std::numbers::pi / 2});
+  const LocalizationState after = f->state();
+  EXPECT_NEAR(after.pose.x, -3.0, 1e-9);
+  EXPECT_NEAR(after.pose.y, 1.0, 1e-9);
+  EXPECT_NEAR(after.pose.yaw, 0.1 + std::numbers::pi / 2, 1e-9);
+  EXPECT_EQ(after.vx, before.vx);
+  EXPECT_EQ(after.yaw_rate, before.yaw_rate);
+  // The position's uncertainty turns with the frame: its size is unchanged.
+  const double size_before = before.covariance.block(0, 0, 2, 2).trace();
+  EXPECT_NEAR(after.covariance.block(0, 0, 2, 2).trace(), size_before, 1e-12);
+}
+
 TEST_P(EachFilter, RejectsAndFlagsAGnssJump) {
   // A multipath step: every fix from 80 s to 82 s is 6 m off to the east, and the receiver does not notice
   // (beyond the jump limit of 1.5 m + 0.2 × 1 m + 3.5 √2 × 0.3 m = 3.2 m per 0.1 s at 10 m/s).
@@ -235,6 +289,31 @@ std::vector<Measurement> odometry_drive(SyntheticDrive& d, int slip_every, std::
     merged.emplace_back(o);
   }
   return merged;
+}
+
+TEST(FusionEkf, AMeasurementOfTheMotionMovesTheVelocityNotThePose) {
+  // Without satellites the position's variance grows, and with it its correlation with the velocities. A speed
+  // sample 1 m/s above the filter's speed moves the speed; the pose, which no absolute measurement has touched,
+  // stays where the motion put it. (The drive's speed sensor is the optical one: a sample of it.)
+  SyntheticDrive d;
+  d.duration_s = 30.0;
+  d.gnss_filter = [](GnssFix&) { return false; };
+  d.generate();
+  auto f = make_fusion_filter("ekf");
+  f->start_at(d.truth.front().pose, 0.01, 0.002);
+  for (const auto& m : d.measurements) f->add(m);
+  const LocalizationState before = f->state();
+  ASSERT_GT(before.position_sigma(), 0.1);  // the position has become uncertain
+  BodySpeed optical;
+  optical.t = before.stamp;
+  optical.vx = before.speed_scale * (before.vx + 1.0);
+  optical.has_vy = false;
+  f->add(optical);
+  const LocalizationState after = f->state();
+  EXPECT_GT(after.vx, before.vx + 0.01);
+  EXPECT_EQ(after.pose.x, before.pose.x);
+  EXPECT_EQ(after.pose.y, before.pose.y);
+  EXPECT_EQ(after.pose.yaw, before.pose.yaw);
 }
 
 TEST(FusionEkf, DeadReckonsOnLidarOdometryIncrements) {

@@ -75,32 +75,5 @@ TEST(PoseHistory, CorrectMovesEachPoseByTheCorrectionOfItsInstant) {
   EXPECT_NEAR(moved.yaw, kPi / 2, 1e-12);
 }
 
-TEST(PoseHistory, SettleMovesTheCarriedPosesOntoTheMatchedOneGrowingOverTheSpan) {
-  // Carried along x at 10 m/s from the match at 1.0 s; the scan that ended at 1.1 s puts the car 0.2 m further
-  // left and 0.1 rad more to the left than carried.
-  PoseHistory h;
-  for (int k = 0; k <= 15; ++k) h.add(1.0 + 0.01 * k, {10.0 + 0.1 * k, 0.0, 0.0});
-  const Pose2 matched{11.0, 0.2, 0.1};
-  ASSERT_TRUE(h.settle(1.0, 1.1, matched));
-  EXPECT_NEAR(h.at(1.0)->y, 0.0, 1e-12);  // the previous match stays
-  const Pose2 end = *h.at(1.1);           // the matched pose itself
-  EXPECT_NEAR(end.x, 11.0, 1e-12);
-  EXPECT_NEAR(end.y, 0.2, 1e-12);
-  EXPECT_NEAR(end.yaw, 0.1, 1e-12);
-  // Halfway: half the turn about the pose at 1.1 s (10.5 m is 0.5 m behind it) and half the shift.
-  const Pose2 mid = *h.at(1.05);
-  EXPECT_NEAR(mid.yaw, 0.05, 1e-12);
-  EXPECT_NEAR(mid.x, 11.0 - 0.5 * std::cos(0.05), 1e-12);
-  EXPECT_NEAR(mid.y, 0.1 - 0.5 * std::sin(0.05), 1e-12);
-  // After the scan: the whole correction, the carried 0.05 s on from 11.0 m now along the turned heading.
-  const Pose2 after = *h.at(1.15);
-  EXPECT_NEAR(after.yaw, 0.1, 1e-12);
-  EXPECT_NEAR(after.x, 11.0 + 0.5 * std::cos(0.1), 1e-12);
-  EXPECT_NEAR(after.y, 0.2 + 0.5 * std::sin(0.1), 1e-12);
-  // Nothing to settle: a span that is not one, or a match later than any pose held.
-  EXPECT_FALSE(h.settle(1.1, 1.1, matched));
-  EXPECT_FALSE(h.settle(1.1, 2.0, matched));
-}
-
 }  // namespace
 }  // namespace fsd
