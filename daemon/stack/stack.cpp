@@ -30,7 +30,6 @@
 #include "daemon/telemetry/dashboard_view.hpp"
 #include "drivers/vlp16/scan_builder.hpp"
 #include "localization/cone_map.hpp"
-#include "localization/lidar_odometry/config.hpp"
 #include "localization/loop_closure/loop_closure_config.hpp"
 #include "localization/map_match.hpp"
 #include "localization/pose_history.hpp"
