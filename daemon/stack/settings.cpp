@@ -78,8 +78,9 @@ const ConfigSection<RunSettings>& run_section() {
                   "Where the pose comes from (default: fused, with the LiDAR odometry in the fusion): truth = the "
                   "virtual car's true pose, for control work and as the reference (on the car: the GNSS-INS pose); "
                   "gnss = the GNSS-INS pose as reported; fused = GNSS-INS and the VCU's wheel speeds through the "
-                  "fusion filter (localization.fusion.*), bridging bad or missing fixes; lidar_odometry = the "
-                  "LiDAR odometry alone (localization.lidar_odometry.*), integrated from localization.start.*.")
+                  "fusion filter (localization.fusion.*), bridging bad or missing fixes; lidar_odometry = without "
+                  "satellites: the same filter on the LiDAR odometry, the wheel speeds and the gyro, started at "
+                  "localization.start.* and held to the cone map.")
           .number("max_sim_time", &RunSettings::max_sim_time, 1.0, 86400.0, "s",
                   "Headless runs give up after this much simulated time.")
           .number("stats_period", &RunSettings::stats_period, 0.1, 3600.0, "s",

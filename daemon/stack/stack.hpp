@@ -27,7 +27,8 @@
 //                 perception is the silent LiDAR's fault).
 //   localization  truth: the simulator's state (RawChannel::TruthState); gnss: the GNSS-INS pose as reported;
 //                 fused: GNSS-INS, wheel speeds (and the LiDAR odometry's increments) through a fusion filter;
-//                 lidar_odometry: the LiDAR odometry alone from the start pose (localization.start.*).
+//                 lidar_odometry: without satellites, the same filter on the LiDAR odometry's increments, the
+//                 wheels and the gyro, from the start pose (localization.start.*), held to the cone map.
 //   Detections of every perception source are placed in the map by the localization's pose of their instant.
 //   With lidar_odometry each lap's loop is closed on the start's cones (localization.loop_closure.*): from then on
 //   the pose is corrected, the cone map and the recorded lap-1 poses are moved with the lap's solved pose graph

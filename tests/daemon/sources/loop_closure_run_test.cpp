@@ -80,8 +80,8 @@ TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
   // meanwhile). Lap 1's plans too come from a worker then, a plan budget later than in the step, so the runs drift
   // apart by centimetres before the closure: it is compared by where and how well it closes, not bit for bit. The
   // map lap 2 drives on (map_lap1) must be as good as with the solve in the step (each cone mapped meanwhile moved
-  // once, none lost), and the control thread did not pay the solve. The map at the end is not compared: lap 2 on
-  // the odometry alone goes differently with every solve time.
+  // once, none lost), and the control thread did not pay the solve. The map at the end is not compared: lap 2
+  // without the map matching goes differently with every solve time.
   const json step = lidar_odometry_run("loop_closure_step", "epfl_track_1", true);
   const json worker = lidar_odometry_run("loop_closure_worker", "epfl_track_1", true, "--workers");
   ASSERT_TRUE(step.is_object() && worker.is_object());
