@@ -43,7 +43,7 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
                             const std::optional<fusion::OdometryIncrement>& odometry) {
   std::vector<fusion::Measurement> ms;
   // A scan is complete only when the next one's first packet arrives and is processed after: its increment is
-  // older than what the filter has taken, and the filter reads it against its own motion over the same interval.
+  // older than what the filter has taken, and the filter takes it as the motion at its own time.
   if (odometry && lidar_odometry_) ms.emplace_back(*odometry);
   for (const auto& s : gnss) {
     if (s.yaw_rate_valid && std::isfinite(s.yaw_rate))

@@ -58,12 +58,14 @@ void ComplementaryFilter::on_speed(const BodySpeed& s) {
 void ComplementaryFilter::on_odometry(const OdometryIncrement& o) {
   const double dt = o.t1 - o.t0;
   if (!(dt > 1e-3) || !std::isfinite(o.delta.x) || !std::isfinite(o.delta.y) || !std::isfinite(o.delta.yaw)) return;
-  last_motion_ = o.t1;
+  // A scan's increment arrives after its interval (FusionFilter::add): it is the motion now, held from now.
+  const Stamp at = std::max(t_, o.t1);
+  last_motion_ = at;
   const MeanTwist v = mean_twist(o);
   vx_ = v.vx;
   vy_ = v.vy;
   r_ = v.yaw_rate;
-  odometry_until_ = o.t1 + 2.0 * dt;  // until the next increment is overdue, speed and gyro wait
+  odometry_until_ = at + 2.0 * dt;  // until the next increment is overdue, speed and gyro wait
 }
 
 void ComplementaryFilter::on_map_pose(const MapPose& m) {
