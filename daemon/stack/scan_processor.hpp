@@ -6,6 +6,11 @@
 // copies (ScanJob), so that the control thread and the processing thread share nothing while a scan is out. What
 // is cheap and used every cycle stays on the control thread: the poses, the fusion filter, the cone map.
 //
+// The two stages share nothing, so they run side by side: perception on the calling thread, the scan match on a
+// thread of the processor's own, joined before the result is returned. A scan's detections are then ready after
+// the slower of the two stages rather than after both (the end-to-end latency), and the results do not depend on
+// the timing (a replay gives the same commands).
+//
 // One scan at a time, in time order. No I/O, no clock but the wall clock it is given (the stages' figures).
 #include <cstdint>
 #include <exception>
@@ -16,6 +21,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "daemon/stack/job_thread.hpp"
 #include "localization/lidar_odometry/lidar_odometry.hpp"
 #include "localization/pose_history.hpp"
 #include "perception/lidar_camera_detector.hpp"
@@ -58,12 +64,26 @@ class ScanProcessor {
                 std::function<double()> wall);
   ~ScanProcessor();
 
+  // Both stages' results; a stage that throws fails the scan (ScanResult::failure), the other's result dropped.
   ScanResult process(ScanJob job);
 
+  // The odometry's thread under SCHED_FIFO at `priority` (the caller's thread is the caller's to set); what
+  // failed, or nothing.
+  std::optional<std::string> set_realtime(int priority);
+
  private:
+  struct OdometryRun {
+    std::optional<lidar_odometry::OdometryOutput> output;
+    double seconds = 0;
+    std::string failure;
+  };
+  OdometryRun run_odometry(const Scan& scan, const std::optional<lidar_odometry::Vec6>& measured);
+  void detect(const ScanJob& job, ScanResult& r);
+
   std::unique_ptr<LidarCameraDetector> detector_;
   std::unique_ptr<lidar_odometry::LidarOdometry> odometry_;
   std::function<double()> wall_;
+  std::unique_ptr<JobThread<OdometryRun>> odometry_thread_;  // with both stages only; last: joined first
 };
 
 }  // namespace fsd

@@ -265,6 +265,7 @@ struct Stack::Impl {
         if (worker && !failed) failed = worker->set_realtime(opt.worker_priority);
       };
       realtime(scan_worker);
+      realtime(processor);
       realtime(plan_worker);
       realtime(lap_worker);
       realtime(loop_worker);

@@ -68,7 +68,7 @@ struct StackOptions {
   bool plan_worker = false;          // lap 1's real-time plans so; else inside the step
   bool loop_closure_worker = false;  // the loop's solve so (that thread reads wall_clock: the solve's time)
   bool scan_worker = false;          // the scans' processing (perception, the odometry's scan match) so
-  // (wall_clock is read on that thread too: the stages' figures)
+  // (wall_clock is read on that thread too, and on the processor's own for the scan match: the stages' figures)
   // > 0: the workers' threads under SCHED_FIFO at this priority (below the control thread's: daemon.realtime_priority)
   int worker_priority = 0;
   // The feeder runs faster than real time (a headless simulation with workers): a once-a-lap job's result is taken
@@ -87,8 +87,8 @@ struct StackOptions {
     double latency = 0.0;
   };
   std::optional<Camera> camera;
-  // Wall-clock seconds for the compute-time figures (latencies, late plans); never used for a decision.
-  // Empty: std::chrono::steady_clock.
+  // Wall-clock seconds for the compute-time figures (latencies, late plans); never used for a decision. Read from
+  // the workers' threads as well. Empty: std::chrono::steady_clock.
   std::function<double()> wall_clock;
   // CPU seconds of the calling thread: what a plan cost, without the time the thread waited for a core on a busy
   // machine. A late plan is judged on it. Empty: CLOCK_THREAD_CPUTIME_ID.
