@@ -46,10 +46,10 @@ CropVerdict classify_crop(const ConeClassifier& classifier, const ConeColourClas
 
 namespace {
 
-// Share of candidate i's body behind the candidates nearer to the car, each as large as the LiDAR measured it (a
-// small cone's size when unknown).
-double hidden_share_of(std::size_t i, const std::vector<Cone>& candidates, const std::vector<CandidateRoi>& rois,
-                       std::span<const CandidateSize> sizes) {
+// The candidates nearer to the car than candidate i, each as large as the LiDAR measured it (a small cone's size
+// when unknown), in the image's pixels.
+std::vector<ImageSilhouette> nearer_than(std::size_t i, const std::vector<Cone>& candidates,
+                                         const std::vector<CandidateRoi>& rois, std::span<const CandidateSize> sizes) {
   const double range = candidates[i].position.head<2>().norm();
   std::vector<ImageSilhouette> nearer;
   for (std::size_t j = 0; j < candidates.size(); ++j) {
@@ -59,7 +59,7 @@ double hidden_share_of(std::size_t i, const std::vector<Cone>& candidates, const
     const double hw = !sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : kSmallConeHalfWidth;
     nearer.push_back({rois[j].base, rois[j].px_per_m, hw, h});
   }
-  return hidden_share(rois[i].base, rois[i].px_per_m, nearer);
+  return nearer;
 }
 
 }  // namespace
@@ -108,9 +108,14 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
       ++result.rejected;
       continue;
     }
-    const bool hidden = hidden_share_of(i, candidates, rois, sizes) > colour_.config().max_hidden;
+    // Partly hidden, its colour is judged on the part that shows; mostly hidden, not at all.
+    std::vector<ImageSilhouette> in_front = nearer_than(i, candidates, rois, sizes);
+    const double hidden_share_i = hidden_share(roi.base, roi.px_per_m, in_front);
+    const bool hidden = hidden_share_i > colour_.config().max_hidden;
+    for (auto& o : in_front) o.base -= cv::Point2d(roi.pixels.x, roi.pixels.y);  // into the ROI's pixels
     const ColourResult colour =
-        hidden ? ColourResult{} : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height);
+        hidden ? ColourResult{}
+               : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height, in_front);
     stats_.colour_hidden += hidden;
     c.stage = DetectionStage::Camera;
     c.colour = colour.colour;

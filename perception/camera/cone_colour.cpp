@@ -49,7 +49,8 @@ const ConfigSection<ConeColourConfig>& cone_colour_section() {
                    "Larger ROIs are shrunk to about this many pixels before clustering.")
           .number("max_hidden", &ConeColourConfig::max_hidden, 0.0, 1.0, "",
                   "A candidate whose body is hidden behind nearer candidates in the image by more than this share "
-                  "gets no colour from the camera (it is still verified): its ROI shows the one in front.");
+                  "gets no colour from the camera (it is still verified); below it, the colour is judged on the "
+                  "pixels those in front do not cover.");
   return s;
 }
 
@@ -89,27 +90,66 @@ ConeColour colour_of(int band) {
 // Silhouette prior: a big cone with margins (wider and taller than any cone, for the LiDAR centroid's error) on its
 // base point at the projected scale; for a crop of unknown scale, a cone filling the crop.
 constexpr double kPriorBaseHalf = 0.20, kPriorTopHalf = 0.08, kPriorHeight = 0.53, kPriorBelow = 0.03;  // m
+// The core: what any cone on that base point covers whatever its size (inside the small cone's 0.114 m base radius
+// and 0.325 m height, less the centroid's error). Along its line of sight the candidate is the nearest object there
+// (a nearer one hiding it is occlusion.hpp's), so the core's pixels are its own; the prior's margins can hold a
+// neighbour standing behind it, a big orange cone of a timing line beside a boundary cone say.
+constexpr int kMinVotes = 4;                                                     // pixels: fewer say nothing
+constexpr double kCoreBaseHalf = 0.08, kCoreTopHalf = 0.03, kCoreHeight = 0.26;  // m
 
-cv::Mat silhouette_prior(cv::Size size, const ConeView& v) {
+cv::Mat quad_mask(cv::Size size, const std::array<cv::Point2d, 4>& quad) {
   cv::Mat mask(size, CV_8U, cv::Scalar(0));
-  const double w = size.width, h = size.height;
-  std::array<cv::Point2d, 4> quad;
-  if (v.px_per_m > 0) {
-    const double s = v.px_per_m, bottom = v.base.y + kPriorBelow * s, top = v.base.y - kPriorHeight * s;
-    quad = {cv::Point2d(v.base.x - kPriorBaseHalf * s, bottom), cv::Point2d(v.base.x + kPriorBaseHalf * s, bottom),
-            cv::Point2d(v.base.x + kPriorTopHalf * s, top), cv::Point2d(v.base.x - kPriorTopHalf * s, top)};
-  } else {
-    quad = {cv::Point2d(0.08 * w, 0.97 * h), cv::Point2d(0.92 * w, 0.97 * h), cv::Point2d(0.62 * w, 0.03 * h),
-            cv::Point2d(0.38 * w, 0.03 * h)};
-  }
   constexpr int kShift = 4;  // sub-pixel vertices
   std::array<cv::Point, 4> pts;
   for (std::size_t i = 0; i < 4; ++i)
     pts[i] = cv::Point(static_cast<int>(std::lround(quad[i].x * (1 << kShift))),
                        static_cast<int>(std::lround(quad[i].y * (1 << kShift))));
   cv::fillConvexPoly(mask, pts.data(), 4, cv::Scalar(255), cv::LINE_8, kShift);
+  return mask;
+}
+
+// A cone-shaped quad on the view's base point at its scale: half widths at the bottom and the top, m.
+std::array<cv::Point2d, 4> cone_quad(const ConeView& v, double base_half, double top_half, double height,
+                                     double below) {
+  const double s = v.px_per_m, bottom = v.base.y + below * s, top = v.base.y - height * s;
+  return {cv::Point2d(v.base.x - base_half * s, bottom), cv::Point2d(v.base.x + base_half * s, bottom),
+          cv::Point2d(v.base.x + top_half * s, top), cv::Point2d(v.base.x - top_half * s, top)};
+}
+
+cv::Mat silhouette_prior(cv::Size size, const ConeView& v) {
+  const double w = size.width, h = size.height;
+  cv::Mat mask = quad_mask(
+      size, v.px_per_m > 0
+                ? cone_quad(v, kPriorBaseHalf, kPriorTopHalf, kPriorHeight, kPriorBelow)
+                : std::array<cv::Point2d, 4>{cv::Point2d(0.08 * w, 0.97 * h), cv::Point2d(0.92 * w, 0.97 * h),
+                                             cv::Point2d(0.62 * w, 0.03 * h), cv::Point2d(0.38 * w, 0.03 * h)});
   if (cv::countNonZero(mask) == 0) mask.setTo(255);
   return mask;
+}
+
+// The core (above); empty for a crop of unknown scale, which the cone fills.
+cv::Mat silhouette_core(cv::Size size, const ConeView& v) {
+  if (v.px_per_m <= 0) return {};
+  return quad_mask(size, cone_quad(v, kCoreBaseHalf, kCoreTopHalf, kCoreHeight, 0.0));
+}
+
+// The pixels not covered by the candidates in front (each a box of its size on its base, with a margin for the
+// positions' error), in the working image scaled by (fx, fy) from the ROI; empty when nothing stands in front.
+constexpr double kInFrontMargin = 0.03;  // m
+
+cv::Mat shown_mask(cv::Size size, std::span<const ImageSilhouette> in_front, double fx, double fy) {
+  if (in_front.empty()) return {};
+  cv::Mat shown(size, CV_8U, cv::Scalar(255));
+  for (const auto& o : in_front) {
+    const double s = o.px_per_m * fy, x = o.base.x * fx, y = o.base.y * fy;
+    const double half = (o.half_width + kInFrontMargin) * s;
+    const cv::Point top_left(static_cast<int>(std::floor(x - half)),
+                             static_cast<int>(std::floor(y - (o.height + kInFrontMargin) * s)));
+    const cv::Point bottom_right(static_cast<int>(std::ceil(x + half)),
+                                 static_cast<int>(std::ceil(y + kInFrontMargin * s)));
+    cv::rectangle(shown, top_left, bottom_right, cv::Scalar(0), cv::FILLED);
+  }
+  return shown;
 }
 
 // Grey-world white balance on the pixels that are nearly grey already (asphalt, white stripe, overcast sky): their
@@ -132,6 +172,7 @@ struct Pixels {
   cv::Mat H, S, V;  // CV_32F: degrees, 0..1, 0..1
   cv::Mat clipped;  // CV_8U: some channel at the sensor's limit, so the hue is off
   cv::Mat prior;    // CV_8U: the silhouette prior
+  cv::Mat core;     // CV_8U: the silhouette's core (empty: unknown scale)
   cv::Mat band;     // CV_8S: hue band of the cone cluster's voting pixels, -1 elsewhere
 };
 
@@ -215,7 +256,8 @@ ConeColourClassifier::ConeColourClassifier(const ConeColourConfig& cfg) : cfg_(c
         "blue_min ≤ blue_max ≤ red_min");
 }
 
-ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint) const {
+ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint,
+                                            std::span<const ImageSilhouette> in_front) const {
   if (roi_bgr.type() != CV_8UC3 || roi_bgr.cols < 2 || roi_bgr.rows < 2)
     throw std::invalid_argument("cone colour needs an 8-bit BGR image of at least 2 x 2 pixels");
   ColourResult result;
@@ -248,11 +290,18 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
   px.H = planes[0], px.S = planes[1], px.V = planes[2];
   cv::Mat cx, cy;
   cv::polarToCart(px.S, px.H, cx, cy, true);
+  px.prior = silhouette_prior(small.size(), v);
+  // The pixels of the cones in front are neither the cone's nor a colour to cluster: grey background to k-means.
+  const cv::Mat shown = shown_mask(small.size(), in_front, fx, fy);
+  if (!shown.empty()) {
+    px.prior &= shown;
+    cx.setTo(0, ~shown);
+    cy.setTo(0, ~shown);
+  }
   const int n = static_cast<int>(small.total());
   cv::Mat samples(n, 2, CV_32F);
   cx.reshape(1, n).copyTo(samples.col(0));
   cy.reshape(1, n).copyTo(samples.col(1));
-  px.prior = silhouette_prior(small.size(), v);
   const cv::Mat prior_flat = px.prior.reshape(1, n);
   cv::Mat labels(n, 1, CV_32S);
   for (int i = 0; i < n; ++i) labels.at<int>(i) = prior_flat.at<std::uint8_t>(i) ? 0 : 1;
@@ -260,33 +309,45 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
   cv::kmeans(samples, 2, labels, cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 10, 1e-3), 1,
              cv::KMEANS_USE_INITIAL_LABELS, centres);
 
-  // 3. The cone's cluster: inside the silhouette and saturated.
-  std::array<int, 2> members{}, inside{};
+  // 3. The cone's cluster: the one that holds most of the core's coloured pixels; without enough of those, the one
+  // inside the silhouette and saturated.
+  px.core = silhouette_core(small.size(), v);
+  if (!px.core.empty() && !shown.empty()) px.core &= shown;
+  const cv::Mat core_flat = px.core.empty() ? cv::Mat() : px.core.reshape(1, n);
+  const cv::Mat S_flat = px.S.reshape(1, n);
+  std::array<int, 2> members{}, inside{}, core_coloured{};
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(labels.at<int>(i));
     ++members[k];
     if (prior_flat.at<std::uint8_t>(i)) ++inside[k];
+    if (!core_flat.empty() && core_flat.at<std::uint8_t>(i) && S_flat.at<float>(i) >= cfg_.min_saturation)
+      ++core_coloured[k];
   }
   int cone = 0;
-  double best_score = -1;
-  for (int k = 0; k < 2; ++k) {
-    const auto kk = static_cast<std::size_t>(k);
-    if (members[kk] == 0) continue;
-    const double chroma = std::hypot(centres.at<float>(k, 0), centres.at<float>(k, 1));
-    const double score = static_cast<double>(inside[kk]) / members[kk] + 0.5 * chroma;
-    if (score > best_score) best_score = score, cone = k;
+  if (core_coloured[0] + core_coloured[1] >= kMinVotes && core_coloured[0] != core_coloured[1]) {
+    cone = core_coloured[1] > core_coloured[0] ? 1 : 0;
+  } else {
+    double best_score = -1;
+    for (int k = 0; k < 2; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      if (members[kk] == 0) continue;
+      const double chroma = std::hypot(centres.at<float>(k, 0), centres.at<float>(k, 1));
+      const double score = static_cast<double>(inside[kk]) / members[kk] + 0.5 * chroma;
+      if (score > best_score) best_score = score, cone = k;
+    }
   }
 
   // Votes by hue band of its saturated, bright enough pixels inside the silhouette. The most trusted pixels vote
-  // when there are enough of them: inside the cluster (its edge pixels blend with the background: orange on grass
-  // blends to yellow) and not clipped (over-exposed paint drifts: orange towards yellow).
+  // when there are enough of them: in the core (the candidate's own, above), inside the cluster (its edge pixels
+  // blend with the background: orange on grass blends to yellow) and not clipped (over-exposed paint drifts: orange
+  // towards yellow).
   px.band = cv::Mat(small.size(), CV_8S, cv::Scalar(-1));
   cv::Mat member(small.size(), CV_8U, cv::Scalar(0));
   for (int i = 0; i < n; ++i)
     if (labels.at<int>(i) == cone && prior_flat.at<std::uint8_t>(i)) member.data[i] = 255;
   cv::Mat interior;
   cv::erode(member, interior, cv::Mat(), cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
-  enum Tier { kTrusted, kUnclipped, kAll, kTiers };
+  enum Tier { kCore, kTrusted, kUnclipped, kAll, kTiers };
   std::array<std::array<int, kBandCount>, kTiers> tiers{};
   for (int r = 0; r < small.rows; ++r)
     for (int c = 0; c < small.cols; ++c) {
@@ -297,13 +358,17 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
       const bool unclipped = !px.clipped.at<std::uint8_t>(r, c);
       ++tiers[kAll][b];
       if (unclipped) ++tiers[kUnclipped][b];
-      if (unclipped && interior.at<std::uint8_t>(r, c)) ++tiers[kTrusted][b];
+      if (unclipped && interior.at<std::uint8_t>(r, c)) {
+        ++tiers[kTrusted][b];
+        if (!px.core.empty() && px.core.at<std::uint8_t>(r, c)) ++tiers[kCore][b];
+      }
     }
   const auto cone_sum = [](const std::array<int, kBandCount>& v) {
     return std::accumulate(v.begin(), v.begin() + kConeBands, 0);
   };
-  int tier = kTrusted;
-  while (tier < kAll && cone_sum(tiers[static_cast<std::size_t>(tier)]) < std::max(4.0, 0.15 * cone_sum(tiers[kAll])))
+  int tier = kCore;
+  while (tier < kAll &&
+         cone_sum(tiers[static_cast<std::size_t>(tier)]) < std::max<double>(kMinVotes, 0.15 * cone_sum(tiers[kAll])))
     ++tier;
   const std::array<int, kBandCount>& votes = tiers[static_cast<std::size_t>(tier)];
   const std::array<int, kBandCount>& all = tiers[kAll];

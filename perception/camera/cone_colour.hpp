@@ -7,9 +7,12 @@
 //  2. HSV without V: every pixel becomes its chroma (S·cos H, S·sin H), so brightness (shade, exposure) drops out and
 //     hue wraps around red correctly; k-means with k = 2 (cv::kmeans) splits the pixels, started from where the cone
 //     should be (a silhouette prior in the ROI) against the rest.
-//  3. The cone's cluster is the one inside the silhouette and saturated (the background is grey asphalt, green grass,
-//     sky at the edges); its saturated, not-too-dark pixels inside the silhouette vote by hue band. The white or
-//     black stripe and dark pixels have no reliable hue and do not vote.
+//  3. The cone's cluster is the one holding most of the coloured pixels of the silhouette's core (what any cone on
+//     the base point covers: the candidate's own pixels, where the silhouette's margins can hold a neighbour standing
+//     behind it), else the one inside the silhouette and saturated (the background is grey asphalt, green grass, sky
+//     at the edges); its saturated, not-too-dark pixels inside the silhouette vote by hue band, those in the core
+//     first. The white or black stripe and dark pixels have no reliable hue and do not vote. The candidates standing
+//     in front (their image boxes) take no part: a cone partly behind another is named by the part that shows.
 //  4. The colour is the winning cone band (red, orange, yellow, blue); its confidence is the share of the cone bands'
 //     votes it won times how much of the silhouette those pixels cover, lowered when their mean hue lies within
 //     edge_margin of another cone colour's band. Below min_confidence, or when a non-cone hue (green, purple)
@@ -17,11 +20,14 @@
 //  5. Orange is big orange when the cone is tall: from the LiDAR's height when given, else from the height of the
 //     orange pixels in the ROI at the projected scale, else (a crop of unknown scale) from two separate white
 //     stripes (the big cone has two, the small one one).
+#include <span>
+
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
 
 #include "common/config.hpp"
 #include "common/types.hpp"
+#include "perception/camera/occlusion.hpp"
 
 namespace fsd {
 
@@ -43,7 +49,7 @@ struct ConeColourConfig {
   bool white_balance = true;       // normalise the ROI's white balance on its near-grey pixels
   double max_white_gain = 1.25;    // bound of that correction per channel
   int working_pixels = 1600;       // larger ROIs are shrunk to about this many pixels
-  double max_hidden = 0.3;         // share of a candidate hidden behind nearer ones above which it gets no colour
+  double max_hidden = 0.7;         // share of a candidate hidden behind nearer ones above which it gets no colour
 };
 const ConfigSection<ConeColourConfig>& cone_colour_section();  // prefix "perception.camera.colour"
 
@@ -67,7 +73,10 @@ class ConeColourClassifier {
  public:
   explicit ConeColourClassifier(const ConeColourConfig& cfg = {});
   // `roi_bgr`: CV_8UC3, at least 2 × 2 pixels. `height_hint`: the candidate's height from the LiDAR, m (0 = unknown).
-  ColourResult classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint = 0.0) const;
+  // `in_front`: the candidates standing in front of this one, in the ROI's pixels: their pixels take no part (the
+  // colour is judged on the part of the cone that shows).
+  ColourResult classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint = 0.0,
+                        std::span<const ImageSilhouette> in_front = {}) const;
   // The view of a crop the cone fills.
   static ConeView crop_view(cv::Size crop) { return {cv::Point2d(crop.width / 2.0, crop.height), 0.0}; }
   const ConeColourConfig& config() const { return cfg_; }

@@ -142,5 +142,47 @@ TEST(CameraStage, ACandidateMostlyHiddenBehindANearerOneGetsNoColour) {
   EXPECT_EQ(one[0].colour, ConeColour::Yellow);
 }
 
+// Partly hidden (between a third and two thirds of its body behind a nearer cone of another colour), a cone gets
+// its own colour from the part that shows: the nearer cone's pixels take no part in the vote.
+TEST(CameraStage, APartlyHiddenCandidateGetsTheColourOfThePartThatShows) {
+  for (const double offset : {0.05, 0.07, -0.12, -0.14}) {
+    cv::Mat frame = asphalt();
+    paint(frame, 9.5, 1.5, ConeColour::Yellow);  // farther first: the nearer one is painted over it
+    paint(frame, 9.25, 1.5 + offset, ConeColour::Blue);
+    CameraStage stage(calibration(), constant_model(1.0));
+    std::vector<Cone> seen{lidar_candidate(9.5, 1.5), lidar_candidate(9.25, 1.5 + offset)};
+    const std::vector<CandidateSize> sizes{{0.30, 0.22}, {0.30, 0.22}};
+    const CandidateRoi far = stage.projector().project(seen[0].position, frame.size());
+    const CandidateRoi near = stage.projector().project(seen[1].position, frame.size());
+    const std::array<ImageSilhouette, 1> in_front{{{near.base, near.px_per_m, 0.11, 0.30}}};
+    const double hidden = hidden_share(far.base, far.px_per_m, in_front);
+    ASSERT_GT(hidden, 0.3) << offset;  // hidden enough that the whole ROI's colour would be in doubt
+    ASSERT_LT(hidden, 0.7) << offset;
+    stage.verify(seen, frame, sizes);
+    ASSERT_EQ(seen.size(), 2u);
+    EXPECT_EQ(seen[0].colour, ConeColour::Yellow) << offset << ": " << to_string(seen[0].colour);
+    EXPECT_EQ(seen[1].colour, ConeColour::Blue) << offset;
+    EXPECT_EQ(stage.stats().colour_hidden, 0u);
+  }
+}
+
+// A big orange cone of a timing line standing just behind and beside a small cone fills much of the small cone's
+// ROI (its margins are a big cone's size, for the LiDAR's centroid error) with saturated orange: the small cone is
+// still named by its own pixels, those on its base point, not by the taller one behind it.
+TEST(CameraStage, ABigConeBehindASmallOneDoesNotNameIt) {
+  for (const double beside : {0.25, -0.25, 0.32, -0.32}) {
+    cv::Mat frame = asphalt();
+    paint(frame, 6.5, 1.5 + beside, ConeColour::BigOrange, true);  // farther first: the small one stands in front
+    paint(frame, 6.0, 1.5, ConeColour::Blue);
+    CameraStage stage(calibration(), constant_model(1.0));
+    std::vector<Cone> seen{lidar_candidate(6.0, 1.5), lidar_candidate(6.5, 1.5 + beside)};
+    const std::vector<CandidateSize> sizes{{0.30, 0.22}, {0.49, 0.28}};
+    stage.verify(seen, frame, sizes);
+    ASSERT_EQ(seen.size(), 2u);
+    EXPECT_EQ(seen[0].colour, ConeColour::Blue) << beside << ": " << to_string(seen[0].colour);
+    EXPECT_EQ(seen[1].colour, ConeColour::BigOrange) << beside << ": " << to_string(seen[1].colour);
+  }
+}
+
 }  // namespace
 }  // namespace fsd
