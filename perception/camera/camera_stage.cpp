@@ -1,5 +1,6 @@
 #include "perception/camera/camera_stage.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -46,17 +47,20 @@ CropVerdict classify_crop(const ConeClassifier& classifier, const ConeColourClas
 
 namespace {
 
-// The candidates nearer to the car than candidate i, each as large as the LiDAR measured it (a small cone's size
-// when unknown), in the image's pixels.
-std::vector<ImageSilhouette> nearer_than(std::size_t i, const std::vector<Cone>& candidates,
-                                         const std::vector<CandidateRoi>& rois, std::span<const CandidateSize> sizes) {
+// The candidates nearer to the car than candidate i (`in_front`) or farther (not), each as large as the LiDAR
+// measured it and at least as wide as the rules' cone of that height (the LiDAR sees a cone's near side only), in
+// the image's pixels.
+std::vector<ImageSilhouette> others_of(std::size_t i, bool in_front, const std::vector<Cone>& candidates,
+                                       const std::vector<CandidateRoi>& rois, std::span<const CandidateSize> sizes) {
+  constexpr double kBigConeHalfWidth = 0.1425, kBigConeMinHeight = 0.40;  // m (cone_size_filter.hpp's big cone)
   const double range = candidates[i].position.head<2>().norm();
   std::vector<ImageSilhouette> nearer;
   for (std::size_t j = 0; j < candidates.size(); ++j) {
     if (j == i || rois[j].status == RoiStatus::Outside || !(rois[j].px_per_m > 0)) continue;
-    if (!(candidates[j].position.head<2>().norm() < range)) continue;
+    if ((candidates[j].position.head<2>().norm() < range) != in_front) continue;
     const double h = !sizes.empty() && sizes[j].height > 0 ? sizes[j].height : kSmallConeHeight;
-    const double hw = !sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : kSmallConeHalfWidth;
+    const double hw = std::max(!sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : 0.0,
+                               h >= kBigConeMinHeight ? kBigConeHalfWidth : kSmallConeHalfWidth);
     nearer.push_back({rois[j].base, rois[j].px_per_m, hw, h});
   }
   return nearer;
@@ -109,13 +113,14 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
       continue;
     }
     // Partly hidden, its colour is judged on the part that shows; mostly hidden, not at all.
-    std::vector<ImageSilhouette> in_front = nearer_than(i, candidates, rois, sizes);
-    const double hidden_share_i = hidden_share(roi.base, roi.px_per_m, in_front);
-    const bool hidden = hidden_share_i > colour_.config().max_hidden;
-    for (auto& o : in_front) o.base -= cv::Point2d(roi.pixels.x, roi.pixels.y);  // into the ROI's pixels
+    std::vector<ImageSilhouette> in_front = others_of(i, true, candidates, rois, sizes);
+    std::vector<ImageSilhouette> behind = others_of(i, false, candidates, rois, sizes);
+    const bool hidden = hidden_share(roi.base, roi.px_per_m, in_front) > colour_.config().max_hidden;
+    for (auto* list : {&in_front, &behind})
+      for (auto& o : *list) o.base -= cv::Point2d(roi.pixels.x, roi.pixels.y);  // into the ROI's pixels
     const ColourResult colour =
         hidden ? ColourResult{}
-               : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height, in_front);
+               : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height, in_front, behind);
     stats_.colour_hidden += hidden;
     c.stage = DetectionStage::Camera;
     c.colour = colour.colour;

@@ -133,22 +133,35 @@ cv::Mat silhouette_core(cv::Size size, const ConeView& v) {
   return quad_mask(size, cone_quad(v, kCoreBaseHalf, kCoreTopHalf, kCoreHeight, 0.0));
 }
 
-// The pixels not covered by the candidates in front (each a box of its size on its base, with a margin for the
-// positions' error), in the working image scaled by (fx, fy) from the ROI; empty when nothing stands in front.
-constexpr double kInFrontMargin = 0.03;  // m
+// The pixels that can be the candidate's own: not covered by a candidate in front, nor by one behind outside the
+// candidate's own outline (a small cone's on its base point: what stands behind shows around it). Each
+// candidate is a box of its size on its base with a margin for the positions' error; in the working image scaled by
+// (fx, fy) from the ROI; empty when no other candidate is near.
+constexpr double kBoxMargin = 0.03;  // m
 
-cv::Mat shown_mask(cv::Size size, std::span<const ImageSilhouette> in_front, double fx, double fy) {
-  if (in_front.empty()) return {};
+cv::Rect box_of(const ImageSilhouette& o, double fx, double fy) {
+  const double s = o.px_per_m * fy, x = o.base.x * fx, y = o.base.y * fy;
+  const double half = (o.half_width + kBoxMargin) * s;
+  const cv::Point top_left(static_cast<int>(std::floor(x - half)),
+                           static_cast<int>(std::floor(y - (o.height + kBoxMargin) * s)));
+  const cv::Point bottom_right(static_cast<int>(std::ceil(x + half)), static_cast<int>(std::ceil(y + kBoxMargin * s)));
+  return {top_left, bottom_right};
+}
+
+cv::Mat shown_mask(cv::Size size, const ConeView& v, std::span<const ImageSilhouette> in_front,
+                   std::span<const ImageSilhouette> behind, double fx, double fy) {
+  if (in_front.empty() && behind.empty()) return {};
   cv::Mat shown(size, CV_8U, cv::Scalar(255));
-  for (const auto& o : in_front) {
-    const double s = o.px_per_m * fy, x = o.base.x * fx, y = o.base.y * fy;
-    const double half = (o.half_width + kInFrontMargin) * s;
-    const cv::Point top_left(static_cast<int>(std::floor(x - half)),
-                             static_cast<int>(std::floor(y - (o.height + kInFrontMargin) * s)));
-    const cv::Point bottom_right(static_cast<int>(std::ceil(x + half)),
-                                 static_cast<int>(std::ceil(y + kInFrontMargin * s)));
-    cv::rectangle(shown, top_left, bottom_right, cv::Scalar(0), cv::FILLED);
+  if (!behind.empty() && v.px_per_m > 0) {
+    // A small cone's outline on the base point (v is in the working image already), the margin all round.
+    const cv::Mat own =
+        quad_mask(size, cone_quad(v, kSmallConeHalfWidth + kBoxMargin, kSmallConeTopHalfWidth + kBoxMargin,
+                                  kSmallConeHeight + kBoxMargin, kBoxMargin));
+    cv::Mat theirs(size, CV_8U, cv::Scalar(0));
+    for (const auto& o : behind) cv::rectangle(theirs, box_of(o, fx, fy), cv::Scalar(255), cv::FILLED);
+    shown.setTo(0, theirs & ~own);
   }
+  for (const auto& o : in_front) cv::rectangle(shown, box_of(o, fx, fy), cv::Scalar(0), cv::FILLED);
   return shown;
 }
 
@@ -257,7 +270,8 @@ ConeColourClassifier::ConeColourClassifier(const ConeColourConfig& cfg) : cfg_(c
 }
 
 ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint,
-                                            std::span<const ImageSilhouette> in_front) const {
+                                            std::span<const ImageSilhouette> in_front,
+                                            std::span<const ImageSilhouette> behind) const {
   if (roi_bgr.type() != CV_8UC3 || roi_bgr.cols < 2 || roi_bgr.rows < 2)
     throw std::invalid_argument("cone colour needs an 8-bit BGR image of at least 2 x 2 pixels");
   ColourResult result;
@@ -291,8 +305,8 @@ ColourResult ConeColourClassifier::classify(const cv::Mat& roi_bgr, const ConeVi
   cv::Mat cx, cy;
   cv::polarToCart(px.S, px.H, cx, cy, true);
   px.prior = silhouette_prior(small.size(), v);
-  // The pixels of the cones in front are neither the cone's nor a colour to cluster: grey background to k-means.
-  const cv::Mat shown = shown_mask(small.size(), in_front, fx, fy);
+  // The pixels of the other candidates are neither the cone's nor a colour to cluster: grey background to k-means.
+  const cv::Mat shown = shown_mask(small.size(), v, in_front, behind, fx, fy);
   if (!shown.empty()) {
     px.prior &= shown;
     cx.setTo(0, ~shown);

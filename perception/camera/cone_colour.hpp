@@ -12,7 +12,8 @@
 //     behind it), else the one inside the silhouette and saturated (the background is grey asphalt, green grass, sky
 //     at the edges); its saturated, not-too-dark pixels inside the silhouette vote by hue band, those in the core
 //     first. The white or black stripe and dark pixels have no reliable hue and do not vote. The candidates standing
-//     in front (their image boxes) take no part: a cone partly behind another is named by the part that shows.
+//     in front (their image boxes) take no part: a cone partly behind another is named by the part that shows; nor
+//     do those behind it, around the cone's own outline.
 //  4. The colour is the winning cone band (red, orange, yellow, blue); its confidence is the share of the cone bands'
 //     votes it won times how much of the silhouette those pixels cover, lowered when their mean hue lies within
 //     edge_margin of another cone colour's band. Below min_confidence, or when a non-cone hue (green, purple)
@@ -73,10 +74,12 @@ class ConeColourClassifier {
  public:
   explicit ConeColourClassifier(const ConeColourConfig& cfg = {});
   // `roi_bgr`: CV_8UC3, at least 2 × 2 pixels. `height_hint`: the candidate's height from the LiDAR, m (0 = unknown).
-  // `in_front`: the candidates standing in front of this one, in the ROI's pixels: their pixels take no part (the
-  // colour is judged on the part of the cone that shows).
+  // `in_front`, `behind`: the other candidates standing in front of this one and behind it, in the ROI's pixels.
+  // Those in front take no part (the colour is judged on the part of the cone that shows), nor those behind outside
+  // a small cone's outline on this one's base point (a taller cone behind shows above and beside it).
   ColourResult classify(const cv::Mat& roi_bgr, const ConeView& view, double height_hint = 0.0,
-                        std::span<const ImageSilhouette> in_front = {}) const;
+                        std::span<const ImageSilhouette> in_front = {},
+                        std::span<const ImageSilhouette> behind = {}) const;
   // The view of a crop the cone fills.
   static ConeView crop_view(cv::Size crop) { return {cv::Point2d(crop.width / 2.0, crop.height), 0.0}; }
   const ConeColourConfig& config() const { return cfg_; }
