@@ -136,9 +136,6 @@ struct SimRun::Impl {
       if (dds) dds->camera_frame(t - latency, b);
     };
     car = std::make_unique<sim::VirtualCar>(track, car_settings, static_cast<std::uint64_t>(run.seed), sinks);
-    // As fast as the CPU allows: the LiDAR's rays on the second core too (in real time the loop has time to spare,
-    // and a helper at normal priority would wait behind the browser).
-    if (!real_time) car->cast_lidar_on_two_threads(true);
     faults = std::make_unique<SimFaults>(*car, car_settings.run.lidar);
 
     scoring = std::make_unique<SimScoring>(track, mission, run, *stack);

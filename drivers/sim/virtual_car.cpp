@@ -1,7 +1,5 @@
 #include "drivers/sim/virtual_car.hpp"
 
-#include <algorithm>
-
 #include <cmath>
 
 #include "common/logging.hpp"
@@ -66,7 +64,7 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
       faults_(settings.faults, track),
       dt_(1.0 / settings.run.physics_rate_hz) {
   vehicle_.reset(track.start, 0.0, 0.0);
-  steps_.push_back(vehicle_.truth());
+  prev_ = vehicle_.truth();
   // Each sensor gets its own seed stream so enabling one does not change another's noise.
   if (s_.run.lidar) lidar_ = std::make_unique<LidarModel>(s_.lidar, world_, seed * 7919 + 1, 0.0);
   if (s_.run.gnss) gnss_ = std::make_unique<GnssModel>(s_.gnss, seed * 7919 + 2);
@@ -90,28 +88,24 @@ void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) {
 }
 
 VehicleTruth VirtualCar::truth_at(Stamp t) const {
-  // The step at or after t, and the one before it (clamped to the history's ends).
-  const auto after =
-      std::lower_bound(steps_.begin(), steps_.end(), t, [](const VehicleTruth& s, Stamp at) { return s.t < at; });
-  if (after == steps_.end()) return steps_.back();
-  if (after == steps_.begin() || after->t <= t) return *after;
-  const VehicleTruth& a = *(after - 1);
-  const VehicleTruth& b = *after;
-  const double w = (t - a.t) / (b.t - a.t);
+  const VehicleTruth& b = vehicle_.truth();
+  if (t >= b.t || b.t <= prev_.t) return b;
+  if (t <= prev_.t) return prev_;
+  const double w = (t - prev_.t) / (b.t - prev_.t);
   auto lerp = [w](double x, double y) { return x + w * (y - x); };
   VehicleTruth r = b;
   r.t = t;
-  r.pose = {lerp(a.pose.x, b.pose.x), lerp(a.pose.y, b.pose.y),
-            wrap_angle(a.pose.yaw + w * wrap_angle(b.pose.yaw - a.pose.yaw))};
-  r.vx = lerp(a.vx, b.vx);
-  r.vy = lerp(a.vy, b.vy);
-  r.yaw_rate = lerp(a.yaw_rate, b.yaw_rate);
-  r.ax = lerp(a.ax, b.ax);
-  r.ay = lerp(a.ay, b.ay);
-  r.roll = lerp(a.roll, b.roll);
-  r.pitch = lerp(a.pitch, b.pitch);
-  r.steering = lerp(a.steering, b.steering);
-  r.distance = lerp(a.distance, b.distance);
+  r.pose = {lerp(prev_.pose.x, b.pose.x), lerp(prev_.pose.y, b.pose.y),
+            wrap_angle(prev_.pose.yaw + w * wrap_angle(b.pose.yaw - prev_.pose.yaw))};
+  r.vx = lerp(prev_.vx, b.vx);
+  r.vy = lerp(prev_.vy, b.vy);
+  r.yaw_rate = lerp(prev_.yaw_rate, b.yaw_rate);
+  r.ax = lerp(prev_.ax, b.ax);
+  r.ay = lerp(prev_.ay, b.ay);
+  r.roll = lerp(prev_.roll, b.roll);
+  r.pitch = lerp(prev_.pitch, b.pitch);
+  r.steering = lerp(prev_.steering, b.steering);
+  r.distance = lerp(prev_.distance, b.distance);
   return r;
 }
 
@@ -137,9 +131,8 @@ void VirtualCar::advance_to(Stamp t) {
     cmd.max_brake = out.max_brake;
     cmd.ebs = out.ebs;
     cmd.drive_enabled = out.drive_enabled;
+    prev_ = vehicle_.truth();
     vehicle_.step(dt_, cmd);
-    steps_.push_back(vehicle_.truth());
-    if (steps_.size() > kHistory) steps_.pop_front();
     const auto fp = vehicle_.footprint();
     if (world_.update_hits(fp, vehicle_.truth().t) > 0) log_new_hits();
     const Stamp t1 = vehicle_.truth().t;
@@ -150,6 +143,9 @@ void VirtualCar::advance_to(Stamp t) {
         gnss_outage_set_ = true;
       }
     }
+    if (lidar_ && sinks_.lidar)
+      lidar_->advance_to(
+          t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
     if (camera_ && sinks_.camera)
       camera_->advance_to(
           t1, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.camera);
@@ -157,10 +153,6 @@ void VirtualCar::advance_to(Stamp t) {
       gnss_->advance_to(
           t1, [this](Stamp ts) { return truth_at(ts); }, sinks_.gnss);
   }
-  // The LiDAR over every step made, its firings posed between the steps around each.
-  if (lidar_ && sinks_.lidar)
-    lidar_->advance_to(
-        vehicle_.truth().t, [this](Stamp ts) { return truth_at(ts).body_pose3(); }, sinks_.lidar);
 }
 
 std::vector<ConeReturns> VirtualCar::take_lidar_cone_returns() {

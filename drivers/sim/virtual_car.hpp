@@ -2,7 +2,6 @@
 // The virtual car: world, vehicle dynamics, VCU stand-in and sensor models stepped together at a fixed physics
 // rate. Sensors write the bytes of the real devices to sinks; the daemon sends the VCU's bytes in through
 // feed_vcu(). The car never reads a clock: its owner advances it (lockstep) or paces it in real time.
-#include <deque>
 #include <memory>
 #include <optional>
 #include <span>
@@ -74,16 +73,12 @@ class VirtualCar {
   // The id a world cone (index into World::cones()) carries in standing_cones() and the truth frames.
   static std::uint32_t cone_id(int index) { return static_cast<std::uint32_t>(index + 1); }
   std::uint64_t lidar_packets() const { return lidar_ ? lidar_->packets_sent() : 0; }
-  // The LiDAR's packets cast on two threads (LidarModel::cast_on_two_threads): the same packets, sooner.
-  void cast_lidar_on_two_threads(bool on) {
-    if (lidar_) lidar_->cast_on_two_threads(on);
-  }
   // The LiDAR's returns from each cone since the last call, as they left the sensor (none in a LiDAR outage, none
   // without the LiDAR model): which cones the sensor could see.
   std::vector<ConeReturns> take_lidar_cone_returns();
 
  private:
-  VehicleTruth truth_at(Stamp t) const;  // interpolated between the physics steps around t (the recent ones)
+  VehicleTruth truth_at(Stamp t) const;  // interpolated between the last two physics steps
   void log_new_hits();                   // one line per cone knocked over in the last physics step
 
   VirtualCarSettings s_;
@@ -96,10 +91,7 @@ class VirtualCar {
   SensorSinks sinks_;
   FaultSchedule faults_;
   bool gnss_outage_set_ = false;  // the GNSS fault's window has been handed to the receiver model
-  // The physics steps of the last kHistory·dt seconds, oldest first (the newest is the vehicle's truth): what the
-  // sensors sample their poses from, the LiDAR once per advance_to over all the steps it made.
-  static constexpr std::size_t kHistory = 16;
-  std::deque<VehicleTruth> steps_;
+  VehicleTruth prev_;
   double dt_;
 };
 

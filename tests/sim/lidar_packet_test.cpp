@@ -1,7 +1,6 @@
 // The VLP-16 model's packets against the manual's layout and timing, read directly with vlp16_format.hpp.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
 #include <vector>
 
@@ -161,42 +160,6 @@ TEST_F(LidarPackets, DropoutLosesThatShareOfReturns) {
         }
   ASSERT_GT(returns, 10000);
   EXPECT_NEAR(1.0 - kept / returns, 0.3, 0.01);
-}
-
-// Cast on two threads, the model sends the very same bytes and counts the same cone returns: a moving car (the
-// pose read from both threads), noise and dropout on, advanced a control period at a time.
-TEST_F(LidarPackets, TwoThreadsSendTheSameBytesAndReturnsAsOne) {
-  LidarConfig cfg;
-  cfg.dropout = 0.1;
-  const auto driving = [](Stamp t) {
-    Pose3 p = Pose3::Identity();
-    p.translation() = Vec3(8.0 * t, 0.5 * t * t, 0.0);
-    p.linear() = Eigen::AngleAxisd(0.3 * t, Vec3::UnitZ()).toRotationMatrix();
-    return p;
-  };
-  std::array<std::vector<std::vector<std::uint8_t>>, 2> packets;
-  std::array<std::vector<Stamp>, 2> stamps;
-  std::array<std::vector<ConeReturns>, 2> returns;
-  for (std::size_t threads = 1; threads <= 2; ++threads) {
-    LidarModel lidar(cfg, world, 7, 0.0);
-    lidar.cast_on_two_threads(threads == 2);
-    for (int i = 1; i <= 30; ++i)
-      lidar.advance_to(0.01 * i, driving, [&](Stamp t, std::span<const std::uint8_t> b) {
-        packets[threads - 1].emplace_back(b.begin(), b.end());
-        stamps[threads - 1].push_back(t);
-      });
-    returns[threads - 1] = lidar.take_cone_returns();
-  }
-  ASSERT_GT(packets[0].size(), 200u);
-  EXPECT_TRUE(packets[0] == packets[1]);
-  EXPECT_TRUE(stamps[0] == stamps[1]);
-  ASSERT_EQ(returns[0].size(), 2u);  // both cones seen
-  ASSERT_EQ(returns[1].size(), returns[0].size());
-  for (std::size_t i = 0; i < returns[0].size(); ++i) {
-    EXPECT_EQ(returns[1][i].cone, returns[0][i].cone);
-    EXPECT_EQ(returns[1][i].returns, returns[0][i].returns);
-    EXPECT_EQ(returns[1][i].t, returns[0][i].t);
-  }
 }
 
 }  // namespace

@@ -2,10 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <condition_variable>
-#include <mutex>
-#include <thread>
-#include <utility>
 
 #include "common/rotation.hpp"
 #include "drivers/sim/world/world_random.hpp"
@@ -55,59 +51,6 @@ const ConfigSection<LidarConfig>& lidar_section() {
 
 Pose3 lidar_mount(const LidarConfig& cfg) { return pose_zyx(Vec3(cfg.x, cfg.y, cfg.z), cfg.yaw, cfg.pitch, cfg.roll); }
 
-// One job at a time on a thread of its own; the caller hands it over, does its own share, then waits for it.
-class LidarModel::Helper {
- public:
-  Helper() : thread_([this] { run(); }) {}
-  ~Helper() {
-    {
-      std::lock_guard lock(m_);
-      stop_ = true;
-    }
-    cv_.notify_all();
-    thread_.join();
-  }
-  void start(std::function<void()> job) {
-    {
-      std::lock_guard lock(m_);
-      job_ = std::move(job);
-      done_ = false;
-    }
-    cv_.notify_all();
-  }
-  void wait() {
-    std::unique_lock lock(m_);
-    cv_.wait(lock, [this] { return done_; });
-  }
-
- private:
-  void run() {
-    std::unique_lock lock(m_);
-    for (;;) {
-      cv_.wait(lock, [this] { return stop_ || job_; });
-      if (stop_) return;
-      auto job = std::exchange(job_, {});
-      lock.unlock();
-      job();  // ray casting and byte writes: nothing that throws
-      lock.lock();
-      done_ = true;
-      cv_.notify_all();
-    }
-  }
-  std::mutex m_;
-  std::condition_variable cv_;
-  std::function<void()> job_;
-  bool done_ = true, stop_ = false;
-  std::thread thread_;  // last: started once the members it uses are
-};
-
-LidarModel::~LidarModel() = default;
-
-void LidarModel::cast_on_two_threads(bool on) {
-  if (on && !helper_) helper_ = std::make_unique<Helper>();
-  if (!on) helper_.reset();
-}
-
 LidarModel::LidarModel(const LidarConfig& cfg, const World& world, std::uint64_t seed, Stamp start)
     : cfg_(cfg),
       world_(world),
@@ -125,11 +68,9 @@ LidarModel::LidarModel(const LidarConfig& cfg, const World& world, std::uint64_t
   sin_step_ = std::sin(step);
 }
 
-Stamp LidarModel::packet_start(std::uint64_t index) const {
-  return start_ + static_cast<double>(index) * vlp::kPacketPeriodUs * 1e-6;
+Stamp LidarModel::next_packet_start() const {
+  return start_ + static_cast<double>(packets_) * vlp::kPacketPeriodUs * 1e-6;
 }
-
-Stamp LidarModel::next_packet_start() const { return packet_start(packets_); }
 
 double LidarModel::azimuth_rad(Stamp t) const {
   const double turns = cfg_.rotation_hz * (t - start_);
@@ -138,45 +79,25 @@ double LidarModel::azimuth_rad(Stamp t) const {
 
 void LidarModel::advance_to(Stamp t, const std::function<Pose3(Stamp)>& body_pose_at, const ByteSink& sink) {
   constexpr double kPacket = vlp::kPacketPeriodUs * 1e-6;
-  std::size_t due = 0;
-  while (packet_start(packets_ + due) + kPacket <= t) ++due;
-  if (due == 0) return;
-  if (packets_due_.size() < due) packets_due_.resize(due), returns_due_.resize(due);
-  const auto build = [&](std::size_t first, std::size_t last) {
-    for (std::size_t i = first; i < last; ++i) {
-      returns_due_[i].clear();
-      build_packet(packets_ + i, body_pose_at, packets_due_[i], returns_due_[i]);
-    }
-  };
-  const std::size_t half = due / 2;
-  if (helper_ && half > 0) {
-    helper_->start([&] { build(half, due); });
-    build(0, half);
-    helper_->wait();
-  } else {
-    build(0, due);
-  }
-  // Sent and counted in firing order, as one pass would have.
-  for (std::size_t i = 0; i < due; ++i) {
-    const Stamp departure = packet_start(packets_) + kPacket + cfg_.latency;
-    for (const auto& c : returns_due_[i]) count_cone_return(cone_returns_, c.cone, c.returns, c.t);
+  while (next_packet_start() + kPacket <= t) {
+    const Stamp departure = next_packet_start() + kPacket + cfg_.latency;
+    build_packet(body_pose_at);
     ++packets_;
-    if (sink) sink(departure, packets_due_[i]);
+    if (sink) sink(departure, packet_);
   }
 }
 
-void LidarModel::build_packet(std::uint64_t index, const std::function<Pose3(Stamp)>& body_pose_at, Packet& packet,
-                              std::vector<ConeReturns>& returns) const {
-  const Stamp t0 = packet_start(index);
+void LidarModel::build_packet(const std::function<Pose3(Stamp)>& body_pose_at) {
+  const Stamp t0 = next_packet_start();
   const double noise_sigma = cfg_.range_noise / 2.0;
   for (std::size_t block = 0; block < vlp::kBlocks; ++block) {
     const std::size_t at = block * vlp::kBlockSize;
     const Stamp t_block = t0 + static_cast<double>(block) * vlp::kBlockPeriodUs * 1e-6;
-    packet[at] = vlp::kFlag0;
-    packet[at + 1] = vlp::kFlag1;
+    packet_[at] = vlp::kFlag0;
+    packet_[at + 1] = vlp::kFlag1;
     const auto az =
         static_cast<std::uint16_t>(std::lround(rad2deg(azimuth_rad(t_block)) / vlp::kAzimuthUnitDeg) % 36000);
-    vlp::write_u16(packet, at + 2, az);
+    vlp::write_u16(packet_, at + 2, az);
     for (std::size_t seq = 0; seq < vlp::kSequencesPerBlock; ++seq) {
       const Stamp t_seq = t_block + static_cast<double>(seq) * vlp::kSequencePeriodUs * 1e-6;
       const Pose3 sensor = body_pose_at(t_seq) * mount_;  // map ← sensor during this sequence
@@ -199,7 +120,7 @@ void LidarModel::build_packet(std::uint64_t index, const std::function<Pose3(Sta
         std::uint16_t counts = 0;
         std::uint8_t intensity = 0;
         if (hit) {
-          const std::uint64_t h = hash64(seed_, index, (block * vlp::kSequencesPerBlock + seq) * vlp::kLasers + k);
+          const std::uint64_t h = hash64(seed_, packets_, (block * vlp::kSequencesPerBlock + seq) * vlp::kLasers + k);
           const bool dropped = cfg_.dropout > 0.0 && unit_double(mix64(h ^ 0xD50Fu)) < cfg_.dropout;
           const double noise = noise_sigma * truncated_normal(mix64(h ^ 0x7015Eu));
           const double d = hit->distance + noise;
@@ -208,30 +129,31 @@ void LidarModel::build_packet(std::uint64_t index, const std::function<Pose3(Sta
             const double incidence = std::abs(hit->normal.dot(dir));
             intensity = static_cast<std::uint8_t>(
                 std::clamp(std::lround(hit->reflectivity * (0.3 + 0.7 * incidence)), 0L, 255L));
-            if (hit->cone >= 0) count_cone_return(returns, hit->cone, 1, t_seq);
+            if (hit->cone >= 0) count_cone_return(hit->cone, t_seq);
           }
         }
-        vlp::write_u16(packet, ch, counts);
-        packet[ch + 2] = intensity;
+        vlp::write_u16(packet_, ch, counts);
+        packet_[ch + 2] = intensity;
       }
     }
   }
   // µs past the top of the hour of the packet's first firing.
   const double past_hour = t0 - 3600.0 * std::floor(t0 / 3600.0);
-  vlp::write_u32(packet, vlp::kTimestampOffset,
+  vlp::write_u32(packet_, vlp::kTimestampOffset,
                  static_cast<std::uint32_t>(std::llround(past_hour * 1e6) % 3600000000LL));
-  packet[vlp::kReturnModeOffset] = return_mode_;
-  packet[vlp::kProductOffset] = static_cast<std::uint8_t>(cfg_.product_id);
+  packet_[vlp::kReturnModeOffset] = return_mode_;
+  packet_[vlp::kProductOffset] = static_cast<std::uint8_t>(cfg_.product_id);
 }
 
-void LidarModel::count_cone_return(std::vector<ConeReturns>& returns, int cone, int n, Stamp t) {
+void LidarModel::count_cone_return(int cone, Stamp t) {
   // A few cones per packet, and the same cone over consecutive firings: the last entry first.
-  auto it = std::find_if(returns.rbegin(), returns.rend(), [cone](const auto& c) { return c.cone == cone; });
-  if (it == returns.rend()) {
-    returns.push_back({cone, n, t});
+  auto it =
+      std::find_if(cone_returns_.rbegin(), cone_returns_.rend(), [cone](const auto& c) { return c.cone == cone; });
+  if (it == cone_returns_.rend()) {
+    cone_returns_.push_back({cone, 1, t});
     return;
   }
-  it->returns += n;
+  ++it->returns;
   it->t = t;
 }
 

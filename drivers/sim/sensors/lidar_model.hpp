@@ -21,7 +21,6 @@
 #include <array>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,17 +65,11 @@ class LidarModel {
  public:
   // `start` is the time of the first firing; the head points along the sensor's +x then.
   LidarModel(const LidarConfig& cfg, const World& world, std::uint64_t seed, Stamp start = 0.0);
-  ~LidarModel();
 
   // Emits every packet whose firings all lie before t, stamped with its departure time (end of the packet plus
   // latency). body_pose_at(t) gives the vehicle body 3D pose (map ← body) at any firing time since the previous
   // call, e.g. VehicleTruth::body_pose3() interpolated by the caller.
   void advance_to(Stamp t, const std::function<Pose3(Stamp)>& body_pose_at, const ByteSink& sink);
-
-  // Builds the packets of one advance_to on two threads (the later half on a thread of the model's own): the same
-  // bytes, sooner, for a simulation that runs as fast as the CPU allows. body_pose_at is then called from both
-  // threads and must be safe to.
-  void cast_on_two_threads(bool on);
 
   std::uint64_t packets_sent() const { return packets_; }
   // The cone returns of the packets emitted since the last call, one entry per cone (bounded: one per cone).
@@ -85,14 +78,9 @@ class LidarModel {
   const LidarConfig& config() const { return cfg_; }
 
  private:
-  using Packet = std::array<std::uint8_t, wire::vlp16::kPacketSize>;
-  class Helper;  // the second thread of cast_on_two_threads
-  // Packet number `index` (its firings from start_ + index · period) into `packet`, its cone returns into `returns`.
-  void build_packet(std::uint64_t index, const std::function<Pose3(Stamp)>& body_pose_at, Packet& packet,
-                    std::vector<ConeReturns>& returns) const;
-  Stamp packet_start(std::uint64_t index) const;
+  void build_packet(const std::function<Pose3(Stamp)>& body_pose_at);
   double azimuth_rad(Stamp t) const;
-  static void count_cone_return(std::vector<ConeReturns>& returns, int cone, int n, Stamp t);
+  void count_cone_return(int cone, Stamp t);
 
   LidarConfig cfg_;
   const World& world_;
@@ -102,11 +90,9 @@ class LidarModel {
   std::uint8_t return_mode_;
   std::uint64_t packets_ = 0;
   std::array<double, wire::vlp16::kLasers> cos_elev_{}, sin_elev_{}, offset_{};
-  double cos_step_ = 1.0, sin_step_ = 0.0;             // head rotation between two lasers' firings
-  std::vector<Packet> packets_due_;                    // one advance_to's packets (reused)
-  std::vector<std::vector<ConeReturns>> returns_due_;  // and their cone returns
+  double cos_step_ = 1.0, sin_step_ = 0.0;  // head rotation between two lasers' firings
+  std::array<std::uint8_t, wire::vlp16::kPacketSize> packet_{};
   std::vector<ConeReturns> cone_returns_;
-  std::unique_ptr<Helper> helper_;
 };
 
 }  // namespace fsd::sim
