@@ -60,6 +60,15 @@ class JobThread {
     return ready_at_;
   }
 
+  // The submitted job's result, once, waiting for it (the jobs are bounded); nullopt with nothing out.
+  std::optional<Result> wait() {
+    std::unique_lock lock(m_);
+    cv_.wait(lock, [this] { return result_.has_value() || !busy_; });
+    if (!result_) return std::nullopt;
+    busy_ = false;
+    return std::exchange(result_, std::nullopt);
+  }
+
   // The submitted job's result, once, when it is ready; nullopt while it still runs (or with nothing out).
   std::optional<Result> poll() {
     std::lock_guard lock(m_);
@@ -126,11 +135,8 @@ class FixedLatencyJobThread {
     if (!run_clock_) return worker_.poll();
     // (A nanosecond's tolerance: run clocks count cycles of a period that binary fractions do not hold exactly.)
     if (!out_ || run_clock_() - submitted_run_ < latency_s_ - 1e-9) return std::nullopt;
-    using Clock = typename JobThread<Result>::Clock;
-    while (!worker_.ready_at(Clock::now() + std::chrono::seconds(1))) {
-    }  // waits for the job (bounded: the jobs take milliseconds)
     out_ = false;
-    return worker_.poll();
+    return worker_.wait();  // due: waited for (bounded: the jobs take milliseconds)
   }
   std::optional<std::string> set_realtime(int priority) { return worker_.set_realtime(priority); }
   // Each result taken `latency_s` of run time (read on the calling thread) after its job was handed over.

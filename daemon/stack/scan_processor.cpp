@@ -1,7 +1,5 @@
 #include "daemon/stack/scan_processor.hpp"
 
-#include <chrono>
-
 #include <opencv2/imgcodecs.hpp>
 
 namespace fsd {
@@ -52,11 +50,7 @@ ScanResult ScanProcessor::process(ScanJob job) {
       detect_failure = e.what();
     }
   }
-  if (beside) {
-    while (!odometry_thread_->ready_at(std::chrono::steady_clock::now() + std::chrono::seconds(1))) {
-    }  // bounded: the scan match takes milliseconds
-    o = std::move(*odometry_thread_->poll());
-  }
+  if (beside) o = std::move(*odometry_thread_->wait());  // bounded: the scan match takes milliseconds
   if (!detect_failure.empty() || !o.failure.empty()) {
     ScanResult failed;
     failed.failure = !detect_failure.empty() ? detect_failure : o.failure;

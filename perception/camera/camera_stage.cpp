@@ -47,23 +47,26 @@ CropVerdict classify_crop(const ConeClassifier& classifier, const ConeColourClas
 
 namespace {
 
-// The candidates nearer to the car than candidate i (`in_front`) or farther (not), each as large as the LiDAR
-// measured it and at least as wide as the rules' cone of that height (the LiDAR sees a cone's near side only), in
-// the image's pixels.
-std::vector<ImageSilhouette> others_of(std::size_t i, bool in_front, const std::vector<Cone>& candidates,
-                                       const std::vector<CandidateRoi>& rois, std::span<const CandidateSize> sizes) {
-  constexpr double kBigConeHalfWidth = 0.1425, kBigConeMinHeight = 0.40;  // m (cone_size_filter.hpp's big cone)
+// The other candidates in the image, each as large as the LiDAR measured it and at least as wide as the rules'
+// cone of that height (the LiDAR sees a cone's near side only), in the image's pixels: those nearer to the car than
+// candidate i and those farther.
+struct Others {
+  std::vector<ImageSilhouette> in_front, behind;
+};
+
+Others others_of(std::size_t i, const std::vector<Cone>& candidates, const std::vector<CandidateRoi>& rois,
+                 std::span<const CandidateSize> sizes) {
   const double range = candidates[i].position.head<2>().norm();
-  std::vector<ImageSilhouette> nearer;
+  Others out;
   for (std::size_t j = 0; j < candidates.size(); ++j) {
     if (j == i || rois[j].status == RoiStatus::Outside || !(rois[j].px_per_m > 0)) continue;
-    if ((candidates[j].position.head<2>().norm() < range) != in_front) continue;
     const double h = !sizes.empty() && sizes[j].height > 0 ? sizes[j].height : kSmallConeHeight;
     const double hw = std::max(!sizes.empty() && sizes[j].width > 0 ? sizes[j].width / 2 : 0.0,
-                               h >= kBigConeMinHeight ? kBigConeHalfWidth : kSmallConeHalfWidth);
-    nearer.push_back({rois[j].base, rois[j].px_per_m, hw, h});
+                               h >= kBigConeMinLidarHeight ? kBigConeHalfWidth : kSmallConeHalfWidth);
+    (candidates[j].position.head<2>().norm() < range ? out.in_front : out.behind)
+        .push_back({rois[j].base, rois[j].px_per_m, hw, h});
   }
-  return nearer;
+  return out;
 }
 
 }  // namespace
@@ -113,14 +116,13 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
       continue;
     }
     // Partly hidden, its colour is judged on the part that shows; mostly hidden, not at all.
-    std::vector<ImageSilhouette> in_front = others_of(i, true, candidates, rois, sizes);
-    std::vector<ImageSilhouette> behind = others_of(i, false, candidates, rois, sizes);
-    const bool hidden = hidden_share(roi.base, roi.px_per_m, in_front) > colour_.config().max_hidden;
-    for (auto* list : {&in_front, &behind})
+    Others others = others_of(i, candidates, rois, sizes);
+    const bool hidden = hidden_share(roi.base, roi.px_per_m, others.in_front) > colour_.config().max_hidden;
+    for (auto* list : {&others.in_front, &others.behind})
       for (auto& o : *list) o.base -= cv::Point2d(roi.pixels.x, roi.pixels.y);  // into the ROI's pixels
-    const ColourResult colour =
-        hidden ? ColourResult{}
-               : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height, in_front, behind);
+    const ColourResult colour = hidden ? ColourResult{}
+                                       : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height,
+                                                          others.in_front, others.behind);
     stats_.colour_hidden += hidden;
     c.stage = DetectionStage::Camera;
     c.colour = colour.colour;

@@ -12,6 +12,8 @@ namespace fsd {
 // The rules' small cone: the body whose hidden share is measured, and the size of a candidate in front whose size
 // the LiDAR did not measure.
 inline constexpr double kSmallConeHalfWidth = 0.114, kSmallConeTopHalfWidth = 0.025, kSmallConeHeight = 0.325;  // m
+// The big cone's half base width, and the LiDAR height from which a cluster is a big cone (cone_size_filter.hpp).
+inline constexpr double kBigConeHalfWidth = 0.1425, kBigConeMinLidarHeight = 0.40;  // m
 
 // A candidate standing in front, as the image shows it: a box of its measured (or a small cone's) size on its base.
 struct ImageSilhouette {
