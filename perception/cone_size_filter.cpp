@@ -95,7 +95,7 @@ bool ConeSizeFilter::beside_taller(const Vec3& position, const std::vector<Vec2>
 
 ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const Cluster& cluster,
                                         const GroundSurface& ground, const Pose3& mount, double ground_threshold,
-                                        int frames) const {
+                                        int frames, const LidarShadow* shadow) const {
   const Vec3 sensor = mount.translation();
   ConeMeasurement m;
   ConeCandidate& c = m.candidate;
@@ -217,6 +217,9 @@ ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const C
   const double lowest = sensor_h + r * std::tan(elevation_of(cfg_.lowest_beam_deg));
   const double highest = sensor_h + r * std::tan(elevation_of(cfg_.highest_beam_deg));
   m.expected_points = expected_points(c.range, frames, std::max(ground_threshold, lowest), highest);
+  // A return nearer than the cone's front by more than the range noise hides that azimuth.
+  constexpr double kShadowMargin = 0.05;
+  if (shadow) m.visible_share = shadow->visible_share(xy, 0.5 * cfg_.small_width, kShadowMargin);
 
   // The tests, cheapest and most telling first.
   const double gap = c.range * std::tan(deg2rad(cfg_.beam_spacing_deg));
@@ -225,7 +228,8 @@ ConeMeasurement ConeSizeFilter::measure(const std::vector<Point>& cloud, const C
     m.rejection = ConeRejection::TooWide;
   } else if (top > cfg_.big_height + cfg_.height_margin) {
     m.rejection = ConeRejection::TooTall;
-  } else if (static_cast<double>(n) < std::max<double>(cfg_.min_points, cfg_.min_point_ratio * m.expected_points)) {
+  } else if (static_cast<double>(n) <
+             std::max<double>(cfg_.min_points, cfg_.min_point_ratio * m.visible_share * m.expected_points)) {
     m.rejection = ConeRejection::TooSparse;
   } else if (top + gap < cfg_.small_height - cfg_.hit_margin && top + gap <= highest + slack) {
     m.rejection = ConeRejection::TooFlat;

@@ -13,7 +13,8 @@
 //  - floating: the laser below its bottom would have hit it above the ground threshold had it stood on the ground
 //    (both only where the sensor has a laser above / below: its fan ends at lowest/highest_beam_deg, tilted with
 //    the mount);
-//  - too sparse: fewer points than a share of what a small cone returns at that range with this sensor;
+//  - too sparse: fewer points than a share of what a small cone returns at that range with this sensor, over the
+//    azimuths that nearer objects do not hide (LidarShadow: a cone in a row behind another shows a part);
 //  - beside something taller: obstacle points higher than any cone within `tall_clearance` of its position (the
 //    sparse low fragments of a fence seen at a grazing angle, the foot of a post or a person).
 // The laser spacing and azimuth step are the sensor's (VLP-16 defaults) and make the tests range-aware.
@@ -30,6 +31,7 @@
 #include "perception/candidate.hpp"
 #include "perception/clusterer.hpp"
 #include "perception/ground_surface.hpp"
+#include "perception/lidar_shadow.hpp"
 
 namespace fsd {
 
@@ -68,15 +70,18 @@ struct ConeMeasurement {
   ConeRejection rejection = ConeRejection::None;
   ConeCandidate candidate;     // filled for every cluster (its measured size), a cone only when rejection is None
   double expected_points = 0;  // what a small cone at that range returns over the accumulated frames
+  double visible_share = 1.0;  // of its azimuths, those no nearer return hides (the sparse test's expectation)
 };
 
 class ConeSizeFilter {
  public:
   explicit ConeSizeFilter(const ConeSizeConfig& cfg = {}) : cfg_(cfg) {}
   // Measures one cluster of `cloud` (the detector's frame) against the ground plane; `mount` is the sensor's pose
-  // in that frame (frame ← sensor), `ground_threshold` the ground stage's τ, `frames` the frames accumulated.
+  // in that frame (frame ← sensor), `ground_threshold` the ground stage's τ, `frames` the frames accumulated,
+  // `shadow` what nearer returns hide (none: nothing is hidden).
   ConeMeasurement measure(const std::vector<Point>& cloud, const Cluster& cluster, const GroundSurface& ground,
-                          const Pose3& mount, double ground_threshold, int frames) const;
+                          const Pose3& mount, double ground_threshold, int frames,
+                          const LidarShadow* shadow = nullptr) const;
   // Points a small cone returns at horizontal range r over `frames` frames, where the lasers can cross it between
   // the heights `low` and `high` above the ground (sensor geometry); without limits from τ to its top.
   double expected_points(double range, int frames, double low, double high) const;

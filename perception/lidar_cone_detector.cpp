@@ -16,6 +16,7 @@ void describe_lidar_detector_config(ConfigSchema& schema) {
   accumulation_section().describe(schema);
   cluster_section().describe(schema);
   cone_size_section().describe(schema);
+  touching_cones_section().describe(schema);
   intensity_colour_section().describe(schema);
   cone_quality_section().describe(schema);
 }
@@ -28,6 +29,7 @@ LidarDetectorConfig read_lidar_detector_config(const Config& cfg) {
   c.accumulation = accumulation_section().read(cfg);
   c.cluster = cluster_section().read(cfg);
   c.size = cone_size_section().read(cfg);
+  c.touching = touching_cones_section().read(cfg);
   c.colour = intensity_colour_section().read(cfg);
   c.quality = cone_quality_section().read(cfg);
   return c;
@@ -54,6 +56,8 @@ LidarConeDetector::LidarConeDetector(const LidarDetectorConfig& cfg, const Pose3
       accumulator_(cfg.accumulation),
       clusterer_(cfg.cluster),
       size_(cfg.size),
+      touching_(cfg.touching, cfg.size.azimuth_step_deg, cfg.colour.reject_black ? cfg.colour.black_max : -1.0),
+      shadow_(deg2rad(cfg.size.azimuth_step_deg)),
       colour_(cfg.colour, cfg.size.small_height, cfg.size.big_height) {
   check_config(cfg);
 }
@@ -163,12 +167,35 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   n.clusters_too_large = too_large;
 
   const std::vector<Vec2> tall = size_.tall_points(out.obstacle_points, surface);
-  for (const auto& cl : clusters) {
-    ConeMeasurement m = size_.measure(out.obstacle_points, cl, surface, body_from_sensor_, tau, out.frames);
+  shadow_.build(out.obstacle_points, sensor.head<2>());
+  const auto judge = [&](const Cluster& cl) {
+    ConeMeasurement m = size_.measure(out.obstacle_points, cl, surface, body_from_sensor_, tau, out.frames, &shadow_);
     if (m.rejection == ConeRejection::None && size_.beside_taller(m.candidate.position, tall))
       m.rejection = ConeRejection::BesideTaller;
     if (m.rejection == ConeRejection::None && cfg_.colour.reject_black && colour_.black(m.candidate, surface))
       m.rejection = ConeRejection::Black;
+    return m;
+  };
+  std::vector<ConeMeasurement> cones;
+  for (const auto& cl : clusters) {
+    ConeMeasurement m = judge(cl);
+    if (m.rejection == ConeRejection::TooWide || m.rejection == ConeRejection::NotConeShaped) {
+      // Touching cones (too wide together, or wider than a cone at some height where one stands behind the
+      // other): kept when every part of the split is a cone by itself.
+      std::vector<ConeMeasurement> parts;
+      for (const auto& part : touching_.split(out.obstacle_points, cl, surface, sensor.head<2>())) {
+        parts.push_back(judge(part));
+        if (parts.back().rejection != ConeRejection::None) break;
+      }
+      if (parts.size() >= 2 && std::all_of(parts.begin(), parts.end(), [](const ConeMeasurement& p) {
+            return p.rejection == ConeRejection::None;
+          })) {
+        ++n.split_clusters;
+        n.split_cones += parts.size();
+        for (auto& p : parts) cones.push_back(std::move(p));
+        continue;
+      }
+    }
     if (m.rejection != ConeRejection::None) {
       const auto& c = m.candidate;
       out.rejected.push_back({c.position, c.width, c.height, c.bottom, c.points, m.rejection});
@@ -201,6 +228,9 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
         ++n.black;
         continue;
     }
+    cones.push_back(std::move(m));
+  }
+  for (auto& m : cones) {
     const ConeCandidate& c = m.candidate;
     Cone cone;
     cone.position = c.position;

@@ -4,7 +4,7 @@
 //   Scan (sensor frame) ─► deskew into the body frame at the scan's last firing (ScanMotion)
 //   ─► ROI box, body cut out (RoiFilter) ─► ground plane (GroundFitter) ─► split: ground / obstacles ≤ max_height
 //   ─► accumulate the last m frames' obstacles (FrameAccumulator) ─► clusters (Clusterer)
-//   ─► size filter and position (ConeSizeFilter) ─► colour from reflectivity (IntensityColourClassifier)
+//   ─► size filter and position (ConeSizeFilter; too wide: split into touching cones, TouchingConesSplitter) ─► colour from reflectivity (IntensityColourClassifier)
 //   ─► ConeDetections + the candidates for the camera stage.
 //
 // Pure: no I/O, no clock, no thread; one owner. Body poses come from the caller as a function of time (truth,
@@ -24,6 +24,7 @@
 #include "perception/intensity_colour.hpp"
 #include "perception/roi_filter.hpp"
 #include "perception/scan_motion.hpp"
+#include "perception/touching_cones.hpp"
 
 namespace fsd {
 
@@ -33,6 +34,7 @@ struct LidarDetectorConfig {
   AccumulationConfig accumulation;
   ClusterConfig cluster;
   ConeSizeConfig size;
+  TouchingConesConfig touching;
   IntensityColourConfig colour;
   ConeQualityConfig quality;
 };
@@ -57,7 +59,9 @@ struct LidarStageCounters {
   std::uint64_t clusters_too_large = 0;
   std::uint64_t too_sparse = 0, too_wide = 0, too_tall = 0, not_cone_shaped = 0, too_flat = 0, floating = 0;
   std::uint64_t beside_taller = 0;
-  std::uint64_t black = 0;  // black rubber by its reflectivity (tyres, tyre stacks)
+  std::uint64_t split_clusters = 0;  // too wide for one cone, split into touching cones (each a cone by itself)
+  std::uint64_t split_cones = 0;     // the cones they were split into
+  std::uint64_t black = 0;           // black rubber by its reflectivity (tyres, tyre stacks)
   std::uint64_t cones = 0;
   std::uint64_t coloured = 0;            // cones with a colour from the reflectivity
   std::uint64_t local_ground_cells = 0;  // grid cells whose ground was corrected from the plane
@@ -107,6 +111,8 @@ class LidarConeDetector {
   FrameAccumulator accumulator_;
   Clusterer clusterer_;
   ConeSizeFilter size_;
+  TouchingConesSplitter touching_;
+  LidarShadow shadow_;
   IntensityColourClassifier colour_;
   GroundPlane last_ground_;
   std::vector<Point> cropped_, obstacles_;  // reused between frames

@@ -82,7 +82,8 @@ std::string detection_table(const std::string& file, const LoadedCloud& cloud, c
       static_cast<unsigned long long>(n.too_flat), static_cast<unsigned long long>(n.floating),
       static_cast<unsigned long long>(n.beside_taller), static_cast<unsigned long long>(n.black),
       static_cast<unsigned long long>(n.clusters_too_large));
-  add("%zu cone(s)\n", d.detections.cones.size());
+  add("%zu cone(s), %llu of the clusters split into touching cones\n", d.detections.cones.size(),
+      static_cast<unsigned long long>(n.split_clusters));
   if (d.detections.cones.empty()) return o;
   add("  %3s %8s %8s %8s %7s %7s %-10s %5s %6s\n", "#", "x [m]", "y [m]", "z [m]", "range", "height", "colour", "conf",
       "points");

@@ -154,6 +154,48 @@ TEST(ConeSizeFilter, RejectsASparseSpeckForItsRange) {
   EXPECT_EQ(f.measure(cloud, c, g, kMount, 0.05, 1).rejection, ConeRejection::None);
 }
 
+TEST(ConeSizeFilter, APartlyHiddenConeIsExpectedToShowOnlyItsUnhiddenPart) {
+  // A cone 1 m behind another and 8 cm to the side, from kMount. The far one spans −0.65°..3.71° (its base); the
+  // nearer one's returns above the ground threshold (its lowest laser at 0.10 m, radius 0.086 m, 2 m away) cover
+  // ±2.46°, so 0.65 + 2.46 of its 4.36° are hidden: 29 % of its azimuths show (somewhat more about the measured
+  // position, which lies towards the part that shows).
+  RayScene scene;
+  const Vec2 near = kMount.translation().head<2>() + Vec2(2.0, 0.0), far = near + Vec2(1.0, 0.08);
+  scene.objects.push_back(test::small_cone_at(near.x(), near.y()));
+  scene.objects.push_back(test::small_cone_at(far.x(), far.y()));
+  Scan scan = scene.sweep(kMount, 40.0);
+  for (auto& p : scan.points) {
+    const Vec3 b = kMount * Vec3(p.x, p.y, p.z);
+    p.x = static_cast<float>(b.x()), p.y = static_cast<float>(b.y()), p.z = static_cast<float>(b.z());
+  }
+  GroundPlane g;
+  g.valid = true;
+  std::vector<Point> cloud;
+  GroundSplitter().split(scan.points, g, 0.05, 1.0, nullptr, cloud);
+  const auto clusters = Clusterer(ClusterConfig{}).cluster(cloud, kMount.translation().head<2>());
+  ASSERT_EQ(clusters.size(), 2u);
+  LidarShadow shadow;
+  shadow.build(cloud, kMount.translation().head<2>());
+  const ConeSizeFilter f;
+  // Three frames' worth expected, one frame's cloud: the open cone still shows enough, the hidden one not for a
+  // whole cone, but for the part the nearer one leaves.
+  for (const auto& c : clusters) {
+    const auto open = f.measure(cloud, c, g, kMount, 0.05, 3);
+    const auto seen = f.measure(cloud, c, g, kMount, 0.05, 3, &shadow);
+    if ((open.candidate.position.head<2>() - near).norm() < 0.1) {
+      EXPECT_EQ(open.rejection, ConeRejection::None);
+      EXPECT_DOUBLE_EQ(seen.visible_share, 1.0);
+      EXPECT_EQ(seen.rejection, ConeRejection::None);
+    } else {
+      EXPECT_LT((seen.candidate.position.head<2>() - far).norm(), 0.1);
+      EXPECT_EQ(open.rejection, ConeRejection::TooSparse);
+      EXPECT_GT(seen.visible_share, 0.2);
+      EXPECT_LT(seen.visible_share, 0.5);
+      EXPECT_EQ(seen.rejection, ConeRejection::None);
+    }
+  }
+}
+
 TEST(ConeSizeFilter, BesideSomethingTaller) {
   std::vector<Point> cloud(1);
   cloud[0].x = 10.0f, cloud[0].y = 0.5f, cloud[0].z = 0.9f;  // the top of a post 0.5 m from a candidate

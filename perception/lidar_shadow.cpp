@@ -1,0 +1,44 @@
+#include "perception/lidar_shadow.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace fsd {
+
+LidarShadow::LidarShadow(double azimuth_step)
+    : step_(std::max(azimuth_step, 1e-4)),
+      bins_(static_cast<int>(std::ceil(2 * std::numbers::pi / step_))),
+      nearest_(static_cast<std::size_t>(bins_), std::numeric_limits<float>::max()) {}
+
+int LidarShadow::bin_of(double azimuth) const {
+  const int b = static_cast<int>(std::floor((azimuth + std::numbers::pi) / step_));
+  return ((b % bins_) + bins_) % bins_;
+}
+
+void LidarShadow::build(const std::vector<Point>& points, const Vec2& sensor_xy) {
+  sensor_ = sensor_xy;
+  std::fill(nearest_.begin(), nearest_.end(), std::numeric_limits<float>::max());
+  for (const auto& q : points) {
+    const double dx = q.x - sensor_xy.x(), dy = q.y - sensor_xy.y();
+    float& n = nearest_[static_cast<std::size_t>(bin_of(std::atan2(dy, dx)))];
+    n = std::min(n, static_cast<float>(std::hypot(dx, dy)));
+  }
+}
+
+double LidarShadow::visible_share(const Vec2& centre, double radius, double margin) const {
+  const Vec2 d = centre - sensor_;
+  const double range = d.norm();
+  if (range <= radius) return 1.0;
+  const double half = std::asin(radius / range), mid = std::atan2(d.y(), d.x());
+  const int first = static_cast<int>(std::floor((mid - half + std::numbers::pi) / step_));
+  const int last = static_cast<int>(std::floor((mid + half + std::numbers::pi) / step_));
+  const double front = range - radius - margin;
+  int open = 0, all = 0;
+  for (int b = first; b <= last; ++b, ++all)
+    open += nearest_[static_cast<std::size_t>(((b % bins_) + bins_) % bins_)] >= front;
+  return all > 0 ? static_cast<double>(open) / all : 1.0;
+}
+
+}  // namespace fsd
