@@ -64,7 +64,7 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
       faults_(settings.faults, track),
       dt_(1.0 / settings.run.physics_rate_hz) {
   vehicle_.reset(track.start, 0.0, 0.0);
-  prev_ = vehicle_.truth();
+  steps_.push(vehicle_.truth());
   // Each sensor gets its own seed stream so enabling one does not change another's noise.
   if (s_.run.lidar) lidar_ = std::make_unique<LidarModel>(s_.lidar, world_, seed * 7919 + 1, 0.0);
   if (s_.run.gnss) gnss_ = std::make_unique<GnssModel>(s_.gnss, seed * 7919 + 2);
@@ -87,27 +87,7 @@ void VirtualCar::feed_vcu(Stamp t, std::span<const std::uint8_t> bytes) {
   if (!faults_.active(FaultKind::VcuLink, t)) vcu_.feed(t, bytes);
 }
 
-VehicleTruth VirtualCar::truth_at(Stamp t) const {
-  const VehicleTruth& b = vehicle_.truth();
-  if (t >= b.t || b.t <= prev_.t) return b;
-  if (t <= prev_.t) return prev_;
-  const double w = (t - prev_.t) / (b.t - prev_.t);
-  auto lerp = [w](double x, double y) { return x + w * (y - x); };
-  VehicleTruth r = b;
-  r.t = t;
-  r.pose = {lerp(prev_.pose.x, b.pose.x), lerp(prev_.pose.y, b.pose.y),
-            wrap_angle(prev_.pose.yaw + w * wrap_angle(b.pose.yaw - prev_.pose.yaw))};
-  r.vx = lerp(prev_.vx, b.vx);
-  r.vy = lerp(prev_.vy, b.vy);
-  r.yaw_rate = lerp(prev_.yaw_rate, b.yaw_rate);
-  r.ax = lerp(prev_.ax, b.ax);
-  r.ay = lerp(prev_.ay, b.ay);
-  r.roll = lerp(prev_.roll, b.roll);
-  r.pitch = lerp(prev_.pitch, b.pitch);
-  r.steering = lerp(prev_.steering, b.steering);
-  r.distance = lerp(prev_.distance, b.distance);
-  return r;
-}
+VehicleTruth VirtualCar::truth_at(Stamp t) const { return steps_.at(t); }
 
 void VirtualCar::log_new_hits() {
   // Which cone and where the car was: a cone count alone does not say which corner went wrong.
@@ -131,8 +111,8 @@ void VirtualCar::advance_to(Stamp t) {
     cmd.max_brake = out.max_brake;
     cmd.ebs = out.ebs;
     cmd.drive_enabled = out.drive_enabled;
-    prev_ = vehicle_.truth();
     vehicle_.step(dt_, cmd);
+    steps_.push(vehicle_.truth());
     const auto fp = vehicle_.footprint();
     if (world_.update_hits(fp, vehicle_.truth().t) > 0) log_new_hits();
     const Stamp t1 = vehicle_.truth().t;

@@ -16,6 +16,7 @@
 #include "drivers/sim/sensors/lidar_model.hpp"
 #include "drivers/sim/sensors/sink.hpp"
 #include "drivers/sim/vcu_standin.hpp"
+#include "drivers/sim/vehicle/truth_history.hpp"
 #include "drivers/sim/vehicle/vehicle_model.hpp"
 #include "drivers/sim/world/world.hpp"
 
@@ -78,7 +79,7 @@ class VirtualCar {
   std::vector<ConeReturns> take_lidar_cone_returns();
 
  private:
-  VehicleTruth truth_at(Stamp t) const;  // interpolated between the last two physics steps
+  VehicleTruth truth_at(Stamp t) const;  // interpolated between the physics steps around t (the recent ones)
   void log_new_hits();                   // one line per cone knocked over in the last physics step
 
   VirtualCarSettings s_;
@@ -91,7 +92,7 @@ class VirtualCar {
   SensorSinks sinks_;
   FaultSchedule faults_;
   bool gnss_outage_set_ = false;  // the GNSS fault's window has been handed to the receiver model
-  VehicleTruth prev_;
+  TruthHistory steps_;  // the recent physics steps, the newest the vehicle's truth: what the sensors pose from
   double dt_;
 };
 
