@@ -9,7 +9,20 @@ const ConfigSection<IntensityColourConfig>& intensity_colour_section() {
       ConfigSection<IntensityColourConfig>("perception.lidar.colour")
           .boolean("enabled", &IntensityColourConfig::enabled,
                    "Colour close cones from the LiDAR reflectivity pattern.")
-          .number("max_range", &IntensityColourConfig::max_range, 0.0, 50.0, "m", "Farther cones stay Unknown.")
+          .number("max_range", &IntensityColourConfig::max_range, 0.0, 50.0, "m",
+                  "Farther cones are named by their lower body's reflectivity alone (far_range).")
+          .number("far_range", &IntensityColourConfig::far_range, 0.0, 50.0, "m",
+                  "Beyond max_range up to this, a cone is named from the returns below its stripe (dark blue or "
+                  "bright yellow); farther cones stay Unknown.")
+          .number("far_min_height", &IntensityColourConfig::far_min_height, 0.0, 0.3, "m",
+                  "Beyond max_range, returns lower than this may be the ground's (grass reflects as brightly as "
+                  "yellow paint) and do not count (the ground threshold).")
+          .number("far_white_min", &IntensityColourConfig::far_white_min, 0.0, 255.0, "",
+                  "Beyond max_range, a return this bright among the lower body's is a white stripe: the heights are "
+                  "off, no colour.")
+          .number("far_margin_per_m", &IntensityColourConfig::far_margin_per_m, 0.0, 0.05, "m/m",
+                  "Beyond max_range, a return counts as the lower body when it lies below the stripe by this times "
+                  "its range (the laser's vertical footprint and the ground's uncertainty).")
           .number("stripe_low", &IntensityColourConfig::stripe_low, 0.0, 1.0, "",
                   "Lower edge of the stripe band, as a share of the small cone's height.")
           .number("stripe_high", &IntensityColourConfig::stripe_high, 0.0, 1.0, "", "Upper edge of the stripe band.")
@@ -64,10 +77,33 @@ double upper_quartile(std::vector<double>& v) {
 
 }  // namespace
 
+IntensityColour IntensityColourClassifier::far_body(const ConeCandidate& cone, const GroundSurface& ground) const {
+  // FSG's stripe starts at 38 % of a small cone's height; the lower body is what lies surely below it.
+  constexpr double kStripeLowerEdge = 0.38;
+  if (cone.big || cone.range > cfg_.far_range) return {};
+  const double below = kStripeLowerEdge * small_height_ - cfg_.far_margin_per_m * cone.range;
+  std::vector<double> body;
+  for (const auto& q : cone.cloud)
+    if (const double h = ground.height_of(q.x, q.y, q.z); h < below && h > cfg_.far_min_height)
+      body.push_back(q.intensity);
+  if (body.size() < 2 * static_cast<std::size_t>(cfg_.min_band_points)) return {};
+  // One paint, or no colour: a return as bright as a white stripe means the heights are off (the stripe is among
+  // them: a blue or an orange cone); a yellow body has few returns as dark as blue plastic (its grazing edge).
+  const auto dark = std::count_if(body.begin(), body.end(), [&](double v) { return v <= cfg_.blue_body_max; });
+  const bool white = *std::max_element(body.begin(), body.end()) >= cfg_.far_white_min;
+  const double b = upper_quartile(body);
+  if (white) return {};
+  if (b <= cfg_.blue_body_max && b >= cfg_.blue_body_min) return {ConeColour::Blue, 0.5};
+  if (b >= cfg_.yellow_body_min && 4 * dark <= static_cast<std::ptrdiff_t>(body.size()))
+    return {ConeColour::Yellow, 0.5};
+  return {};
+}
+
 IntensityColour IntensityColourClassifier::classify(const ConeCandidate& cone, const GroundSurface& ground) const {
   IntensityColour out;
-  if (!cfg_.enabled || cone.range > cfg_.max_range || cone.cloud.size() < static_cast<std::size_t>(cfg_.min_points))
-    return out;
+  if (!cfg_.enabled) return out;
+  if (cone.range > cfg_.max_range) return far_body(cone, ground);
+  if (cone.cloud.size() < static_cast<std::size_t>(cfg_.min_points)) return out;
   std::vector<double> stripe, body;
   const auto need = static_cast<std::size_t>(cfg_.min_band_points);
   if (cone.big) {

@@ -7,6 +7,11 @@
 // laser crossed the stripe. A big cone (by its height) is big orange when its white stripes show brighter than its
 // body, or, when no laser crossed a stripe, when its body lies between dark blue and bright yellow plastic (every
 // rule set's big cones are orange). Anything ambiguous is Unknown: a wrong colour costs more than none.
+// Beyond `max_range` (one laser crosses a cone, low on it), up to `far_range`: the lower body alone, from the returns
+// that lie below the stripe (FSG: 38 % of the height) by more than the laser's footprint and the ground's
+// uncertainty there (`far_margin_per_m` × range) and above the ground threshold (`far_min_height`: grass reflects as
+// brightly as yellow paint): dark blue or bright yellow plastic, as one paint (no return as bright as a white stripe,
+// few as dark as blue for yellow: accumulated frames' heights can be centimetres off at that range), else Unknown.
 #include <vector>
 
 #include "common/config.hpp"
@@ -18,7 +23,11 @@ namespace fsd {
 
 struct IntensityColourConfig {
   bool enabled = true;
-  double max_range = 8.0;                        // m: farther cones stay Unknown (too few lasers cross them)
+  double max_range = 8.0;                        // m: farther, the lower body's level alone (too few lasers)
+  double far_range = 20.0;                       // m: farther cones stay Unknown
+  double far_margin_per_m = 0.002;               // m per m of range below the stripe (beam 1.5 mrad + ground)
+  double far_min_height = 0.05;                  // m: lower returns may be the ground's (the ground threshold τ)
+  double far_white_min = 80.0;                   // a return this bright is a white stripe: heights off, no colour
   double stripe_low = 0.42, stripe_high = 0.58;  // band of the small cone's height read as stripe (FSG: 0.38-0.62)
   double body_low = 0.32, body_high = 0.68;      // below / above: body
   // The big (orange) cone's two white stripes (FSG: 0.28-0.40 and 0.58-0.70 of its height), read shrunk by 0.02;
@@ -59,6 +68,7 @@ class IntensityColourClassifier {
   const IntensityColourConfig& config() const { return cfg_; }
 
  private:
+  IntensityColour far_body(const ConeCandidate& cone, const GroundSurface& ground) const;
   IntensityColourConfig cfg_;
   double small_height_, big_height_;
 };

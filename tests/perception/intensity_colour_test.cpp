@@ -10,16 +10,16 @@
 namespace fsd {
 namespace {
 
-// A small cone's cluster 5 m ahead: `per_height` points at each height, with the reflectivity `paint(h)`.
+// A small cone's cluster `range` ahead: `per_height` points at each height, with the reflectivity `paint(h)`.
 template <class Paint>
-ConeCandidate cluster(const std::vector<double>& heights, Paint paint, int per_height = 4) {
+ConeCandidate cluster(const std::vector<double>& heights, Paint paint, int per_height = 4, double range = 5.0) {
   ConeCandidate c;
-  c.range = 5.0;
-  c.position = Vec3(5, 0, 0);
+  c.range = range;
+  c.position = Vec3(range, 0, 0);
   for (double h : heights)
     for (int k = 0; k < per_height; ++k) {
       Point p;
-      p.x = 5.0f;
+      p.x = static_cast<float>(range);
       p.y = 0.02f * static_cast<float>(k);
       p.z = static_cast<float>(h);
       p.intensity = static_cast<float>(paint(h));
@@ -51,6 +51,50 @@ TEST(IntensityColour, ABodyAloneIsBlueWhenDarkButNotWhenBlack) {
   EXPECT_EQ(classify.classify(cluster(rings, [](double) { return 70.0; }), ground).colour, ConeColour::Yellow);
   // Black rubber (a tyre the size filter let through): no colour rather than blue.
   EXPECT_EQ(classify.classify(cluster(rings, [](double) { return 6.0; }), ground).colour, ConeColour::Unknown);
+}
+
+TEST(IntensityColour, FarOneLaserBelowTheStripeNamesTheBody) {
+  // 16 m away the −1° laser of a sensor 0.35 m up crosses a cone 0.07 m up: below the stripe (0.1235 m) by more than
+  // the laser's footprint and the ground's uncertainty there (2 mm per m: 0.032 m), above the ground threshold.
+  const GroundSurface ground(GroundPlane{});
+  const IntensityColourClassifier classify;
+  const std::vector<double> low{0.07};
+  const auto body = [](double level) { return [level](double) { return level; }; };
+  EXPECT_EQ(classify.classify(cluster(low, body(22.0), 6, 16.0), ground).colour, ConeColour::Blue);
+  EXPECT_EQ(classify.classify(cluster(low, body(70.0), 6, 16.0), ground).colour, ConeColour::Yellow);
+  EXPECT_EQ(classify.classify(cluster(low, body(6.0), 6, 16.0), ground).colour, ConeColour::Unknown);  // rubber
+  // Nearer the stripe than that margin (0.10 m up at 16 m), a blue cone's white stripe could read as a bright body:
+  // no colour.
+  EXPECT_EQ(classify.classify(cluster({0.10}, body(95.0), 6, 16.0), ground).colour, ConeColour::Unknown);
+  // Returns that are not one paint: the heights are off by centimetres (accumulated frames of a pitching car), the
+  // stripe is among them: a blue cone's white stripe beside its body, or half of them as dark as blue plastic among
+  // bright ones (yellow's black stripe). No colour.
+  int k = 0;
+  EXPECT_EQ(classify
+                .classify(cluster(
+                              low, [&](double) { return ++k % 2 ? 20.0 : 92.0; }, 8, 16.0),
+                          ground)
+                .colour,
+            ConeColour::Unknown);
+  EXPECT_EQ(classify
+                .classify(cluster(
+                              low, [&](double) { return ++k % 2 ? 8.0 : 68.0; }, 8, 16.0),
+                          ground)
+                .colour,
+            ConeColour::Unknown);
+  // A yellow body with one dim return at its grazing edge is yellow still.
+  EXPECT_EQ(classify
+                .classify(cluster(
+                              low, [&](double) { return ++k % 8 ? 66.0 : 24.0; }, 8, 16.0),
+                          ground)
+                .colour,
+            ConeColour::Yellow);
+  // Too few returns, beyond far_range, or a big cone (its stripes are elsewhere): no colour.
+  EXPECT_EQ(classify.classify(cluster(low, body(22.0), 3, 16.0), ground).colour, ConeColour::Unknown);
+  EXPECT_EQ(classify.classify(cluster(low, body(22.0), 6, 21.0), ground).colour, ConeColour::Unknown);
+  ConeCandidate b = cluster(low, body(22.0), 6, 16.0);
+  b.big = true;
+  EXPECT_EQ(classify.classify(b, ground).colour, ConeColour::Unknown);
 }
 
 // FSG big cone (0.505 m): white stripes from 28 to 40 % and from 58 to 70 % of its height.
