@@ -185,7 +185,12 @@ void ConeMap::update(const ConeDetections& detections, const Pose2& pose, std::s
     e.support += seen[i].verified ? 1.0 : seen[i].confidence;  // the camera's verdict confirms a far one
     e.verified += seen[i].verified && counted;
     const auto c = static_cast<std::size_t>(seen[i].colour);
-    if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size()) ++e.colour_votes[c];
+    // One colour vote per cone per place (expect_spacing apart): a standing car repeats one view.
+    if (seen[i].colour != ConeColour::Unknown && c < e.colour_votes.size() &&
+        (!e.voted_from || (pose.position() - *e.voted_from).norm() >= cfg_.expect_spacing)) {
+      ++e.colour_votes[c];
+      e.voted_from = pose.position();
+    }
   }
 }
 

@@ -7,7 +7,9 @@
 // camera rejected more often than it verified, at least `min_rejections` times, is not reported (it stays mapped,
 // so a real cone the camera doubted once comes back with its next verifications). The verdicts count in frames
 // `expect_spacing` apart, as the misses below do: a car standing at the start repeats one view sixty times. Without
-// a camera nothing is rejected and every LiDAR-only cone is reported.
+// a camera nothing is rejected and every LiDAR-only cone is reported. Colour votes likewise, per cone: one vote from
+// each place expect_spacing apart (a small cone beside a timing line's big ones, seen 15 m off while the car stands
+// at the start, is one vote; a cone first named while the car stands gets that vote).
 //
 // Ghost pruning: a mapped cone the car came near and did not see is not reported. Each frame, a mapped cone between
 // `expect_min_range` and `expect_range` of the car with no detection of the frame paired to it counts a miss; one
@@ -90,6 +92,7 @@ class ConeMap {
     int verified = 0, rejected = 0;      // camera verdicts on it, in frames expect_spacing apart
     int near_seen = 0, near_missed = 0;  // frames with it within the expected range: detected, not detected
     std::array<int, 6> colour_votes{};
+    std::optional<Vec2> voted_from;  // where the car was at its last colour vote
     std::uint32_t id = 0;
     std::vector<Visit> visits;           // bounded: the oldest two merge beyond kMaxVisits
     Stamp first_from = 0, first_to = 0;  // its first visit's span

@@ -95,12 +95,13 @@ TEST(ConeMap, ColourByMajorityAndGhostsNeedConfirmation) {
   ConeMapConfig cfg;
   cfg.min_observations = 3;
   ConeMap map(cfg);
-  auto one = [](Vec2 p, ConeColour c) { return frame_of({detection(p, c)}); };
-  map.update(one({4, 1}, ConeColour::Blue), {});
-  map.update(one({4, 1}, ConeColour::Yellow), {});
+  // The cone at (4, 1), seen from frames 1 m apart (colours count once per place: AStandingCarsRepeatedColour...).
+  auto one = [](Vec2 p, ConeColour c, double x) { return frame_of({detection(p - Vec2(x, 0), c)}); };
+  map.update(one({4, 1}, ConeColour::Blue, 0), Pose2{0, 0, 0});
+  map.update(one({4, 1}, ConeColour::Yellow, 1), Pose2{1, 0, 0});
   EXPECT_TRUE(map.cones().empty());  // two observations, not yet confirmed
-  map.update(one({4, 1}, ConeColour::Blue), {});
-  map.update(one({30, 0}, ConeColour::Blue), {});  // beyond max_range: ignored
+  map.update(one({4, 1}, ConeColour::Blue, 2), Pose2{2, 0, 0});
+  map.update(one({30, 0}, ConeColour::Blue, 3), Pose2{3, 0, 0});  // beyond max_range: ignored
   const auto cones = map.cones();
   ASSERT_EQ(cones.size(), 1u);
   EXPECT_EQ(cones[0].colour, ConeColour::Blue);
@@ -143,6 +144,38 @@ TEST(ConeMap, AnOccasionallyWrongColourDoesNotSplitACone) {
   EXPECT_EQ(cones[0].colour, ConeColour::Blue);
 }
 
+TEST(ConeMap, AStandingCarsRepeatedColourCountsOnce) {
+  // A yellow cone beside a timing line's big orange cones, 15 m ahead of a car standing at the start: the camera
+  // names it big orange in each of sixty frames of the same view (the big cones' pixels in its image box), then
+  // yellow in the frames it judges, 1 m apart, as the car drives off. The one view is one vote: yellow.
+  ConeMap map;
+  const Vec2 cone(15, 2);
+  for (int k = 0; k < 60; ++k) map.update(frame_of({detection(cone, ConeColour::BigOrange)}), Pose2{});
+  for (int k = 1; k <= 8; ++k) {
+    const Pose2 pose{1.0 * k, 0, 0};
+    map.update(frame_of({detection(pose.inverse_transform(cone), ConeColour::Yellow)}), pose);
+  }
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), 1u);
+  EXPECT_EQ(cones[0].colour, ConeColour::Yellow);
+  EXPECT_NEAR(cones[0].confidence, 8.0 / 9.0, 1e-12);
+}
+
+TEST(ConeMap, AConeNamedOnlyWhileTheCarStandsHasThatColour) {
+  // The orange cones at the end of an acceleration run's braking zone: the car stops before them and they are named
+  // only in some of the frames it stands there. That place's one vote names them.
+  ConeMap map;
+  const Pose2 stopped{100, 0, 0};
+  const Vec2 cone(113, 1.75);
+  for (int k = 0; k < 60; ++k)
+    map.update(
+        frame_of({detection(stopped.inverse_transform(cone), k < 30 ? ConeColour::Unknown : ConeColour::Orange)}),
+        stopped);
+  const auto cones = map.cones();
+  ASSERT_EQ(cones.size(), 1u);
+  EXPECT_EQ(cones[0].colour, ConeColour::Orange);
+}
+
 // A tyre beside the track that the LiDAR takes for a cone, seen from afar (LiDAR only), then in the camera's view
 // (rejected) and beside the car (LiDAR only again); a real cone next to it that the camera verifies once and doubts
 // once; a cone the camera never sees. The car drives 1 m between frames: each verdict is from a new place.
@@ -156,20 +189,20 @@ TEST(ConeMap, WhatTheCameraRejectedMoreOftenThanItVerifiedIsWithheld) {
   auto update = [&](std::vector<Vec2> lidar, std::vector<Vec2> verified, std::vector<Vec2> rejected) {
     const Pose2 pose{1.0 * frame++, 0, 0};
     ConeDetections d;
-    for (const Vec2& p : lidar) d.cones.push_back(detection(pose.inverse_transform(p), ConeColour::Blue,
-                                                            DetectionStage::Lidar));
-    for (const Vec2& p : verified) d.cones.push_back(detection(pose.inverse_transform(p), ConeColour::Blue,
-                                                               DetectionStage::Camera));
+    for (const Vec2& p : lidar)
+      d.cones.push_back(detection(pose.inverse_transform(p), ConeColour::Blue, DetectionStage::Lidar));
+    for (const Vec2& p : verified)
+      d.cones.push_back(detection(pose.inverse_transform(p), ConeColour::Blue, DetectionStage::Camera));
     std::vector<Cone> r;
-    for (const Vec2& p : rejected) r.push_back(detection(pose.inverse_transform(p), ConeColour::Blue,
-                                                         DetectionStage::Lidar));
+    for (const Vec2& p : rejected)
+      r.push_back(detection(pose.inverse_transform(p), ConeColour::Blue, DetectionStage::Lidar));
     map.update(d, pose, r);
   };
   for (int k = 0; k < 3; ++k) update({tyre, cone, unseen}, {}, {});  // far: LiDAR only, all three
   EXPECT_EQ(map.cones().size(), 3u);
-  update({}, {cone}, {tyre + Vec2(0.1, 0)});           // in view: the tyre rejected twice,
-  update({}, {}, {tyre + Vec2(0, -0.1), cone});        // the cone verified once and rejected once
-  update({tyre, cone}, {}, {});                        // beside: LiDAR only again
+  update({}, {cone}, {tyre + Vec2(0.1, 0)});     // in view: the tyre rejected twice,
+  update({}, {}, {tyre + Vec2(0, -0.1), cone});  // the cone verified once and rejected once
+  update({tyre, cone}, {}, {});                  // beside: LiDAR only again
 
   const auto cones = map.cones();
   EXPECT_FALSE(mapped(cones, tyre));   // rejected 2, verified 0
