@@ -27,11 +27,8 @@ struct Measured {
   std::vector<Point> cloud;
 };
 
-// One object (plus the ground) swept from kMount; its obstacle points (body frame) clustered and measured.
-Measured measure(const SceneObject& object, double noise = 0.0) {
-  RayScene scene;
-  scene.objects.push_back(object);
-  scene.range_noise = noise;
+// The scene swept from kMount: its obstacle points in the body frame (above the flat ground's threshold, 5 cm).
+std::vector<Point> obstacles_of(const RayScene& scene) {
   Scan scan = scene.sweep(kMount, 40.0);
   for (auto& p : scan.points) {
     const Vec3 b = kMount * Vec3(p.x, p.y, p.z);
@@ -39,9 +36,20 @@ Measured measure(const SceneObject& object, double noise = 0.0) {
   }
   GroundPlane g;
   g.valid = true;
+  std::vector<Point> cloud;
+  GroundSplitter().split(scan.points, g, 0.05, 1.0, nullptr, cloud);
+  return cloud;
+}
+
+// One object (plus the ground) swept from kMount; its obstacle points (body frame) clustered and measured.
+Measured measure(const SceneObject& object, double noise = 0.0) {
+  RayScene scene;
+  scene.objects.push_back(object);
+  scene.range_noise = noise;
+  GroundPlane g;
+  g.valid = true;
   Measured m;
-  GroundSplitter splitter;
-  splitter.split(scan.points, g, 0.05, 1.0, nullptr, m.cloud);
+  m.cloud = obstacles_of(scene);
   const auto clusters = Clusterer(ClusterConfig{}).cluster(m.cloud, kMount.translation().head<2>());
   ConeSizeFilter f;
   for (const auto& c : clusters) m.all.push_back(f.measure(m.cloud, c, g, kMount, 0.05, 1));
@@ -163,15 +171,9 @@ TEST(ConeSizeFilter, APartlyHiddenConeIsExpectedToShowOnlyItsUnhiddenPart) {
   const Vec2 near = kMount.translation().head<2>() + Vec2(2.0, 0.0), far = near + Vec2(1.0, 0.08);
   scene.objects.push_back(test::small_cone_at(near.x(), near.y()));
   scene.objects.push_back(test::small_cone_at(far.x(), far.y()));
-  Scan scan = scene.sweep(kMount, 40.0);
-  for (auto& p : scan.points) {
-    const Vec3 b = kMount * Vec3(p.x, p.y, p.z);
-    p.x = static_cast<float>(b.x()), p.y = static_cast<float>(b.y()), p.z = static_cast<float>(b.z());
-  }
   GroundPlane g;
   g.valid = true;
-  std::vector<Point> cloud;
-  GroundSplitter().split(scan.points, g, 0.05, 1.0, nullptr, cloud);
+  const std::vector<Point> cloud = obstacles_of(scene);
   const auto clusters = Clusterer(ClusterConfig{}).cluster(cloud, kMount.translation().head<2>());
   ASSERT_EQ(clusters.size(), 2u);
   LidarShadow shadow;
