@@ -89,10 +89,9 @@ IntensityColour IntensityColourClassifier::far_body(const ConeCandidate& cone, c
   if (body.size() < 2 * static_cast<std::size_t>(cfg_.min_band_points)) return {};
   // One paint, or no colour: a return as bright as a white stripe means the heights are off (the stripe is among
   // them: a blue or an orange cone); a yellow body has few returns as dark as blue plastic (its grazing edge).
+  if (*std::max_element(body.begin(), body.end()) >= cfg_.far_white_min) return {};
   const auto dark = std::count_if(body.begin(), body.end(), [&](double v) { return v <= cfg_.blue_body_max; });
-  const bool white = *std::max_element(body.begin(), body.end()) >= cfg_.far_white_min;
   const double b = upper_quartile(body);
-  if (white) return {};
   if (b <= cfg_.blue_body_max && b >= cfg_.blue_body_min) return {ConeColour::Blue, 0.5};
   if (b >= cfg_.yellow_body_min && 4 * dark <= static_cast<std::ptrdiff_t>(body.size()))
     return {ConeColour::Yellow, 0.5};

@@ -12,17 +12,18 @@ LidarShadow::LidarShadow(double azimuth_step)
       bins_(static_cast<int>(std::ceil(2 * std::numbers::pi / step_))),
       nearest_(static_cast<std::size_t>(bins_), std::numeric_limits<float>::max()) {}
 
-int LidarShadow::bin_of(double azimuth) const {
-  const int b = static_cast<int>(std::floor((azimuth + std::numbers::pi) / step_));
-  return ((b % bins_) + bins_) % bins_;
+int LidarShadow::unwrapped_bin(double azimuth) const {
+  return static_cast<int>(std::floor((azimuth + std::numbers::pi) / step_));
 }
+
+std::size_t LidarShadow::wrap(int bin) const { return static_cast<std::size_t>(((bin % bins_) + bins_) % bins_); }
 
 void LidarShadow::build(const std::vector<Point>& points, const Vec2& sensor_xy) {
   sensor_ = sensor_xy;
   std::fill(nearest_.begin(), nearest_.end(), std::numeric_limits<float>::max());
   for (const auto& q : points) {
     const double dx = q.x - sensor_xy.x(), dy = q.y - sensor_xy.y();
-    float& n = nearest_[static_cast<std::size_t>(bin_of(std::atan2(dy, dx)))];
+    float& n = nearest_[wrap(unwrapped_bin(std::atan2(dy, dx)))];
     n = std::min(n, static_cast<float>(std::hypot(dx, dy)));
   }
 }
@@ -32,12 +33,10 @@ double LidarShadow::visible_share(const Vec2& centre, double radius, double marg
   const double range = d.norm();
   if (range <= radius) return 1.0;
   const double half = std::asin(radius / range), mid = std::atan2(d.y(), d.x());
-  const int first = static_cast<int>(std::floor((mid - half + std::numbers::pi) / step_));
-  const int last = static_cast<int>(std::floor((mid + half + std::numbers::pi) / step_));
   const double front = range - radius - margin;
   int open = 0, all = 0;
-  for (int b = first; b <= last; ++b, ++all)
-    open += nearest_[static_cast<std::size_t>(((b % bins_) + bins_) % bins_)] >= front;
+  for (int b = unwrapped_bin(mid - half), last = unwrapped_bin(mid + half); b <= last; ++b, ++all)
+    open += nearest_[wrap(b)] >= front;
   return all > 0 ? static_cast<double>(open) / all : 1.0;
 }
 

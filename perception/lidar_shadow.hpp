@@ -20,7 +20,8 @@ class LidarShadow {
   double visible_share(const Vec2& centre, double radius, double margin) const;
 
  private:
-  int bin_of(double azimuth) const;
+  int unwrapped_bin(double azimuth) const;  // from −π, may run past either end (a span across the seam)
+  std::size_t wrap(int bin) const;          // into 0..bins_−1
   double step_;
   int bins_;
   Vec2 sensor_ = Vec2::Zero();
