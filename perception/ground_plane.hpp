@@ -20,6 +20,13 @@ struct GroundPlane {
   double inv_norm() const { return 1.0 / std::sqrt(1.0 + a * a + b * b); }
   Vec3 normal() const { return Vec3(-a, -b, 1.0).normalized(); }
   double tilt() const { return std::atan(std::hypot(a, b)); }  // angle between the plane and z = 0, rad
+  // The rotation that levels the frame on this plane (its normal to +z, no turn about z): the body's roll and
+  // pitch on its springs, which planar odometry poses do not carry.
+  Pose3 level_from_frame() const {
+    Pose3 T = Pose3::Identity();
+    T.linear() = Eigen::Quaterniond::FromTwoVectors(normal(), Vec3::UnitZ()).toRotationMatrix();
+    return T;
+  }
 };
 
 }  // namespace fsd

@@ -150,9 +150,11 @@ LidarDetection LidarConeDetector::detect(const Scan& scan, const BodyPoseAt& pos
   n.above_roi = split.above;
   n.obstacles = split.obstacles;
 
-  // Accumulation (only with known motion), then clustering in the current body frame.
+  // Accumulation (only with known motion), then clustering in the current body frame. The odometry's poses are
+  // planar; each frame's own ground plane adds the body's pitch and roll, which would otherwise tilt an earlier
+  // frame's far returns by centimetres against the current ground as the car turns or brakes.
   if (motion.has_motion()) {
-    n.accumulation_dropped = accumulator_.add(obstacles_, motion.reference_pose());
+    n.accumulation_dropped = accumulator_.add(obstacles_, motion.reference_pose() * plane.level_from_frame());
     accumulator_.collect(out.obstacle_points);
     out.frames = static_cast<int>(accumulator_.frames());
   } else {

@@ -141,5 +141,47 @@ TEST(LidarConeDetector, AccumulatesOnlyWithKnownMotion) {
   EXPECT_EQ(still.detect(scene.sweep(kMount)).frames, 1);
 }
 
+// A car cornering on its springs: rolled 0.34° (0.65 g) and pitching 0.6°/s as it brakes, while it yaws at
+// 0.8 rad/s; its poses planar as the odometry gives them. The earlier frames' returns of a cone 15 m out must lie where the cone is, by each frame's
+// ground: moved by the planar poses alone, the roll turned with the yaw puts them centimetres off in height, which
+// is what the far colour reads (a laser's height on the cone tells the body from the stripe).
+TEST(LidarConeDetector, AccumulatesACorneringCarsFramesOnTheirOwnGround) {
+  const auto planar = [](Stamp t) {
+    const double yaw = 0.8 * t;
+    return pose_zyx(Vec3(10.0 * std::sin(yaw), 10.0 * (1 - std::cos(yaw)), 0.0), yaw, 0, 0);
+  };
+  const auto body = [&](Stamp t) { return planar(t) * pose_zyx(Vec3::Zero(), 0.0, 0.002 + 0.01 * t, 0.006); };
+  // The cone 14 m ahead-left of the LiDAR at the last sweep, in every sweep's view.
+  const Vec3 cone = planar(0.3) * Vec3(13.0, 8.5, 0.0);
+  RayScene scene;
+  scene.objects.push_back(painted(test::small_cone_at(cone.x(), cone.y()), 22, 95));
+  const auto& shape = scene.objects.back();
+  LidarConeDetector det({}, kMount);
+  const BodyPoseAt pose_at = planar;  // what the localization knows
+  LidarDetection d;
+  for (int k = 0; k < 3; ++k) {
+    Scan s = scene.sweep_moving([&](double t) { return body(0.1 * k + t) * kMount; });
+    for (auto& p : s.points) p.t += 0.1 * k;
+    d = det.detect(s, pose_at);
+  }
+  ASSERT_EQ(d.frames, 3);
+  // Each accumulated return near the cone, moved by the true body pose, lies on the cone's surface.
+  const Pose3 now = body(d.detections.stamp);
+  int on_cone = 0;
+  double worst = 0;
+  for (const auto& q : d.obstacle_points) {
+    const Vec3 w = now * Vec3(q.x, q.y, q.z);
+    const double radial = (w - cone).head<2>().norm();
+    if (radial > 0.4) continue;
+    ++on_cone;
+    // Off the frustum's surface, measured along the height (the side is steep: a height error shows as a radius).
+    const double r_at = shape.r0 - (shape.r0 - shape.r1) * w.z() / shape.h;
+    const double height_error = (radial - r_at) * shape.h / (shape.r0 - shape.r1);
+    worst = std::max(worst, std::abs(height_error));
+  }
+  EXPECT_GE(on_cone, 8);
+  EXPECT_LT(worst, 0.01);  // 4 cm by the planar poses alone
+}
+
 }  // namespace
 }  // namespace fsd
