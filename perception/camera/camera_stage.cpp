@@ -109,21 +109,25 @@ CameraFrameResult CameraStage::verify(std::vector<Cone>& candidates, const cv::M
       kept.push_back(c);
       continue;
     }
+    // Mostly hidden behind nearer candidates, its ROI shows theirs: neither a verdict nor a colour. Partly hidden,
+    // its colour is judged on the part that shows.
+    Others others = others_of(i, candidates, rois, sizes);
+    if (hidden_share(roi.base, roi.px_per_m, others.in_front) > colour_.config().max_hidden) {
+      ++stats_.hidden;
+      ++result.unverified;
+      kept.push_back(c);
+      continue;
+    }
     const cv::Mat pixels = cut_roi(bgr, roi);
     if (!classifier_.accepts(classifier_.score(pixels))) {
       ++stats_.rejected;
       ++result.rejected;
       continue;
     }
-    // Partly hidden, its colour is judged on the part that shows; mostly hidden, not at all.
-    Others others = others_of(i, candidates, rois, sizes);
-    const bool hidden = hidden_share(roi.base, roi.px_per_m, others.in_front) > colour_.config().max_hidden;
     for (auto* list : {&others.in_front, &others.behind})
       for (auto& o : *list) o.base -= cv::Point2d(roi.pixels.x, roi.pixels.y);  // into the ROI's pixels
-    const ColourResult colour = hidden ? ColourResult{}
-                                       : colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height,
-                                                          others.in_front, others.behind);
-    stats_.colour_hidden += hidden;
+    const ColourResult colour =
+        colour_.classify(pixels, roi_view(roi), sizes.empty() ? 0.0 : sizes[i].height, others.in_front, others.behind);
     c.stage = DetectionStage::Camera;
     c.colour = colour.colour;
     c.colour_confidence = colour.confidence;

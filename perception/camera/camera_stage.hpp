@@ -7,9 +7,10 @@
 // on the ground, `points`, stage = DetectionStage::Lidar), optionally with the cluster's size. verify() then
 //   - removes rejected candidates (not cones: tyres, stacks, posts, fences, ground), counted;
 //   - marks accepted ones stage = Camera with colour, colour_confidence and colour_source = Camera (colour Unknown
-//     when unsure, or when the candidate is mostly hidden behind a nearer one: occlusion.hpp);
-//   - leaves candidates it cannot see (behind the camera, outside the image, too far to judge) untouched: still
-//     stage = Lidar, unverified;
+//     when unsure);
+//   - leaves candidates it cannot see (behind the camera, outside the image, too far to judge, mostly hidden behind
+//     a nearer candidate: occlusion.hpp, whose ROI shows that one's pixels) untouched: still stage = Lidar,
+//     unverified, with the LiDAR's colour;
 //   - leaves every candidate untouched when the frame is unusable (empty, not 8-bit BGR), counted as a bad frame.
 // Pure: no I/O, no clock, no threads of its own (OpenCV's parallel loops follow cv::setNumThreads).
 #include <cstdint>
@@ -48,10 +49,10 @@ struct CameraStageStats {
   std::uint64_t candidates = 0;      // LiDAR candidates offered with usable frames
   std::uint64_t outside = 0;         // left unverified: not (enough) in the image
   std::uint64_t too_small = 0;       // left unverified: ROI too small to judge (far away)
+  std::uint64_t hidden = 0;          // left unverified: mostly hidden behind a nearer candidate
   std::uint64_t rejected = 0;        // removed: not a cone
   std::uint64_t verified = 0;        // accepted as cones
   std::uint64_t colour_unknown = 0;  // accepted, colour Unknown
-  std::uint64_t colour_hidden = 0;   // of those: mostly hidden behind a nearer candidate, colour not judged
 };
 
 struct CameraFrameResult {

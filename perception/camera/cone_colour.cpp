@@ -49,8 +49,8 @@ const ConfigSection<ConeColourConfig>& cone_colour_section() {
                    "Larger ROIs are shrunk to about this many pixels before clustering.")
           .number("max_hidden", &ConeColourConfig::max_hidden, 0.0, 1.0, "",
                   "A candidate whose body is hidden behind nearer candidates in the image by more than this share "
-                  "gets no colour from the camera (it is still verified); below it, the colour is judged on the "
-                  "pixels those in front do not cover.");
+                  "is left to the LiDAR: its ROI shows those, so the camera neither verifies, rejects nor names it; "
+                  "below it, the colour is judged on the pixels those in front do not cover.");
   return s;
 }
 

@@ -50,7 +50,7 @@ struct ConeColourConfig {
   bool white_balance = true;       // normalise the ROI's white balance on its near-grey pixels
   double max_white_gain = 1.25;    // bound of that correction per channel
   int working_pixels = 1600;       // larger ROIs are shrunk to about this many pixels
-  double max_hidden = 0.7;         // share of a candidate hidden behind nearer ones above which it gets no colour
+  double max_hidden = 0.7;         // share of a candidate hidden behind nearer ones above which the camera leaves it
 };
 const ConfigSection<ConeColourConfig>& cone_colour_section();  // prefix "perception.camera.colour"
 

@@ -116,10 +116,10 @@ TEST(CameraStage, BigOrangeFromTheLidarHeightOrTheImage) {
 }
 
 // A timing line seen from behind: a yellow boundary cone 0.5 m behind a big orange one, nearly in line with the
-// camera. Its ROI shows mostly the big cone; the stage leaves its colour unknown (it is still verified) instead of
-// naming it after the cone in front (orange, without the stage's occlusion check). Alone, at the same place, it is yellow; a cone beside the big one, not behind it, keeps its
-// colour.
-TEST(CameraStage, ACandidateMostlyHiddenBehindANearerOneGetsNoColour) {
+// camera. Its ROI shows mostly the big cone: the stage neither verifies it nor names it (after the cone in front it
+// would be orange) and leaves it the LiDAR's, unverified. Alone, at the same place, it is verified and yellow; a cone
+// beside the big one, not behind it, keeps its colour.
+TEST(CameraStage, ACandidateMostlyHiddenBehindANearerOneIsLeftToTheLidar) {
   cv::Mat frame = asphalt();
   paint(frame, 9.5, 1.5, ConeColour::Yellow);  // farther first: the nearer one is painted over it
   paint(frame, 9.0, 1.45, ConeColour::Orange, true);
@@ -129,16 +129,19 @@ TEST(CameraStage, ACandidateMostlyHiddenBehindANearerOneGetsNoColour) {
   const std::vector<CandidateSize> sizes{{0.30, 0.22}, {0.49, 0.28}, {0.30, 0.22}};
   stage.verify(seen, frame, sizes);
   ASSERT_EQ(seen.size(), 3u);
-  EXPECT_EQ(seen[0].stage, DetectionStage::Camera);
+  EXPECT_EQ(seen[0].stage, DetectionStage::Lidar);
   EXPECT_EQ(seen[0].colour, ConeColour::Unknown) << to_string(seen[0].colour);
+  EXPECT_EQ(seen[1].stage, DetectionStage::Camera);
   EXPECT_EQ(seen[1].colour, ConeColour::BigOrange);
   EXPECT_EQ(seen[2].colour, ConeColour::Blue);
-  EXPECT_EQ(stage.stats().colour_hidden, 1u);
+  EXPECT_EQ(stage.stats().hidden, 1u);
+  EXPECT_EQ(stage.stats().verified, 2u);
 
   cv::Mat alone = asphalt();
   paint(alone, 9.5, 1.5, ConeColour::Yellow);
   std::vector<Cone> one{lidar_candidate(9.5, 1.5)};
   stage.verify(one, alone);
+  EXPECT_EQ(one[0].stage, DetectionStage::Camera);
   EXPECT_EQ(one[0].colour, ConeColour::Yellow);
 }
 
@@ -162,7 +165,7 @@ TEST(CameraStage, APartlyHiddenCandidateGetsTheColourOfThePartThatShows) {
     ASSERT_EQ(seen.size(), 2u);
     EXPECT_EQ(seen[0].colour, ConeColour::Yellow) << offset << ": " << to_string(seen[0].colour);
     EXPECT_EQ(seen[1].colour, ConeColour::Blue) << offset;
-    EXPECT_EQ(stage.stats().colour_hidden, 0u);
+    EXPECT_EQ(stage.stats().hidden, 0u);
   }
 }
 
