@@ -30,6 +30,19 @@ struct Placed {
   ConeColour colour;
 };
 
+// Three sweeps 0.1 s apart, each from where the body (`body(t)`, scene frame) is then; the detector is told the
+// poses `pose_at`. The last sweep's detection.
+template <class BodyAt>
+LidarDetection drive_by(LidarConeDetector& det, const RayScene& scene, const BodyAt& body, const BodyPoseAt& pose_at) {
+  LidarDetection d;
+  for (int k = 0; k < 3; ++k) {
+    Scan s = scene.sweep_moving([&](double t) { return body(0.1 * k + t) * kMount; });
+    for (auto& p : s.points) p.t += 0.1 * k;
+    d = det.detect(s, pose_at);
+  }
+  return d;
+}
+
 TEST(LidarConeDetector, FindsTheConesOfAHandMadeSceneAndNothingElse) {
   RayScene scene;
   scene.range_noise = 0.01;
@@ -125,12 +138,7 @@ TEST(LidarConeDetector, AccumulatesOnlyWithKnownMotion) {
   // The car creeps forward at 5 m/s: three sweeps 0.1 s apart, each taken from where the car is then.
   const auto body = [](Stamp t) { return pose_zyx(Vec3(5.0 * t, 0, 0), 0, 0, 0); };
   const BodyPoseAt pose_at = body;
-  LidarDetection d;
-  for (int k = 0; k < 3; ++k) {
-    Scan s = scene.sweep_moving([&](double t) { return body(0.1 * k + t) * kMount; });
-    for (auto& p : s.points) p.t += 0.1 * k;
-    d = det.detect(s, pose_at);
-  }
+  const LidarDetection d = drive_by(det, scene, body, pose_at);
   EXPECT_EQ(d.frames, 3);
   ASSERT_EQ(d.detections.cones.size(), 1u);
   // The cone's true place in the body frame at the last firing (t ≈ 0.3 s).
@@ -158,12 +166,7 @@ TEST(LidarConeDetector, AccumulatesACorneringCarsFramesOnTheirOwnGround) {
   const auto& shape = scene.objects.back();
   LidarConeDetector det({}, kMount);
   const BodyPoseAt pose_at = planar;  // what the localization knows
-  LidarDetection d;
-  for (int k = 0; k < 3; ++k) {
-    Scan s = scene.sweep_moving([&](double t) { return body(0.1 * k + t) * kMount; });
-    for (auto& p : s.points) p.t += 0.1 * k;
-    d = det.detect(s, pose_at);
-  }
+  const LidarDetection d = drive_by(det, scene, body, pose_at);
   ASSERT_EQ(d.frames, 3);
   // Each accumulated return near the cone, moved by the true body pose, lies on the cone's surface.
   const Pose3 now = body(d.detections.stamp);
