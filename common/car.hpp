@@ -3,6 +3,8 @@
 // the dashboard and the virtual car all read these keys ("car.*"); the virtual car departs from them only by its own
 // "sim.mismatch.*" keys (a model mismatch on purpose). The camera is described by its calibration file
 // (drivers.camera.calibration: intrinsics and mount are calibrated together); the virtual car's camera by sim.camera.
+#include <cmath>
+
 #include "common/config.hpp"
 #include "common/geometry.hpp"
 
@@ -32,6 +34,13 @@ struct CarDescription {
 
   double nose() const { return body_length - rear_overhang; }  // m ahead of the rear axle
 };
+
+// The kinematic bicycle: the path curvature a front wheel angle gives, tan(δ) / L (0 without a wheelbase), and the
+// wheel angle a curvature needs, atan(L·κ).
+inline double kinematic_curvature(double steer, double wheelbase) {
+  return wheelbase > 0 ? std::tan(steer) / wheelbase : 0.0;
+}
+inline double kinematic_steer(double curvature, double wheelbase) { return std::atan(wheelbase * curvature); }
 
 // Adds the car's keys unless the schema has them already (each library that reads the car calls it).
 void describe_car(ConfigSchema& schema);

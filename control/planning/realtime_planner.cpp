@@ -6,12 +6,13 @@
 #include <limits>
 #include <optional>
 
+#include "common/car.hpp"
 #include "control/planning/arc_path.hpp"
 #include "control/planning/reference_line.hpp"
 
 namespace fsd {
 
-double PathConfig::kappa_lock() const { return wheelbase > 0 ? std::tan(max_steer) / wheelbase : 0.0; }
+double PathConfig::kappa_lock() const { return kinematic_curvature(max_steer, wheelbase); }
 
 double PathConfig::first_beyond_lock(const Path& path) const {
   const double limit = (1.0 + accept_lock_excess) * kappa_lock();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 
+#include "common/car.hpp"
 #include "control/planning/speed_profile.hpp"
 
 namespace fsd {
@@ -43,8 +44,8 @@ GuardResult ContactGuard::check(const Path& path, PathFollower follower, const V
     v = std::max(0.0, v + std::clamp(target - v, -config_.decel * config_.dt, config_.accel * config_.dt));
     if (v < 0.05 && target < 0.05) return r;  // stopped short of everything
     // Understeer: the curvature the wheels give at this speed, κ from δ = atan(L·κ) + K·v²·κ (solved by iteration).
-    double kappa = std::tan(delta) / wheelbase;
-    for (int it = 0; it < 3; ++it) kappa = std::tan(delta - config_.understeer * v * v * kappa) / wheelbase;
+    double kappa = kinematic_curvature(delta, wheelbase);
+    for (int it = 0; it < 3; ++it) kappa = kinematic_curvature(delta - config_.understeer * v * v * kappa, wheelbase);
     // The rear axle slips by the angle the follower expects (it steers the car's nose that much into the turn).
     const double slip = follower.expected_sideslip(v, kappa);
     const double yaw_mid = s.pose.yaw + 0.5 * v * kappa * config_.dt - slip;

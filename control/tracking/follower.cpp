@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/car.hpp"
+
 namespace fsd {
 
 namespace {
@@ -30,7 +32,7 @@ std::string to_string(FollowerType t) {
 
 Pose2 predict_bicycle(const Pose2& pose, double v, double delta, double wheelbase, double dt) {
   // Exact integration of the kinematic bicycle at constant v and delta (an arc, or a line).
-  const double w = wheelbase > 0 ? v * std::tan(delta) / wheelbase : 0.0;
+  const double w = v * kinematic_curvature(delta, wheelbase);
   Pose2 out = pose;
   if (std::abs(w * dt) < 1e-9) {
     out.x += v * dt * std::cos(pose.yaw);

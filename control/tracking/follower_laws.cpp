@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/car.hpp"
 #include "control/tracking/follower.hpp"
 
 namespace fsd {
@@ -72,7 +73,7 @@ double PathFollower::lqr(const Path& path, const PathProjection& proj, const Pos
   // value (slip per lateral acceleration × v²κ) is taken off first (Kapania & Gerdes' sideslip feed-forward).
   const double heading_ss = expected_sideslip(v, proj.kappa);
   const Eigen::Vector2d x(proj.lateral, wrap_angle(pose.yaw - proj.yaw - heading_ss));
-  return std::atan(L * kappa_ff) + config_.understeer * v * v * kappa_ff - K.dot(x);
+  return kinematic_steer(kappa_ff, L) + config_.understeer * v * v * kappa_ff - K.dot(x);
 }
 
 }  // namespace fsd

@@ -70,7 +70,7 @@ void FusedLocalization::add(const std::vector<GnssSample>& gnss, const std::opti
     b.vx = vcu->rear_axle_speed();  // the reference point's speed
     b.has_vy = false;
     if (wheelbase_ > 0 && std::isfinite(vcu->steering_measured))
-      b.kinematic_yaw_rate = b.vx * std::tan(vcu->steering_measured) / wheelbase_;
+      b.kinematic_yaw_rate = b.vx * kinematic_curvature(vcu->steering_measured, wheelbase_);
     ms.emplace_back(b);
   }
   std::stable_sort(ms.begin(), ms.end(), [](const fusion::Measurement& a, const fusion::Measurement& b) {
