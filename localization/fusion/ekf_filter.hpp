@@ -3,12 +3,15 @@
 //   x, y, yaw, vx, vy, yaw rate r, gyro bias b, optical speed scale k, rear slip compliance c.
 // Between measurements a constant-velocity, constant-turn model (vx, vy, r random walks); each gyro sample
 // measures r + b, each optical sample k·(v + r × lever), the wheels vx + r × lever (only while no optical sample
-// comes), a LiDAR odometry increment the mean (vx, vy, r) over its interval, a GNSS fix the position (through
+// comes), a LiDAR odometry increment the mean (vx, vy, r) over its interval (against the filter's own mean over that
+// interval: it arrives a scan's processing after it, when a turn-in has moved r on), a GNSS fix the position (through
 // the gate) and, when the receiver gives one, its velocity over ground (vx, vy + r·lx rotated: the sideslip). A
 // standing car is held to r = 0, so the gyro's bias shows at once; GNSS while driving makes the bias
 // and the speed scale observable, which is what keeps dead reckoning through an outage well under the raw
 // sensors' drift.
+#include <deque>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -56,6 +59,16 @@ class EkfFilter final : public FusionFilter {
   void on_odometry(const OdometryIncrement& o) override;
   void on_map_pose(const MapPose& m) override;
   void apply_heading(const HeadingInitialiser::Offset& off, double fix_sigma);
+  // The mean (vx, vy, r) the prediction carried over [t0, t1]; empty when the steps held do not reach back to t0.
+  std::optional<Eigen::Vector3d> held_twist(Stamp t0, Stamp t1) const;
+
+  // The velocities each prediction step carried, over the last second (bounded): what an increment of an interval
+  // now past is compared with.
+  struct HeldTwist {
+    Stamp from, to;
+    Eigen::Vector3d twist;  // vx, vy, r
+  };
+  std::deque<HeldTwist> held_;
 
   FusionConfig cfg_;
   GnssGate gate_;

@@ -79,9 +79,8 @@ TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
   // runs on, held to real time while the solve is out (the frames of the solve's 0.1–0.9 s estimated uncorrected
   // meanwhile). Lap 1's plans too come from a worker then, a plan budget later than in the step, so the runs drift
   // apart by centimetres before the closure: it is compared by where and how well it closes, not bit for bit. The
-  // map lap 2 drives on (map_lap1) must lose no cone the step keeps and hold its copies to a bounded share, and the
-  // control thread did not pay the solve. The map at the end is not compared: lap 2
-  // without the map matching goes differently with every solve time.
+  // map lap 2 drives on (map_lap1) must be as whole as the step's, and the control thread did not pay the solve.
+  // The map at the end is not compared: lap 2 without the map matching goes differently with every solve time.
   const json step = lidar_odometry_run("loop_closure_step", "epfl_track_1", true);
   const json worker = lidar_odometry_run("loop_closure_worker", "epfl_track_1", true, "--workers");
   ASSERT_TRUE(step.is_object() && worker.is_object());
@@ -94,20 +93,20 @@ TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
   EXPECT_EQ(b[0]["lap"], a[0]["lap"]);
   EXPECT_NEAR(b[0]["time_s"].get<double>(), a[0]["time_s"].get<double>(), 2.0) << b.dump() << a.dump();
   EXPECT_NEAR(b[0]["keyframes"].get<double>(), a[0]["keyframes"].get<double>(), 10.0) << b.dump() << a.dump();
-  EXPECT_LT(b[0]["error_after_m"].get<double>(), 0.1) << b.dump();  // measured 0.05 m from 0.75 (step 0.02 from 0.67)
+  EXPECT_LT(b[0]["error_after_m"].get<double>(), 0.1) << b.dump();  // measured 0.07 m from 0.92 (step 0.05 from 0.77)
   EXPECT_LT(b[0]["control_ms"].get<double>(), 0.2 * b[0]["solve_ms"].get<double>()) << b.dump();
   EXPECT_GE(a[0]["control_ms"].get<double>(), a[0]["solve_ms"].get<double>()) << a.dump();  // in the step
-  // The map at lap 1's line on the worker against the step's and the truth. Measured: step RMSE 0.100 m, 200 of 202
-  // matched, 2 missed, 0 ghosts; worker 0.102–0.111 m, 198–199, 3–4, and 12–31 ghosts over four runs (the solve's
-  // 76–95 ms deciding which frames are mapped meanwhile): cones mapped while the solve is out leave copies that the
-  // step does not. Held: none lost, and the copies a bounded share of the map (without the closure the map at the
-  // line has 183 ghosts, TheLapsLoopClosesOnceNearTheStartAndTheMapIsOneMapAgain).
+  // The map at lap 1's line on the worker against the step's and the truth: as whole (measured: step RMSE 0.072 m,
+  // 202 of 202 matched, 0 ghosts; worker 0.092 m, 202 of 202, 0 ghosts over three runs). The frames mapped while the
+  // solve is out move with the newest keyframe's correction; that holds while the estimate's yaw error changes
+  // slowly, which it did not while the fusion read a LiDAR increment as the velocities at its arrival (12-31
+  // ghosts then).
   ASSERT_TRUE(step.contains("map_lap1") && worker.contains("map_lap1"));
   const json &ma = step["map_lap1"], &mb = worker["map_lap1"];
   EXPECT_LE(mb["missed"].get<int>(), ma["missed"].get<int>() + 5) << mb.dump() << ma.dump();
   EXPECT_GE(mb["matched"].get<int>(), ma["matched"].get<int>() - 5) << mb.dump() << ma.dump();
   EXPECT_LE(ma["ghosts"].get<int>(), 5) << ma.dump();
-  EXPECT_LE(mb["ghosts"].get<int>(), mb["true_cones"].get<int>() / 5) << mb.dump();
+  EXPECT_LE(mb["ghosts"].get<int>(), 5) << mb.dump();
   EXPECT_LT(mb["rmse_m"].get<double>(), ma["rmse_m"].get<double>() + 0.03) << mb.dump() << ma.dump();
   EXPECT_LT(mb["rmse_m"].get<double>(), 0.15) << mb.dump();
 }
