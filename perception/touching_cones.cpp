@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace fsd {
@@ -42,8 +43,49 @@ ClusterConfig tip_clustering(const TouchingConesConfig& cfg, double azimuth_step
 
 }  // namespace
 
+// Between two cones' tips side by side a laser passes through air for a firing or more, and from one tip to a tip
+// behind it the range jumps; upper points that are consecutive firings of one laser (same revolution) within a
+// cone's base radius of each other are one continuous top, however far apart for the tolerance (a kerb's arc far
+// away, its returns spaced wider along it than across the line of sight): their groups are one.
+std::vector<Cluster> TouchingConesSplitter::join_continuous(std::vector<Cluster> groups) const {
+  if (groups.size() < 2) return groups;
+  constexpr double kSameRevolution = 0.01;  // s: consecutive firings are microseconds apart, revolutions 0.1 s
+  std::vector<std::size_t> group_of(high_.size(), 0), parent(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    parent[g] = g;
+    for (const auto k : groups[g].indices) group_of[k] = g;
+  }
+  const auto root = [&](std::size_t g) {
+    while (parent[g] != g) g = parent[g] = parent[parent[g]];
+    return g;
+  };
+  for (std::size_t i = 0; i < high_.size(); ++i)
+    for (std::size_t j = i + 1; j < high_.size(); ++j) {
+      const Point &a = high_[i], &b = high_[j];
+      if (a.ring != b.ring || std::abs(a.t - b.t) > kSameRevolution) continue;
+      const double d_az = std::abs(wrap_angle(static_cast<double>(a.azimuth) - b.azimuth));
+      const double d_xy = std::hypot(a.x - b.x, a.y - b.y);
+      if (d_az > 0 && d_az <= 1.5 * azimuth_step_ && d_xy <= cfg_.reach) parent[root(group_of[i])] = root(group_of[j]);
+    }
+  std::vector<Cluster> joined;
+  std::vector<std::ptrdiff_t> slot(groups.size(), -1);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const std::size_t r = root(g);
+    if (slot[r] < 0) {
+      slot[r] = static_cast<std::ptrdiff_t>(joined.size());
+      joined.emplace_back();
+    }
+    auto& into = joined[static_cast<std::size_t>(slot[r])].indices;
+    into.insert(into.end(), groups[g].indices.begin(), groups[g].indices.end());
+  }
+  return joined;
+}
+
 TouchingConesSplitter::TouchingConesSplitter(const TouchingConesConfig& cfg, double azimuth_step_deg, double dark_max)
-    : cfg_(cfg), dark_max_(dark_max), tips_(tip_clustering(cfg, azimuth_step_deg)) {}
+    : cfg_(cfg),
+      dark_max_(dark_max),
+      azimuth_step_(deg2rad(azimuth_step_deg)),
+      tips_(tip_clustering(cfg, azimuth_step_deg)) {}
 
 std::vector<Cluster> TouchingConesSplitter::split(const std::vector<Point>& cloud, const Cluster& cluster,
                                                   const GroundSurface& ground, const Vec2& sensor_xy) {
@@ -56,7 +98,7 @@ std::vector<Cluster> TouchingConesSplitter::split(const std::vector<Point>& clou
     if (ground.height_of(q.x, q.y, q.z) > cfg_.tip_height) high_.push_back(q);
   }
   if (std::hypot(x1 - x0, y1 - y0) > cfg_.max_width) return {};
-  const auto groups = tips_.cluster(high_, sensor_xy);
+  const auto groups = join_continuous(tips_.cluster(high_, sensor_xy));
   if (groups.size() < 2) return {};
   std::vector<Vec2> axis;
   for (const auto& g : groups) {

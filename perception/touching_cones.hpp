@@ -5,7 +5,9 @@
 // tolerance), so their points form one cluster that the size filter rejects as too wide. A cone narrows towards
 // its tip (small cone: 114 mm radius at the base, 81 mm at 0.12 m), so the points above `tip_height` of touching
 // cones fall apart into one group per cone even where the bases touch, while a box, a kerb, a tyre or a fence
-// panel keeps one continuous top. The split: group the high points (range-aware tolerance, as the clusterer's);
+// panel keeps one continuous top. The split: group the high points (range-aware tolerance, as the clusterer's; and
+// consecutive firings of one laser whose returns lie within `reach` are one top: between two tips side by side a
+// laser passes through air for a firing or more, and from a tip to one behind it its range jumps);
 // with two or more groups standing at least `min_separation` apart, give every point of the cluster to the nearest
 // group's axis within a big cone's base radius. The cluster is split only when those parts hold (nearly) all of its
 // points: a cluster that is cones and something else stays one, and rejected. Each part must also show it is a
@@ -48,8 +50,12 @@ class TouchingConesSplitter {
   const TouchingConesConfig& config() const { return cfg_; }
 
  private:
+  // The groups of upper points (indices into high_) with those holding consecutive firings of one laser joined.
+  std::vector<Cluster> join_continuous(std::vector<Cluster> groups) const;
+
   TouchingConesConfig cfg_;
   double dark_max_;
+  double azimuth_step_;  // rad
   Clusterer tips_;
   std::vector<Point> high_;
 };

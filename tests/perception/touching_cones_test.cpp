@@ -8,6 +8,7 @@
 
 #include "common/rotation.hpp"
 #include "perception/lidar_cone_detector.hpp"
+#include "perception/touching_cones.hpp"
 #include "tests/perception/ray_scene.hpp"
 
 namespace fsd {
@@ -129,6 +130,38 @@ TEST(TouchingCones, OneLaserAcrossBlackPaintIsNoEvidence) {
       EXPECT_EQ(d.counters.too_wide + d.counters.not_cone_shaped, 1u);
     }
   }
+}
+
+// The shared real capture (a street, no cones): one laser's arc along a kerb or wall 22 m away, 17 consecutive
+// firings whose returns lie 0.08-0.16 m apart (seen obliquely), wider than the upper points' tolerance there. Split by that spacing
+// alone it was 7 "cones" (`fsd detect --cloud ../shared/data/vlp16/velodyne_vlp16.pcap`: 14 detections, 7 without
+// the split); consecutive firings of one laser are one continuous top.
+TEST(TouchingCones, ConsecutiveFiringsOfOneLaserAreOneTop) {
+  struct Recorded {
+    float x, y, height, azimuth;
+  };
+  const std::vector<Recorded> arc{
+      {11.450, -19.791, 0.261, 1.0463}, {11.395, -19.851, 0.255, 1.0497}, {11.258, -19.768, 0.260, 1.0531},
+      {11.155, -19.743, 0.260, 1.0565}, {11.037, -19.691, 0.263, 1.0599}, {10.946, -19.691, 0.264, 1.0634},
+      {10.860, -19.698, 0.264, 1.0669}, {10.726, -19.616, 0.273, 1.0704}, {10.619, -19.584, 0.277, 1.0739},
+      {10.501, -19.534, 0.283, 1.0775}, {10.392, -19.497, 0.287, 1.0811}, {10.313, -19.517, 0.287, 1.0847},
+      {10.192, -19.445, 0.295, 1.0880}, {10.089, -19.413, 0.299, 1.0915}, {9.995, -19.394, 0.302, 1.0949},
+      {9.885, -19.338, 0.309, 1.0982},  {9.788, -19.312, 0.313, 1.1017}};
+  std::vector<Point> cloud;
+  Cluster cluster;
+  for (std::size_t i = 0; i < arc.size(); ++i) {
+    Point q;
+    q.x = arc[i].x, q.y = arc[i].y, q.z = arc[i].height;  // heights above the capture's ground: a flat ground here
+    q.ring = 6;
+    q.azimuth = arc[i].azimuth;
+    q.t = 5.5e-5 * static_cast<double>(i);  // one firing per 0.2° at 600 rpm
+    q.intensity = 10;
+    cloud.push_back(q);
+    cluster.indices.push_back(static_cast<std::uint32_t>(i));
+  }
+  const GroundSurface flat{GroundPlane{}};
+  TouchingConesSplitter splitter({}, 0.2, 8.0);
+  EXPECT_TRUE(splitter.split(cloud, cluster, flat, Vec2::Zero()).empty());
 }
 
 }  // namespace
