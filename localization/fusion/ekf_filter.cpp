@@ -179,7 +179,7 @@ void EkfFilter::on_odometry(const OdometryIncrement& o) {
   const MeanTwist v = mean_twist(o);
   // Compared with what the filter carried over the same interval, not with the velocities now: its mean lies half
   // an interval (and a scan's processing) back, and at a turn-in r has moved on since (read as now, the increment
-  // pulled r back and the yaw lagged: 2.4 times the yaw error through a slalom). Its error is taken to be the one
+  // would pull r back and the yaw lag: 2.4 times the yaw error through a slalom). Its error is taken to be the one
   // of the velocities now, which holds while it comes less than half its interval late (the gyro's samples have
   // corrected r by then; the Stack's processing takes milliseconds).
   const Eigen::Vector3d then = held_twist(o.t0, o.t1).value_or(Eigen::Vector3d(x_(Vx), x_(Vy), x_(R)));

@@ -99,8 +99,8 @@ TEST(LoopClosureRun, SolvedOnTheWorkerTheLoopMovesWhatWasEstimatedMeanwhile) {
   // The map at lap 1's line on the worker against the step's and the truth: as whole (measured: step RMSE 0.072 m,
   // 202 of 202 matched, 0 ghosts; worker 0.092 m, 202 of 202, 0 ghosts over three runs). The frames mapped while the
   // solve is out move with the newest keyframe's correction; that holds while the estimate's yaw error changes
-  // slowly, which it did not while the fusion read a LiDAR increment as the velocities at its arrival (12-31
-  // ghosts then).
+  // slowly, as it does with the fusion comparing each LiDAR increment over its own interval (compared with the
+  // velocities at its arrival: 12-31 ghosts).
   ASSERT_TRUE(step.contains("map_lap1") && worker.contains("map_lap1"));
   const json &ma = step["map_lap1"], &mb = worker["map_lap1"];
   EXPECT_LE(mb["missed"].get<int>(), ma["missed"].get<int>() + 5) << mb.dump() << ma.dump();
