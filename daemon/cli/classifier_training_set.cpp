@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "drivers/camera/image_file.hpp"
 #include "drivers/sim/world/world_random.hpp"
@@ -36,23 +35,6 @@ cv::Mat tight_crop(const RenderedFrame& f, const RenderedCandidate& c, sim::Rng&
   box = cv::Rect(tl, br) & cv::Rect(0, 0, f.bgr.cols, f.bgr.rows);
   if (box.width < 6 || box.height < 8) return {};
   return f.bgr(box);
-}
-
-// The crop under uneven light: a smooth multiplicative gain field (the shade of trees and clouds, stains, wet
-// patches) at a random scale and strength. The renderer lights its ground evenly; real ground is not, and HOG's
-// block normalisation makes a faint brightness pattern as strong as an outline.
-cv::Mat unevenly_lit(const cv::Mat& crop, sim::Rng& rng) {
-  const int cells_x = rng.uniform_int(2, 8), cells_y = rng.uniform_int(2, 8);
-  const double strength = rng.uniform(0.04, 0.15);
-  cv::Mat field(cells_y, cells_x, CV_32F);
-  for (auto& g : cv::Mat_<float>(field)) g = static_cast<float>(1.0 + strength * rng.uniform(-1.7, 1.7));
-  cv::resize(field, field, crop.size(), 0, 0, cv::INTER_CUBIC);
-  cv::Mat gain, lit;
-  cv::merge(std::vector<cv::Mat>(3, field), gain);
-  crop.convertTo(lit, CV_32FC3);
-  lit = lit.mul(gain);
-  lit.convertTo(lit, CV_8UC3);
-  return lit;
 }
 
 void add(FeatureSet& set, const cv::Mat& crop, bool cone, bool mirrored_too) {
@@ -125,13 +107,6 @@ TrainingSet build_training_set(const TrainingSetConfig& cfg) {
       }
       add(set.train, pixels, c->is_cone, true);
       set.kinds[c->kind] += 2;
-      // Non-cones also under uneven light, twice: a cone's outline and stripes stand out in any light, while bare
-      // ground, a tyre or a post under a brightness pattern must not become one.
-      if (!c->is_cone)
-        for (int copy = 0; copy < 2; ++copy) {
-          add(set.train, unevenly_lit(pixels, rng), false, false);
-          ++set.kinds[c->kind];
-        }
       if (const cv::Mat tight = tight_crop(f, *c, rng); !tight.empty()) {
         add(set.train, tight, c->is_cone, false);
         ++set.kinds[c->kind];

@@ -6,8 +6,7 @@
 // Rendered samples: each clean candidate's ROI (cones at least 70 % visible and not cut by the border; others not
 // covered by a visible cone), and for training also the ROI mirrored and a tight crop of the object (cones: their
 // silhouette with a random margin; others: their own size), so that crops a person cuts (`fsd classify`) look like
-// what the model knows; non-cones also twice under uneven light (a smooth gain field, 4-15 %: shade, stains), so
-// that a brightness pattern on bare ground does not read as a cone. Every fifth frame of each track is held back.
+// what the model knows. Every fifth frame of each track is held back.
 #include <cstdint>
 #include <filesystem>
 #include <map>
