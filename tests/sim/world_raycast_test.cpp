@@ -51,6 +51,26 @@ TEST(WorldRaycast, StripeBandHasItsOwnSurfaceAndReflectivity) {
   EXPECT_LT(y_stripe->reflectivity, y_body->reflectivity);  // black stripe on a yellow cone
 }
 
+// A beam straddling the stripe's lower edge (0.38 × 0.325 = 0.1235 m) returns the paints' mean over its footprint.
+// Blue cone: body 22, stripe 95. Horizontal ray at z = 0.12 to the cone 5 m ahead: hit at t = 5 − ρ(0.12) =
+// 4.918862; footprint 0.01 + 0.002·t = 0.0198377 m, i.e. [0.1100811, 0.1299189], of which 0.0064189 m is stripe.
+TEST(WorldRaycast, ABeamAcrossTheStripeEdgeReturnsThePaintsMean) {
+  const World world(make_track({make_cone(5.0, 0.0, ConeRole::Left)}), bare_config(), 1);
+  const Vec3 origin(0, 0, 0.12);
+  const auto point = world.raycast(origin, Vec3::UnitX(), 50.0);
+  const auto beam = world.raycast(origin, Vec3::UnitX(), 50.0, Beam{0.01, 0.002});
+  ASSERT_TRUE(point && beam);
+  EXPECT_DOUBLE_EQ(point->reflectivity, 22.0);  // a point ray: the body at the hit
+  EXPECT_EQ(beam->surface, Surface::ConeBody);  // the surface named is the one at the hit
+  const double t = 5.0 - (0.114 - 0.089 * 0.12 / 0.325), footprint = 0.01 + 0.002 * t;
+  const double on_stripe = 0.12 + footprint / 2 - 0.38 * 0.325;
+  EXPECT_NEAR(beam->reflectivity, 22.0 + 73.0 * on_stripe / footprint, 1e-9);
+  EXPECT_NEAR(beam->distance, point->distance, 1e-12);
+  // Wholly inside the stripe or the body, the footprint changes nothing.
+  EXPECT_DOUBLE_EQ(world.raycast(Vec3(0, 0, 0.16), Vec3::UnitX(), 50.0, Beam{0.01, 0.002})->reflectivity, 95.0);
+  EXPECT_DOUBLE_EQ(world.raycast(Vec3(0, 0, 0.05), Vec3::UnitX(), 50.0, Beam{0.01, 0.002})->reflectivity, 22.0);
+}
+
 TEST(WorldRaycast, BigTimingConeIsTallerAndWider) {
   const World world(make_track({make_cone(5.0, 0.0, ConeRole::Timing)}), bare_config(), 1);
   ASSERT_TRUE(world.cones()[0].big);

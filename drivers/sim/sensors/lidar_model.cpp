@@ -43,6 +43,10 @@ const ConfigSection<LidarConfig>& lidar_section() {
           .number("max_range", &C::max_range, 1.0, 130.0, "m", "Farthest return (the wire format holds 131 m).")
           .number("min_range", &C::min_range, 0.0, 5.0, "m", "Nearest return.")
           .number("latency", &C::latency, 0.0, 0.1, "s", "From a packet's last firing to its departure.")
+          .number("beam_aperture", &C::beam_aperture, 0.0, 0.05, "m",
+                  "Vertical size of a beam at the sensor: a cone's paints are averaged over the footprint.")
+          .number("beam_divergence", &C::beam_divergence, 0.0, 0.01, "rad",
+                  "Vertical divergence of a beam (full angle): the footprint grows by this per metre.")
           .string("return_mode", &C::return_mode, {"strongest", "last"}, "Return mode reported in the factory bytes.")
           .integer("product_id", &C::product_id, 0, 255, "",
                    "Product id in the factory bytes: 34 (0x22) VLP-16, 33 (0x21) early firmware.");
@@ -115,7 +119,8 @@ void LidarModel::build_packet(const std::function<Pose3(Stamp)>& body_pose_at) {
         const Vec3 dir_s(cos_elev_[k] * cos_a, -cos_elev_[k] * sin_a, sin_elev_[k]);
         const Vec3 dir = R * dir_s;
         const Vec3 origin = sensor * Vec3(0.0, 0.0, offset_[k]);
-        const auto hit = world_.raycast(origin, dir, cfg_.max_range + cfg_.range_noise);
+        const auto hit = world_.raycast(origin, dir, cfg_.max_range + cfg_.range_noise,
+                                        Beam{cfg_.beam_aperture, cfg_.beam_divergence});
 
         std::uint16_t counts = 0;
         std::uint8_t intensity = 0;

@@ -12,6 +12,16 @@ bool ConeShape::in_stripe(double z) const {
   return false;
 }
 
+double ConeShape::stripe_share(double z_lo, double z_hi) const {
+  if (!(z_hi > z_lo)) return in_stripe(z_lo) ? 1.0 : 0.0;
+  double painted = 0;
+  for (int i = 0; i < stripe_count; ++i) {
+    const auto& s = stripes[static_cast<std::size_t>(i)];
+    painted += std::max(0.0, std::min(z_hi, s[1] * height) - std::max(z_lo, s[0] * height));
+  }
+  return painted / (z_hi - z_lo);
+}
+
 const ConeShape& cone_shape(bool big) { return big ? kBigCone : kSmallCone; }
 
 ConePaint cone_paint(ConeColour colour) {

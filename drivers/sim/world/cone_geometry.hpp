@@ -25,6 +25,9 @@ struct ConeShape {
 
   double radius_at(double z) const { return base_radius - (base_radius - top_radius) * z / height; }
   bool in_stripe(double z) const;
+  // Share of the height span [z_lo, z_hi] painted in the stripe colour (z_lo < z_hi; parts off the cone count as
+  // body: the beam's edge beyond the tip or the base lands on another surface, taken as the body's level).
+  double stripe_share(double z_lo, double z_hi) const;
 };
 
 inline constexpr ConeShape kSmallCone{0.114, 0.025, 0.325, {{{0.38, 0.62}, {0.0, 0.0}}}, 1};

@@ -187,7 +187,7 @@ void World::rebuild_index() {
   for (std::size_t l = 0; l < layers_.size(); ++l) layers_[l].grid.build(boxes[l], ids[l], kLayerCell[l]);
 }
 
-std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double max_range) const {
+std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double max_range, const Beam& beam) const {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   // Height above the ground along the ray is linear in t: h(t) = h0 + t·hd.
   const double h0 = origin.z() - ground_.height(origin.x(), origin.y());
@@ -227,7 +227,7 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double
                           return best_body != nullptr && best_t <= t_exit;
                         });
   }
-  if (best_body) return describe_hit(*best_body, best, origin, dir);
+  if (best_body) return describe_hit(*best_body, best, origin, dir, beam);
   if (t_ground > max_range) return std::nullopt;
   RayHit g;
   g.distance = t_ground;
@@ -238,7 +238,8 @@ std::optional<RayHit> World::raycast(const Vec3& origin, const Vec3& dir, double
   return g;
 }
 
-RayHit World::describe_hit(const Body& b, const LocalHit& hit, const Vec3& origin, const Vec3& dir) const {
+RayHit World::describe_hit(const Body& b, const LocalHit& hit, const Vec3& origin, const Vec3& dir,
+                           const Beam& beam) const {
   RayHit r;
   r.distance = hit.t;
   r.point = origin + hit.t * dir;
@@ -247,10 +248,13 @@ RayHit World::describe_hit(const Body& b, const LocalHit& hit, const Vec3& origi
   r.distractor = b.distractor;
   if (b.cone >= 0) {
     const WorldCone& c = cones_[static_cast<std::size_t>(b.cone)];
-    const bool stripe = cone_shape(c.big).in_stripe(hit.point.z());
+    const ConeShape& shape = cone_shape(c.big);
+    const bool stripe = shape.in_stripe(hit.point.z());
     const ConePaint paint = cone_paint(c.colour);
     r.surface = stripe ? Surface::ConeStripe : Surface::ConeBody;
-    r.reflectivity = stripe ? paint.stripe : paint.body;
+    const double half = (beam.aperture + beam.divergence * hit.t) / 2;
+    const double share = half > 0 ? shape.stripe_share(hit.point.z() - half, hit.point.z() + half) : stripe;
+    r.reflectivity = paint.body + share * (paint.stripe - paint.body);
   } else {
     switch (distractors_[static_cast<std::size_t>(b.distractor)].type) {
       case DistractorType::Tyre:

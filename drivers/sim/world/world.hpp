@@ -38,6 +38,14 @@ struct RayHit {
   int distractor = -1;      // index into World::distractors() when a distractor was hit
 };
 
+// A laser beam's vertical footprint: `aperture` at the sensor, growing by `divergence` (rad, full angle) per metre.
+// A beam that straddles a cone's stripe edge returns the mean of the two paints over its footprint, as a real
+// sensor's does; the default is a point ray (the surface at the hit alone).
+struct Beam {
+  double aperture = 0.0;    // m
+  double divergence = 0.0;  // rad
+};
+
 struct WorldCone {
   Vec3 base = Vec3::Zero();  // centre of the base on the ground, map frame
   ConeColour colour = ConeColour::Unknown;
@@ -71,8 +79,10 @@ class World {
   double distance_to_track_boundary(const Vec2& p) const { return area_.distance_to_boundary(p); }
   bool on_track(const Vec2& p) const { return area_.on_track(p); }
 
-  // Nearest hit along origin + t·unit_dir for 0 < t ≤ max_range, or nothing.
-  std::optional<RayHit> raycast(const Vec3& origin, const Vec3& unit_dir, double max_range) const;
+  // Nearest hit along origin + t·unit_dir for 0 < t ≤ max_range, or nothing. `beam`: the footprint over which a
+  // cone's paint is averaged (its reflectivity; the surface named is the one at the hit).
+  std::optional<RayHit> raycast(const Vec3& origin, const Vec3& unit_dir, double max_range,
+                                const Beam& beam = {}) const;
 
   // Marks the upright cones that the car footprint (polygon, map frame) touches as hit and knocks them over;
   // returns how many are newly hit.
@@ -105,7 +115,8 @@ class World {
   void finish_body(Body& body) const;
   Eigen::AlignedBox3d bounds(const Body& body) const;
   void rebuild_index();
-  RayHit describe_hit(const Body& body, const LocalHit& hit, const Vec3& origin, const Vec3& dir) const;
+  RayHit describe_hit(const Body& body, const LocalHit& hit, const Vec3& origin, const Vec3& dir,
+                      const Beam& beam) const;
 
   Track track_;
   WorldConfig cfg_;
