@@ -129,6 +129,36 @@ TEST(ReferenceLine, EveryGeneratedTrackdriveIsALoop) {
   }
 }
 
+// A generated open course (seeds 1-40, trackdrive and autocross) begins behind the start pose and ends at its finish
+// line, far from the start; two of its parts can run a cone gap apart (autocross 25: the first straight's cones
+// 4.6 m from another part's, 5 m from the next along it). Each boundary is a line through all of its cones, in
+// turn, from the end behind the car to the finish.
+TEST(ReferenceLine, AnOpenCourseBeginningBehindTheCarIsALine) {
+  for (const LayoutKind kind : {LayoutKind::Trackdrive, LayoutKind::Autocross})
+    for (int seed = 1; seed <= 40; ++seed) {
+      TrackGeneratorOptions o;
+      o.seed = seed;
+      o.kind = kind;
+      o.open = true;
+      const Track t = generate_track(o);
+      const ReferenceLine ref(t);
+      ASSERT_FALSE(ref.closed()) << "seed " << seed;
+      const Vec2 s = t.start.position(), fwd(std::cos(t.start.yaw), std::sin(t.start.yaw));
+      std::size_t left = 0;
+      for (const auto& c : t.cones) left += c.role == ConeRole::Left;
+      EXPECT_EQ(ref.left().size(), left) << "seed " << seed;
+      for (const auto* side : {&ref.left(), &ref.right()}) {
+        EXPECT_LT((side->front() - s).dot(fwd), 0.0) << "seed " << seed;  // begins behind the car
+        EXPECT_GT((side->back() - s).norm(), 30.0) << "seed " << seed;    // ends at the finish, away from it
+        double max_step = 0;
+        for (std::size_t i = 1; i < side->size(); ++i)
+          max_step = std::max(max_step, ((*side)[i] - (*side)[i - 1]).norm());
+        EXPECT_LE(max_step, 6.0) << "seed " << seed;  // no jump: every cone in turn
+      }
+      EXPECT_LT(ref.distance(s), 1.0) << "seed " << seed;
+    }
+}
+
 TEST(ReferenceLine, StraightOfTheAccelerationTrack) {
   const Track t = load_track("../shared/tracks/epfl_acceleration.csv");
   const ReferenceLine ref(t);

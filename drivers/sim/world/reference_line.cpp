@@ -42,11 +42,35 @@ double chain_length(const std::vector<Vec2>& c, bool closed) {
   return l;
 }
 
-// Orders cones into a boundary polyline: start at the cone nearest the start pose (ahead or beside it),
-// then repeatedly the nearest unvisited cone; a boundary whose ends are close is a loop, and is untangled.
+// The cones as the file lists them when that is a line: every step at most a cone gap, the ends far apart. An
+// open course staged on its first straight has cones behind the car, where a chain grown from the cone beside it
+// runs to the finish and jumps back; and where two parts of it run a cone gap apart, no shortest path is the
+// boundary. Files list a boundary in order (generated layouts and most published ones do). Runs in the driving
+// direction (the start heading, at the cone nearest the start). Empty when the listed order is no such line.
+std::vector<Vec2> listed_line(std::vector<Vec2> pts, const Pose2& start) {
+  if (pts.size() < 5) return {};
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < pts.size(); ++i) steps.push_back((pts[i] - pts[i - 1]).norm());
+  const double widest = *std::max_element(steps.begin(), steps.end());
+  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+  const double gap = std::max(6.0, 2.75 * steps[steps.size() / 2]);
+  if (widest > gap || (pts.front() - pts.back()).norm() <= gap) return {};
+  const Vec2 s = start.position();
+  std::size_t near = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    if ((pts[i] - s).norm() < (pts[near] - s).norm()) near = i;
+  const Vec2 along = near + 1 < pts.size() ? pts[near + 1] - pts[near] : pts[near] - pts[near - 1];
+  if (along.dot(Vec2(std::cos(start.yaw), std::sin(start.yaw))) < 0) std::reverse(pts.begin(), pts.end());
+  return pts;
+}
+
+// Orders cones into a boundary polyline: the listed order when it is a line (above); else start at the cone
+// nearest the start pose (ahead or beside it), then repeatedly the nearest unvisited cone; a boundary whose ends
+// are close is a loop, and is untangled.
 std::vector<Vec2> chain(std::vector<Vec2> pts, const Pose2& start, bool& closed) {
-  std::vector<Vec2> out;
-  if (pts.empty()) return out;
+  std::vector<Vec2> out = listed_line(pts, start);
+  closed = false;
+  if (!out.empty() || pts.empty()) return out;
   const Vec2 s = start.position();
   const Vec2 fwd(std::cos(start.yaw), std::sin(start.yaw));
   std::size_t first = 0;
@@ -166,9 +190,10 @@ ReferenceLine::ReferenceLine(const Track& track, double spacing) {
   for (const auto& p : ls) centre_.push_back(0.5 * (p + closest_on(right_, closed_, p)));
   if (!closed_ && centre_.size() >= 2) {
     // An open track (acceleration) starts behind its first cones and ends in a braking zone past its last ones:
-    // extend the line back to the start pose and straight on beyond the end.
+    // extend the line back to the start pose (when the car stands before its beginning) and straight on beyond
+    // the end.
     const Vec2 s = track.start.position();
-    if ((s - centre_.front()).norm() > spacing) {
+    if ((s - centre_.front()).norm() > spacing && (centre_[1] - centre_[0]).dot(centre_.front() - s) > 0) {
       const Vec2 step = (centre_.front() - s) / std::ceil((centre_.front() - s).norm() / spacing);
       std::vector<Vec2> head;
       for (Vec2 q = s; (q - centre_.front()).norm() > 0.5 * spacing; q += step) head.push_back(q);

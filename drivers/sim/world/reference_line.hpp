@@ -11,8 +11,10 @@ namespace fsd::sim {
 
 class ReferenceLine {
  public:
-  // Boundaries are ordered by a nearest-neighbour chain from the cones nearest the start, in the start heading's
-  // direction; the centre line is the midpoint of each left-boundary sample and its closest right-boundary point.
+  // Each boundary is its cones as the file lists them when that is a line (an open course, which may begin behind
+  // the start pose), else a nearest-neighbour chain from the cones nearest the start, untangled into a loop when it
+  // closes; in the start heading's direction. The centre line is the midpoint of each left-boundary sample and its
+  // closest right-boundary point.
   explicit ReferenceLine(const Track& track, double spacing = 0.25);
 
   const std::vector<Vec2>& points() const { return centre_; }
