@@ -52,7 +52,9 @@ bool TrackdriveMission::open_end_in_sight(const MissionInput& in) const {
   if ((end.p - line.mid()).norm() < config_.laps.hysteresis && dir.dot(line.forward) > 0.5)
     return false;  // loop closing
   for (const auto& c : *in.cones) {
-    if (!c.position.allFinite()) continue;
+    // Timing cones mark a line across the track, not its continuation: an open course's finish line stands at its
+    // last cones, a little beyond where the walk between them stops.
+    if (!c.position.allFinite() || c.colour == ConeColour::BigOrange) continue;
     const Vec2 d = c.position.head<2>() - end.p;
     if (d.dot(dir) > 1.0 && d.norm() < 10.0) return false;
   }

@@ -280,9 +280,13 @@ struct OpenLane : ::testing::Test {
   test::MissionWorld world;
   double lane_end = 40;
   bool cones_after_2s = true;  // false: the cone maps stop coming at t = 2 s
+  bool finish_line = false;    // true: a finish line's four big orange cones at the lane's end (x + 0.6, + 1.8)
 
   std::vector<Cone> lane() const {
     std::vector<Cone> c{cone_at(2, 2, ConeColour::BigOrange), cone_at(2, -2, ConeColour::BigOrange)};
+    if (finish_line)
+      for (const double x : {lane_end + 0.6, lane_end + 1.8})
+        for (const double y : {2.0, -2.0}) c.push_back(cone_at(x, y, ConeColour::BigOrange));
     for (int x = 0; x <= lane_end; x += 5) {
       c.push_back(cone_at(x, 1.5, ConeColour::Blue));
       c.push_back(cone_at(x, -1.5, ConeColour::Yellow));
@@ -349,6 +353,18 @@ TEST_F(OpenLane, WhereThePlanEndsWithNoConeBeyondTheRunEndsAndTheCarStopsStraigh
     }
   }
   EXPECT_TRUE(run.finished());
+}
+
+// The generated open courses end at a finish line: its big orange cones stand beyond the walk's end (x = 40.5), and
+// are no track going on.
+TEST_F(OpenLane, AFinishLineAtTheEndIsNoTrackGoingOn) {
+  finish_line = true;
+  TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
+  start(run);
+  EXPECT_EQ(drive(run, 1, 31).source, PathSource::Planner);
+  EXPECT_FALSE(run.open_end_seen());
+  EXPECT_EQ(drive(run, 32, 32).source, PathSource::Straight);
+  EXPECT_TRUE(run.open_end_seen());
 }
 
 TEST_F(OpenLane, APlanThatEndsShortForAMomentIsNoEnd) {
