@@ -71,24 +71,74 @@ bool TrackdriveMission::detect_open_end(const MissionInput& in) {
   }
   if (!open_end_since_) open_end_since_ = in.odometer;
   if (in.odometer - *open_end_since_ < config_.mission.open_end_confirm) return false;
-  const Path* plan = in.plan;
-  const PathPoint& end = plan->points.back();
-  const Vec2 dir(std::cos(end.yaw), std::sin(end.yaw));
-  Path out = *plan;
+  const PathPoint& end = in.plan->points.back();
+  run_out(in, *in.plan, Vec2(std::cos(end.yaw), std::sin(end.yaw)));
+  return true;
+}
+
+void TrackdriveMission::run_out(const MissionInput& in, Path out, const Vec2& dir) {
   out.closed = false;
+  compute_geometry(out);  // the arc lengths of a path cut at its end line
   open_end_s_ = out.length();
+  const Vec2 end = out.points.back().p;
   const double ds = std::max(0.05, config_.planner.ds);
   for (double s = ds; s <= config_.mission.stop_distance + 1e-9; s += ds)
-    out.points.push_back({end.p + s * dir, 0, 0, 0, 0});
+    out.points.push_back({end + s * dir, 0, 0, 0, 0});
   compute_geometry(out);
   SpeedProfile(config_.speed.realtime()).apply(out, std::max(0.0, in.state->speed()), 0.0);
   run_out_ = std::move(out);
+}
+
+std::optional<TimingLine> TrackdriveMission::finish_line_in_sight(const MissionInput& in) const {
+  // Lap 1 on real-time plans, on a fresh view (as the open end).
+  if (run_out_ || finished() || !in.plan || !in.state || !in.cones || in.plan->points.size() < 2 || !lap_counter_ ||
+      lap_counter_->laps_completed() > 0 || config_.mission.open_end_sight <= 0 ||
+      in.odometer < config_.mission.open_end_min_travel || in.now - in.cones_stamp > 0.3 ||
+      in.now - in.cones_unbroken_since < config_.mission.open_end_settle)
+    return std::nullopt;
+  // Timing cones on both sides ahead: one misnamed cone is no line.
+  const Pose2& pose = in.state->pose;
+  bool left = false, right = false;
+  for (const auto& c : *in.cones) {
+    if (!c.position.allFinite() || convention_.role_of(c.colour) != ConeRole::Timing) continue;
+    const Vec2 l = pose.inverse_transform(c.position.head<2>());
+    if (l.x() < 0 || l.x() > config_.mission.open_end_sight || std::abs(l.y()) > 6.0) continue;
+    (l.y() > 0 ? left : right) = true;
+  }
+  if (!left || !right) return std::nullopt;
+  auto line = timing_line_from_cones(*in.cones, pose, convention_, 0, 0.0, config_.mission.open_end_sight);
+  // The start line is the loop's; a line away from it ends an open course.
+  if (!line || (line->mid() - lap_counter_->line().mid()).norm() < config_.laps.hysteresis) return std::nullopt;
+  return line;
+}
+
+bool TrackdriveMission::detect_finish_line(const MissionInput& in) {
+  // Believed once it stayed in sight on every fresh plan over open_end_confirm driven, as the open end.
+  const auto line = finish_line_in_sight(in);
+  if (!line) {
+    finish_since_.reset();
+    return false;
+  }
+  if (!finish_since_) finish_since_ = in.odometer;
+  if (in.odometer - *finish_since_ < config_.mission.open_end_confirm) return false;
+  // The plan up to the line, where the run ends; a plan that does not reach it is no run-out yet.
+  Path to_line = *in.plan;
+  const auto& pts = to_line.points;
+  const auto past = std::find_if(pts.begin(), pts.end(), [&](const PathPoint& q) { return line->past(q.p) >= 0; });
+  if (past == pts.begin() || past == pts.end()) return false;
+  const PathPoint& a = *(past - 1);
+  const double da = line->past(a.p), db = line->past(past->p);
+  PathPoint at = a;
+  at.p = a.p + (past->p - a.p) * (da / (da - db));
+  to_line.points.erase(past, to_line.points.end());
+  to_line.points.push_back(at);
+  run_out(in, std::move(to_line), line->forward);
   return true;
 }
 
 MissionPath TrackdriveMission::update_path(const MissionInput& in) {
   MissionPath out;
-  if (started() && in.plan_ok) out.replaced = detect_open_end(in);
+  if (started() && in.plan_ok) out.replaced = detect_finish_line(in) || detect_open_end(in);
   out.fixed = run_out_.has_value();
   if (!in.state) return out;
   if (run_out_) {

@@ -1,8 +1,9 @@
 #pragma once
 // Trackdrive and autocross: lap 1 on the real-time planner's path, timed at the line; from shortly before the
 // end of lap 1 (trackdrive only) the recorded lap-1 line, smoothed, recentred and profiled, followed on a good
-// GNSS fix, with the real-time plan as the fallback. An open layout (its boundaries do not close) ends where the
-// planner's path runs out with no cone beyond: one run, then straight on to a stop.
+// GNSS fix, with the real-time plan as the fallback. An open layout (its boundaries do not close) ends at its finish
+// line (timing cones on both sides ahead, away from the start line) or, without one, where the planner's path runs
+// out with no cone beyond: one run, then straight on to a stop.
 #include <optional>
 #include <vector>
 
@@ -41,6 +42,12 @@ class TrackdriveMission final : public MissionRun {
   // found now.
   bool detect_open_end(const MissionInput& in);
   bool open_end_in_sight(const MissionInput& in) const;  // this cycle's plan ends short with no cone beyond
+  // An open layout's finish line on this cycle's plan: the plan to the line, then straight on to a stop (run_out_).
+  // True when found now.
+  bool detect_finish_line(const MissionInput& in);
+  std::optional<TimingLine> finish_line_in_sight(const MissionInput& in) const;
+  // run_out_: `path`, its end line at its last point, then straight on along `dir` to a stop.
+  void run_out(const MissionInput& in, Path path, const Vec2& dir);
   SpeedLimits lap2_limits() const;
   // Lap 2's path from lap 1's poses up to t1 (and the plan `ahead` of an early build): built now, or handed to
   // the lap builder and taken by take_lap_build() once ready.
@@ -56,13 +63,14 @@ class TrackdriveMission final : public MissionRun {
   std::optional<Stamp> lap1_end_;    // lap 1's last crossing, once it happened
   std::optional<Path> lap_path_;
   LapBuildService* lap_builder_ = nullptr;
-  bool build_pending_ = false;   // a job is out with the lap builder
-  bool pending_early_ = false;   // the pending build is the early one (before the line)
-  bool discard_build_ = false;   // the pending build is from poses a loop closure has moved since
-  bool rebuild_ = false;         // the lap path was dropped by a loop closure: build it again
+  bool build_pending_ = false;            // a job is out with the lap builder
+  bool pending_early_ = false;            // the pending build is the early one (before the line)
+  bool discard_build_ = false;            // the pending build is from poses a loop closure has moved since
+  bool rebuild_ = false;                  // the lap path was dropped by a loop closure: build it again
   std::optional<double> open_end_since_;  // odometer where the end came into sight, on every plan since
-  std::optional<Path> run_out_;  // open layout: the last plan, then straight on to a stop past the end line
-  double open_end_s_ = 0;        // arc length of the end line on run_out_
+  std::optional<double> finish_since_;    // odometer where a finish line came into sight, on every plan since
+  std::optional<Path> run_out_;           // open layout: the last plan, then straight on to a stop past the end line
+  double open_end_s_ = 0;                 // arc length of the end line on run_out_
 };
 
 }  // namespace fsd

@@ -280,12 +280,13 @@ struct OpenLane : ::testing::Test {
   test::MissionWorld world;
   double lane_end = 40;
   bool cones_after_2s = true;  // false: the cone maps stop coming at t = 2 s
-  bool finish_line = false;    // true: a finish line's four big orange cones at the lane's end (x + 0.6, + 1.8)
+  bool finish_line = false;    // true: a finish line's four big orange cones at finish_x + 0.6 and + 1.8
+  double finish_x = 40;
 
   std::vector<Cone> lane() const {
     std::vector<Cone> c{cone_at(2, 2, ConeColour::BigOrange), cone_at(2, -2, ConeColour::BigOrange)};
     if (finish_line)
-      for (const double x : {lane_end + 0.6, lane_end + 1.8})
+      for (const double x : {finish_x + 0.6, finish_x + 1.8})
         for (const double y : {2.0, -2.0}) c.push_back(cone_at(x, y, ConeColour::BigOrange));
     for (int x = 0; x <= lane_end; x += 5) {
       c.push_back(cone_at(x, 1.5, ConeColour::Blue));
@@ -365,6 +366,69 @@ TEST_F(OpenLane, AFinishLineAtTheEndIsNoTrackGoingOn) {
   EXPECT_FALSE(run.open_end_seen());
   EXPECT_EQ(drive(run, 32, 32).source, PathSource::Straight);
   EXPECT_TRUE(run.open_end_seen());
+}
+
+// An open course whose finish line lies beside another part of it (the cones go on, and the plan with them): the run
+// ends at the line, x = 41.2, and the car stops straight on.
+TEST_F(OpenLane, AFinishLineEndsTheRunWhereTheConesGoOn) {
+  finish_line = true;
+  lane_end = 60;
+  TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
+  start(run);
+  const auto plan_to = [&](int from, int to) {
+    MissionPath p;
+    for (int k = from; k <= to; ++k) {
+      const Stamp t = 0.1 * k;
+      world.move(t, {1.0 * k, 0.0}, 0, kV);
+      world.see(t, lane());
+      world.plan = test::straight_path({1.0 * k, 0.0}, 0, 60.5 - k, 0.25);
+      world.plan_ok = true;
+      p = run.update_path(world.input(t));
+      run.progress(world.input(t), nullptr);
+    }
+    return p;
+  };
+  // Its cones within open_end_sight (12 m) from x = 29, believed over open_end_confirm (3 m) driven: at x = 32.
+  EXPECT_EQ(plan_to(1, 31).source, PathSource::Planner);
+  const MissionPath p = plan_to(32, 32);
+  ASSERT_NE(p.path, nullptr);
+  EXPECT_EQ(p.source, PathSource::Straight);
+  EXPECT_NEAR(p.path->points.back().p.x(), 41.2 + config.mission.stop_distance, config.planner.ds);
+  EXPECT_NEAR(p.path->points.back().v, 0.0, 1e-9);
+  // One run, timed from the start line (x = 2, t = 0.2 s) to the finish line (9.2 m on the path).
+  for (int k = 33; k <= 42; ++k) {
+    const Stamp t = 0.1 * k;
+    world.move(t, {1.0 * k, 0.0}, 0, kV);
+    const FollowResult f = test::followed_at(k - 32.0);
+    const MissionEvents e = run.progress(world.input(t), &f);
+    EXPECT_EQ(e.laps.size(), k == 42 ? 1u : 0u) << k;
+  }
+  EXPECT_TRUE(run.finished());
+}
+
+// A loop's start line, met again at the end of lap 1, is no finish line of an open course.
+TEST_F(OpenLane, TheStartLineIsNoFinishLine) {
+  TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
+  start(run);
+  lane_end = 60;
+  for (int k = 1; k <= 8; ++k) {
+    const Stamp t = 0.1 * k;
+    world.move(t, {1.0 * k, 0.0}, 0, kV);
+    world.see(t, lane());
+    world.plan = test::straight_path({1.0 * k, 0.0}, 0, 60.5 - k, 0.25);
+    world.plan_ok = true;
+    EXPECT_EQ(run.update_path(world.input(t)).source, PathSource::Planner) << k;
+  }
+  // Back behind the start line (as at the end of a lap), it is ahead in sight.
+  for (int k = 9; k <= 20; ++k) {
+    const Stamp t = 0.1 * k;
+    world.move(t, {-9.0 + 0.5 * (k - 9), 0.0}, 0, kV);
+    world.see(t, lane());
+    world.plan = test::straight_path({-9.0 + 0.5 * (k - 9), 0.0}, 0, 20, 0.25);
+    world.plan_ok = true;
+    EXPECT_EQ(run.update_path(world.input(t)).source, PathSource::Planner) << k;
+  }
+  EXPECT_FALSE(run.open_end_seen());
 }
 
 TEST_F(OpenLane, APlanThatEndsShortForAMomentIsNoEnd) {
