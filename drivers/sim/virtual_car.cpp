@@ -40,7 +40,11 @@ VirtualCarSettings read_virtual_car_settings(const Config& cfg) {
   s.vcu = vcu_standin_section().read(cfg);
   s.camera = camera_section().read(cfg);
   s.faults = read_fault_schedule(cfg);
-  apply_car(read_car(cfg), model_mismatch_section().read(cfg), s.vehicle, s.lidar, s.gnss);
+  const ModelMismatch mismatch = model_mismatch_section().read(cfg);
+  apply_car(read_car(cfg), mismatch, s.vehicle, s.lidar, s.gnss);
+  s.camera_roll_error = mismatch.camera_roll;
+  s.camera_pitch_error = mismatch.camera_pitch;
+  s.camera_yaw_error = mismatch.camera_yaw;
   return s;
 }
 
@@ -68,7 +72,13 @@ VirtualCar::VirtualCar(const Track& track, const VirtualCarSettings& settings, s
   // Each sensor gets its own seed stream so enabling one does not change another's noise.
   if (s_.run.lidar) lidar_ = std::make_unique<LidarModel>(s_.lidar, world_, seed * 7919 + 1, 0.0);
   if (s_.run.gnss) gnss_ = std::make_unique<GnssModel>(s_.gnss, seed * 7919 + 2);
-  if (s_.run.camera) camera_ = std::make_unique<CameraModel>(s_.camera, world_, seed * 7919 + 3, 0.0);
+  if (s_.run.camera) {
+    CameraConfig mounted = s_.camera;
+    mounted.roll += s_.camera_roll_error;
+    mounted.pitch += s_.camera_pitch_error;
+    mounted.yaw += s_.camera_yaw_error;
+    camera_ = std::make_unique<CameraModel>(mounted, world_, seed * 7919 + 3, 0.0);
+  }
   // A LiDAR outage: the packets are produced (the model's clock runs on) but never leave the sensor.
   if (sinks_.lidar) {
     sinks_.lidar = [this, out = sinks_.lidar](Stamp t, std::span<const std::uint8_t> b) {

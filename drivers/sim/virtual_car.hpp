@@ -38,7 +38,9 @@ struct VirtualCarSettings {
   LidarConfig lidar;
   GnssModelConfig gnss;
   VcuStandinConfig vcu;
-  CameraConfig camera;
+  CameraConfig camera;  // as calibrated: what the daemon is told
+  // The camera as it renders turned by these (rad; sim.mismatch.camera_roll, _pitch, _yaw) from `camera`.
+  double camera_roll_error = 0, camera_pitch_error = 0, camera_yaw_error = 0;
   FaultScheduleConfig faults;
 };
 VirtualCarSettings read_virtual_car_settings(const Config& cfg);

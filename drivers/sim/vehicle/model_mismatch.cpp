@@ -22,7 +22,11 @@ const ConfigSection<ModelMismatch>& model_mismatch_section() {
           .number("antenna_x", &M::antenna_x, -1.0, 1.0, "m",
                   "The simulated antenna sits this much ahead of car.gnss_antenna.x.")
           .number("antenna_y", &M::antenna_y, -1.0, 1.0, "m", "... this much left of car.gnss_antenna.y.")
-          .number("antenna_z", &M::antenna_z, -1.0, 1.0, "m", "... this much above car.gnss_antenna.z.");
+          .number("antenna_z", &M::antenna_z, -1.0, 1.0, "m", "... this much above car.gnss_antenna.z.")
+          .number("camera_roll", &M::camera_roll, -0.1, 0.1, "rad",
+                  "The simulated camera is rolled by this beyond the mount its calibration (sim.camera) gives.")
+          .number("camera_pitch", &M::camera_pitch, -0.1, 0.1, "rad", "... pitched by this (down positive).")
+          .number("camera_yaw", &M::camera_yaw, -0.1, 0.1, "rad", "... yawed by this.");
   return s;
 }
 
