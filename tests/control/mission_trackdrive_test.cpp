@@ -282,6 +282,7 @@ struct OpenLane : ::testing::Test {
   bool cones_after_2s = true;  // false: the cone maps stop coming at t = 2 s
   bool finish_line = false;    // true: a finish line's four big orange cones at finish_x + 0.6 and + 1.8
   double finish_x = 40;
+  double plan_end = 40.5;  // where the real-time plan's walk between the cones stops
 
   std::vector<Cone> lane() const {
     std::vector<Cone> c{cone_at(2, 2, ConeColour::BigOrange), cone_at(2, -2, ConeColour::BigOrange)};
@@ -306,7 +307,7 @@ struct OpenLane : ::testing::Test {
       const Stamp t = 0.1 * k;
       world.move(t, {1.0 * k, 0.0}, 0, kV);
       if (cones_after_2s || t <= 2.0) world.see(t, lane());
-      world.plan = test::straight_path({1.0 * k, 0.0}, 0, 40.5 - k, 0.25);
+      world.plan = test::straight_path({1.0 * k, 0.0}, 0, plan_end - k, 0.25);
       world.plan_ok = true;
       p = run.update_path(world.input(t));
       run.progress(world.input(t), nullptr);
@@ -373,24 +374,12 @@ TEST_F(OpenLane, AFinishLineAtTheEndIsNoTrackGoingOn) {
 TEST_F(OpenLane, AFinishLineEndsTheRunWhereTheConesGoOn) {
   finish_line = true;
   lane_end = 60;
+  plan_end = 60.5;
   TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
   start(run);
-  const auto plan_to = [&](int from, int to) {
-    MissionPath p;
-    for (int k = from; k <= to; ++k) {
-      const Stamp t = 0.1 * k;
-      world.move(t, {1.0 * k, 0.0}, 0, kV);
-      world.see(t, lane());
-      world.plan = test::straight_path({1.0 * k, 0.0}, 0, 60.5 - k, 0.25);
-      world.plan_ok = true;
-      p = run.update_path(world.input(t));
-      run.progress(world.input(t), nullptr);
-    }
-    return p;
-  };
   // Its cones within open_end_sight (12 m) from x = 29, believed over open_end_confirm (3 m) driven: at x = 32.
-  EXPECT_EQ(plan_to(1, 31).source, PathSource::Planner);
-  const MissionPath p = plan_to(32, 32);
+  EXPECT_EQ(drive(run, 1, 31).source, PathSource::Planner);
+  const MissionPath p = drive(run, 32, 32);
   ASSERT_NE(p.path, nullptr);
   EXPECT_EQ(p.source, PathSource::Straight);
   EXPECT_NEAR(p.path->points.back().p.x(), 41.2 + config.mission.stop_distance, config.planner.ds);
@@ -411,14 +400,8 @@ TEST_F(OpenLane, TheStartLineIsNoFinishLine) {
   TrackdriveMission run(config, Mission::Trackdrive, ColourConvention{});
   start(run);
   lane_end = 60;
-  for (int k = 1; k <= 8; ++k) {
-    const Stamp t = 0.1 * k;
-    world.move(t, {1.0 * k, 0.0}, 0, kV);
-    world.see(t, lane());
-    world.plan = test::straight_path({1.0 * k, 0.0}, 0, 60.5 - k, 0.25);
-    world.plan_ok = true;
-    EXPECT_EQ(run.update_path(world.input(t)).source, PathSource::Planner) << k;
-  }
+  plan_end = 60.5;
+  EXPECT_EQ(drive(run, 1, 8).source, PathSource::Planner);
   // Back behind the start line (as at the end of a lap), it is ahead in sight.
   for (int k = 9; k <= 20; ++k) {
     const Stamp t = 0.1 * k;
@@ -439,15 +422,8 @@ TEST_F(OpenLane, APlanThatEndsShortForAMomentIsNoEnd) {
   start(run);
   EXPECT_EQ(drive(run, 1, 30).source, PathSource::Planner);
   lane_end = 60;
-  for (int k = 31; k <= 45; ++k) {
-    const Stamp t = 0.1 * k;
-    world.move(t, {1.0 * k, 0.0}, 0, kV);
-    world.see(t, lane());
-    world.plan = test::straight_path({1.0 * k, 0.0}, 0, 60.5 - k, 0.25);
-    world.plan_ok = true;
-    EXPECT_EQ(run.update_path(world.input(t)).source, PathSource::Planner) << k;
-    run.progress(world.input(t), nullptr);
-  }
+  plan_end = 60.5;
+  EXPECT_EQ(drive(run, 31, 45).source, PathSource::Planner);  // a run-out, once taken, stays
   EXPECT_FALSE(run.open_end_seen());
 }
 
