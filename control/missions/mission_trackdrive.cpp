@@ -54,7 +54,7 @@ bool TrackdriveMission::open_end_in_sight(const MissionInput& in) const {
   for (const auto& c : *in.cones) {
     // Timing cones mark a line across the track, not its continuation: an open course's finish line stands at its
     // last cones, a little beyond where the walk between them stops.
-    if (!c.position.allFinite() || c.colour == ConeColour::BigOrange) continue;
+    if (!c.position.allFinite() || convention_.role_of(c.colour) == ConeRole::Timing) continue;
     const Vec2 d = c.position.head<2>() - end.p;
     if (d.dot(dir) > 1.0 && d.norm() < 10.0) return false;
   }

@@ -15,10 +15,10 @@
 //
 // Each return: distance in 2 mm units (0 = none), calibrated reflectivity 0..255 (the material's, scaled by
 // 0.3 + 0.7·cos(incidence); on a cone the mean of its paints over the beam's vertical footprint, 9.5 mm at the
-// sensor growing by 1.5 mrad: the manual's figures). Range noise is normal with σ = range_noise / 2, truncated at ±range_noise (the
-// datasheet's "±3 cm typical" read as a 2σ bound). Returns are dropped with probability `dropout` and outside
-// [min_range, max_range]. Noise and dropout of each firing are hashed from (seed, packet, channel): deterministic
-// for a seed and independent of how the simulation is stepped.
+// sensor growing by 1.5 mrad: the manual's figures). Range noise is normal with σ = range_noise / 2, truncated at
+// ±range_noise (the datasheet's "±3 cm typical" read as a 2σ bound). Returns are dropped with probability `dropout`
+// and outside [min_range, max_range]. Noise and dropout of each firing are hashed from (seed, packet, channel):
+// deterministic for a seed and independent of how the simulation is stepped.
 #include <array>
 #include <cstdint>
 #include <functional>
