@@ -16,7 +16,7 @@ TimingLine line_across(const Pose2& pose, double half_width) {
 
 std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones, const Pose2& start,
                                                  const ColourConvention& convention, int index, double search_behind,
-                                                 double search_ahead) {
+                                                 double search_ahead, bool both_sides) {
   struct Local {
     Vec2 map, local;
   };
@@ -48,7 +48,7 @@ std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones,
       ++nr;
     }
   }
-  if (nl == 0 && nr == 0) return std::nullopt;
+  if ((nl == 0 && nr == 0) || (both_sides && (nl == 0 || nr == 0))) return std::nullopt;
   const Vec2 heading(std::cos(start.yaw), std::sin(start.yaw));
   if (nl == 0 || nr == 0) {
     // Timing cones on one side only: a cone map merges a start line's doubled cones with the boundary cone

@@ -23,9 +23,11 @@ struct TimingLine {
 // left and right of the start heading. `index` picks the 0th, 1st, ... group along the heading (an
 // acceleration track has a start and a finish line). With timing cones on one side only, the line runs across the
 // start heading from them one nominal track width (3.5 m) towards the other side; nullopt without any.
+// `both_sides`: nullopt unless the group has timing cones on both sides (one misnamed cone is no line).
 std::optional<TimingLine> timing_line_from_cones(const std::vector<Cone>& cones, const Pose2& start,
                                                  const ColourConvention& convention, int index = 0,
-                                                 double search_behind = 10.0, double search_ahead = 40.0);
+                                                 double search_behind = 10.0, double search_ahead = 40.0,
+                                                 bool both_sides = false);
 // A line across the heading through `pose`, `half_width` to each side.
 TimingLine line_across(const Pose2& pose, double half_width = 5.0);
 

@@ -33,16 +33,29 @@ void TrackdriveMission::start(const MissionInput& in) {
   }
 }
 
-bool TrackdriveMission::open_end_in_sight(const MissionInput& in) const {
-  const Path* plan = in.plan;
+bool TrackdriveMission::watching_for_the_end(const MissionInput& in) const {
   // Only the first time round on real-time plans: a loop's recorded lap never ends.
-  if (run_out_ || finished() || !plan || !in.state || !in.cones || plan->points.size() < 2 || !lap_counter_ ||
+  if (run_out_ || finished() || !in.plan || !in.state || !in.cones || in.plan->points.size() < 2 || !lap_counter_ ||
       lap_counter_->laps_completed() > 0 || config_.mission.open_end_sight <= 0 ||
       in.odometer < config_.mission.open_end_min_travel)
     return false;
   // Only on a fresh view: with the sensors silent, no cones beyond the plan proves nothing; nor just after a gap,
   // while the map has not yet confirmed the cones that came into range meanwhile.
-  if (in.now - in.cones_stamp > 0.3 || in.now - in.cones_unbroken_since < config_.mission.open_end_settle) return false;
+  return in.now - in.cones_stamp <= 0.3 && in.now - in.cones_unbroken_since >= config_.mission.open_end_settle;
+}
+
+bool TrackdriveMission::stayed_in_sight(bool in_sight, std::optional<double>& since, double odometer) const {
+  if (!in_sight) {
+    since.reset();
+    return false;
+  }
+  if (!since) since = odometer;
+  return odometer - *since >= config_.mission.open_end_confirm;
+}
+
+bool TrackdriveMission::open_end_in_sight(const MissionInput& in) const {
+  if (!watching_for_the_end(in)) return false;
+  const Path* plan = in.plan;
   const PathPoint& end = plan->points.back();
   const Vec2 dir(std::cos(end.yaw), std::sin(end.yaw));
   // The walk stopped well inside what the sensors see: if the track went on, its next cones (≤ 5 m apart by the
@@ -65,12 +78,7 @@ bool TrackdriveMission::detect_open_end(const MissionInput& in) {
   // Believed once the end stayed in sight on every fresh plan over open_end_confirm driven: a plan that ends short
   // for a moment (a sharp turn beyond the walk's end whose cones the real perception has not confirmed yet) is no
   // end of the track; it ended epfl_autoX_Vaudoise_Sponso's first lap in its slalom.
-  if (!open_end_in_sight(in)) {
-    open_end_since_.reset();
-    return false;
-  }
-  if (!open_end_since_) open_end_since_ = in.odometer;
-  if (in.odometer - *open_end_since_ < config_.mission.open_end_confirm) return false;
+  if (!stayed_in_sight(open_end_in_sight(in), open_end_since_, in.odometer)) return false;
   const PathPoint& end = in.plan->points.back();
   run_out(in, *in.plan, Vec2(std::cos(end.yaw), std::sin(end.yaw)));
   return true;
@@ -90,23 +98,10 @@ void TrackdriveMission::run_out(const MissionInput& in, Path out, const Vec2& di
 }
 
 std::optional<TimingLine> TrackdriveMission::finish_line_in_sight(const MissionInput& in) const {
-  // Lap 1 on real-time plans, on a fresh view (as the open end).
-  if (run_out_ || finished() || !in.plan || !in.state || !in.cones || in.plan->points.size() < 2 || !lap_counter_ ||
-      lap_counter_->laps_completed() > 0 || config_.mission.open_end_sight <= 0 ||
-      in.odometer < config_.mission.open_end_min_travel || in.now - in.cones_stamp > 0.3 ||
-      in.now - in.cones_unbroken_since < config_.mission.open_end_settle)
-    return std::nullopt;
+  if (!watching_for_the_end(in)) return std::nullopt;
   // Timing cones on both sides ahead: one misnamed cone is no line.
-  const Pose2& pose = in.state->pose;
-  bool left = false, right = false;
-  for (const auto& c : *in.cones) {
-    if (!c.position.allFinite() || convention_.role_of(c.colour) != ConeRole::Timing) continue;
-    const Vec2 l = pose.inverse_transform(c.position.head<2>());
-    if (l.x() < 0 || l.x() > config_.mission.open_end_sight || std::abs(l.y()) > 6.0) continue;
-    (l.y() > 0 ? left : right) = true;
-  }
-  if (!left || !right) return std::nullopt;
-  auto line = timing_line_from_cones(*in.cones, pose, convention_, 0, 0.0, config_.mission.open_end_sight);
+  auto line =
+      timing_line_from_cones(*in.cones, in.state->pose, convention_, 0, 0.0, config_.mission.open_end_sight, true);
   // The start line is the loop's; a line away from it ends an open course.
   if (!line || (line->mid() - lap_counter_->line().mid()).norm() < config_.laps.hysteresis) return std::nullopt;
   return line;
@@ -115,12 +110,7 @@ std::optional<TimingLine> TrackdriveMission::finish_line_in_sight(const MissionI
 bool TrackdriveMission::detect_finish_line(const MissionInput& in) {
   // Believed once it stayed in sight on every fresh plan over open_end_confirm driven, as the open end.
   const auto line = finish_line_in_sight(in);
-  if (!line) {
-    finish_since_.reset();
-    return false;
-  }
-  if (!finish_since_) finish_since_ = in.odometer;
-  if (in.odometer - *finish_since_ < config_.mission.open_end_confirm) return false;
+  if (!stayed_in_sight(line.has_value(), finish_since_, in.odometer)) return false;
   // The plan up to the line, where the run ends; a plan that does not reach it is no run-out yet.
   Path to_line = *in.plan;
   const auto& pts = to_line.points;

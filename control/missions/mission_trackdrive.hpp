@@ -41,6 +41,10 @@ class TrackdriveMission final : public MissionRun {
   // An open layout's end in the plan of this cycle: the plan, then straight on to a stop (run_out_). True when
   // found now.
   bool detect_open_end(const MissionInput& in);
+  // Lap 1 on real-time plans, on a fresh view: when an open layout's end (or finish line) is looked for.
+  bool watching_for_the_end(const MissionInput& in) const;
+  // Whether what is in sight now has stayed so over open_end_confirm driven (`since`: where it came into sight).
+  bool stayed_in_sight(bool in_sight, std::optional<double>& since, double odometer) const;
   bool open_end_in_sight(const MissionInput& in) const;  // this cycle's plan ends short with no cone beyond
   // An open layout's finish line on this cycle's plan: the plan to the line, then straight on to a stop (run_out_).
   // True when found now.

@@ -113,6 +113,8 @@ TEST(LapCounter, TimingConesOnOneSideStillGiveALineAcrossTheStartHeading) {
   mapped.push_back(right);
   const auto line = timing_line_from_cones(mapped, ax.start, ax.convention);
   ASSERT_TRUE(line);
+  // Asked for timing cones on both sides (an open course's finish line), one side is no line.
+  EXPECT_FALSE(timing_line_from_cones(mapped, ax.start, ax.convention, 0, 10.0, 40.0, true));
   EXPECT_NEAR(line->forward.y(), 1.0, 1e-5);
   EXPECT_NEAR(line->past(ax.start.position()), -9.0, 1e-5);  // start at y = −1.5
   // Its ends span the lane (x from −1.5 to +2): a car on the centre line crosses it between them.

@@ -42,6 +42,18 @@ double chain_length(const std::vector<Vec2>& c, bool closed) {
   return l;
 }
 
+// The median step of a chain (closed: with the edge from its end back to its beginning).
+double median_step(const std::vector<Vec2>& c, bool closed) {
+  std::vector<double> steps;
+  if (closed) steps.push_back((c.front() - c.back()).norm());
+  for (std::size_t i = 1; i < c.size(); ++i) steps.push_back((c[i] - c[i - 1]).norm());
+  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+  return steps[steps.size() / 2];
+}
+
+// A cone gap or two at a boundary's cone spacing: the most a loop's closing edge, or a line's widest step, may be.
+double gap_bound(double spacing) { return std::max(6.0, 2.75 * spacing); }
+
 // The cones as the file lists them when that is a line: every step at most a cone gap, the ends far apart. An
 // open course staged on its first straight has cones behind the car, where a chain grown from the cone beside it
 // runs to the finish and jumps back; and where two parts of it run a cone gap apart, no shortest path is the
@@ -49,11 +61,9 @@ double chain_length(const std::vector<Vec2>& c, bool closed) {
 // direction (the start heading, at the cone nearest the start). Empty when the listed order is no such line.
 std::vector<Vec2> listed_line(std::vector<Vec2> pts, const Pose2& start) {
   if (pts.size() < 5) return {};
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < pts.size(); ++i) steps.push_back((pts[i] - pts[i - 1]).norm());
-  const double widest = *std::max_element(steps.begin(), steps.end());
-  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-  const double gap = std::max(6.0, 2.75 * steps[steps.size() / 2]);
+  double widest = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i) widest = std::max(widest, (pts[i] - pts[i - 1]).norm());
+  const double gap = gap_bound(median_step(pts, false));
   if (widest > gap || (pts.front() - pts.back()).norm() <= gap) return {};
   const Vec2 s = start.position();
   std::size_t near = 0;
@@ -118,14 +128,11 @@ std::vector<Vec2> chain(std::vector<Vec2> pts, const Pose2& start, bool& closed)
     listed.insert(listed.end(), pts.begin(), pts.begin() + static_cast<long>(first));
     untangle(listed, true);
     if (chain_length(listed, true) < chain_length(loop, true)) loop = std::move(listed);
-    std::vector<double> steps{(loop.front() - loop.back()).norm()};
-    for (std::size_t i = 1; i < loop.size(); ++i) steps.push_back((loop[i] - loop[i - 1]).norm());
-    std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-    const double spacing = steps[steps.size() / 2];  // the median: a line's loop has one edge as long as the line
+    const double spacing = median_step(loop, true);  // the median: a line's loop has one edge as long as the line
     // A loop's shortest open chain may cut across an island once (two cone steps saved for one short jump): on
     // the generated loops the difference is at most 2.5 cone spacings; the shared open layouts' are 3.2 (epfl_VSV,
     // a U) and 13 (acceleration).
-    closed = chain_length(loop, true) - chain_length(line, false) <= std::max(6.0, 2.75 * spacing);
+    closed = chain_length(loop, true) - chain_length(line, false) <= gap_bound(spacing);
     if (closed) out = std::move(loop);
   }
   if (closed) {
